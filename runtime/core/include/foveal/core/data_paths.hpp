@@ -1,0 +1,13 @@
+#pragma once
+// Where foveal finds what it ships: display models, the bundled gaze log, shaders.
+#include <string>
+
+namespace foveal {
+
+/// Root holding data/ and shaders/: $FOVEAL_DATA_DIR if set, else the install tree
+/// (<prefix>/share/foveal) if it exists, else the source tree this build came from.
+std::string data_root();
+/// data_root() + "/" + relative.
+std::string data_path(const std::string& relative);
+
+}  // namespace foveal

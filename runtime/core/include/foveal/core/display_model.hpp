@@ -1,0 +1,51 @@
+#pragma once
+// The HMD's per-eye geometry as data (docs/conventions.md, docs/display-model.md).
+#include <array>
+#include <string>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "foveal/core/error.hpp"
+#include "foveal/core/gaze_sample.hpp"
+
+namespace foveal {
+
+/// Asymmetric frustum as tangents of the half-angles; left and bottom are negative.
+struct EyeFrustum {
+  float tan_left = -1.0f, tan_right = 1.0f, tan_bottom = -1.0f, tan_top = 1.0f;
+};
+
+/// Per-eye viewport size and projection. Pixel coordinates are those of the eye's
+/// viewport: origin at the top-left corner, x right, y down, pixel i covers [i, i+1).
+struct DisplayModel {
+  std::string name;
+  int eye_width = 1440;
+  int eye_height = 1600;
+  float ipd_mm = 63.0f;
+  std::array<EyeFrustum, 2> frustum{};
+
+  const EyeFrustum& eye(Eye e) const { return frustum[static_cast<std::size_t>(e)]; }
+  int output_width() const { return 2 * eye_width; }  ///< side by side, left eye left
+  int output_height() const { return eye_height; }
+
+  /// Gaze direction (eye frame, -z forward) -> viewport pixel. Directions at or behind
+  /// the eye's plane give NaN. The result may lie outside the viewport.
+  glm::vec2 direction_to_pixel(Eye e, glm::vec3 dir) const;
+  /// Viewport pixel -> unit direction in the eye frame.
+  glm::vec3 pixel_to_direction(Eye e, glm::vec2 px) const;
+  /// Focal length in pixels along x and y (per eye).
+  glm::vec2 focal_px(Eye e) const;
+  /// Pixel where the optical axis (direction (0,0,-1)) lands.
+  glm::vec2 principal_point(Eye e) const;
+
+  /// HTC Vive Pro Eye, the default: FovVideoVDP's htc_vive_pro geometry (1440x1600,
+  /// 110 deg diagonal, 753.6 px focal length, symmetric frustum).
+  static DisplayModel vive_pro_eye();
+  /// Loads a display-model JSON file (format in docs/display-model.md).
+  static Result<DisplayModel> load(const std::string& path);
+  /// Checks sizes, ordering and finiteness of the tangents; message names `where`.
+  Status validate(const std::string& where) const;
+};
+
+}  // namespace foveal

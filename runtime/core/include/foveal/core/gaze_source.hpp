@@ -1,0 +1,51 @@
+#pragma once
+// The one interface every gaze driver implements (replay, synthetic, hid, usb).
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+#include "foveal/core/error.hpp"
+#include "foveal/core/gaze_sample.hpp"
+
+namespace foveal {
+
+struct SourceInfo {
+  std::string driver;         ///< "replay", "synthetic", "hid", "usb"
+  std::string name;           ///< human-readable device or file name
+  std::string path;           ///< device node or file path, "" if none
+  double nominal_rate_hz = 0; ///< what the device/log claims
+  std::uint16_t vendor_id = 0;
+  std::uint16_t product_id = 0;
+};
+
+/// What next() produced. Not an error channel for device data: malformed reports are
+/// counted by the driver and skipped, never delivered.
+enum class ReadStatus {
+  sample,        ///< `sample` holds a new sample
+  timeout,       ///< nothing within the timeout; try again
+  end,           ///< a finite source is exhausted (replay without loop)
+  disconnected,  ///< the device went away; the caller may reopen() later
+  error,         ///< unrecoverable; `error` says why
+};
+
+struct ReadResult {
+  ReadStatus status = ReadStatus::timeout;
+  GazeSample sample{};
+  Error error{};
+};
+
+/// Lifecycle: open() -> start() -> next()* -> stop() -> close(). Implementations are
+/// used from one thread at a time; none of the calls throws.
+class GazeSource {
+ public:
+  virtual ~GazeSource() = default;
+  virtual Status open() = 0;
+  virtual void close() = 0;
+  virtual Status start() = 0;
+  virtual void stop() = 0;
+  /// Blocks at most `timeout` for the next sample. Timestamps are on the runtime clock.
+  virtual ReadResult next(std::chrono::nanoseconds timeout) = 0;
+  virtual SourceInfo info() const = 0;
+};
+
+}  // namespace foveal

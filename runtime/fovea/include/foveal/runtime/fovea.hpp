@@ -1,0 +1,44 @@
+#pragma once
+// What the runtime hands the compositor: one fovea point per eye.
+#include <array>
+#include <cstdint>
+
+#include <glm/vec2.hpp>
+
+#include "foveal/core/clock.hpp"
+#include "foveal/core/display_model.hpp"
+#include "foveal/core/gaze_sample.hpp"
+
+namespace foveal {
+
+enum class FoveaState : std::uint8_t { fixation, saccade, pursuit, blink, lost };
+const char* fovea_state_name(FoveaState s);
+
+struct FoveaPoint {
+  glm::vec2 px{0.0f};  ///< viewport pixel (origin top-left, y down), always inside the viewport
+  FoveaState state = FoveaState::lost;
+  float confidence = 0.0f;  ///< 0..1
+};
+
+struct FoveaFrame {
+  TimeNs t_ns = 0;  ///< time of the sample it came from
+  std::array<FoveaPoint, 2> eyes{};
+  const FoveaPoint& eye(Eye e) const { return eyes[static_cast<std::size_t>(e)]; }
+};
+
+/// The unfiltered mapping: each eye's valid direction through the display model,
+/// clamped into the viewport; an invalid eye keeps its last point (state blink/lost),
+/// the viewport centre before any valid sample. The filter pipeline replaces it.
+class RawFoveaMapper {
+ public:
+  explicit RawFoveaMapper(DisplayModel model) : model_(std::move(model)) { reset(); }
+  FoveaFrame update(const GazeSample& s);
+  void reset();
+  const DisplayModel& model() const { return model_; }
+
+ private:
+  DisplayModel model_;
+  FoveaFrame last_{};
+};
+
+}  // namespace foveal

@@ -1,0 +1,14 @@
+#pragma once
+// Each `foveal` subcommand lives in its own cmd_*.cpp and registers itself here.
+// A command's callback stores its exit code in `exit_code`.
+namespace CLI {
+class App;
+}
+
+namespace foveal::cmd {
+
+void add_import(CLI::App& app, int& exit_code);
+void add_log(CLI::App& app, int& exit_code);
+void add_synth(CLI::App& app, int& exit_code);
+
+}  // namespace foveal::cmd

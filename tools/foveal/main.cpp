@@ -1,0 +1,22 @@
+// foveal: the command-line tool (import, log, synth, and more as the runtime grows).
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+#include "foveal/tools/cli.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"foveal: eye-tracked foveated rendering toolkit (gaze logs, rendering, metrics)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "foveal 0.1.0");
+  int exit_code = foveal::cli::kExitOk;
+  foveal::cmd::add_import(app, exit_code);
+  foveal::cmd::add_log(app, exit_code);
+  foveal::cmd::add_synth(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : foveal::cli::kExitBadInput;
+  }
+  return exit_code;
+}
