@@ -1,0 +1,63 @@
+#pragma once
+// Helpers shared by the tests: temporary directories, running the CLI, reading files.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace foveal::test {
+
+/// A fresh directory under $TMPDIR, removed with everything in it at scope exit.
+class TempDir {
+ public:
+  TempDir() {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "foveal-test-XXXXXX").string();
+    if (!::mkdtemp(tmpl.data())) std::abort();
+    path_ = tmpl;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  std::string path(const std::string& name = "") const { return name.empty() ? path_ : path_ + "/" + name; }
+
+ private:
+  std::string path_;
+};
+
+inline std::string shared_data(const std::string& rel) { return std::string(FOVEAL_SHARED_DATA) + "/" + rel; }
+inline std::string source_path(const std::string& rel) { return std::string(FOVEAL_SOURCE_DIR) + "/" + rel; }
+inline std::string bin(const std::string& name) { return std::string(FOVEAL_BIN_DIR) + "/" + name; }
+
+inline std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+inline void write_file(const std::string& path, const std::string& data) {
+  std::ofstream out(path, std::ios::binary);
+  out << data;
+}
+
+/// Runs a shell command, capturing stdout and stderr; returns the exit code.
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+inline RunResult run(const std::string& cmd) {
+  TempDir d;
+  const std::string o = d.path("out"), e = d.path("err");
+  const int rc = std::system((cmd + " >" + o + " 2>" + e).c_str());
+  RunResult r;
+  r.exit_code = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  r.out = read_file(o);
+  r.err = read_file(e);
+  return r;
+}
+
+}  // namespace foveal::test
