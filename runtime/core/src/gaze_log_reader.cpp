@@ -112,8 +112,69 @@ Result<bool> GazeLogReader::next(GazeSample& out) {
     if (samples_ == 0) return bad_input(path() + ": no samples: the log has a header only");
     return false;
   }
-  const auto& cols = gaze_log_columns();
   if (line.crlf) return bad_input(where(path(), line.number) + ": line ends in CRLF; gaze logs use LF line ends");
+
+  // One pass over the row: each field is parsed where it starts and must end at a ','
+  // (or the line's end for the last). This is the replay hot path; the slow path
+  // (describe_row_error) re-reads the row to say exactly what is wrong.
+  const char* p = line.text.data();
+  const char* const end = p + line.text.size();
+  GazeSample s;
+  auto field_end = [&](const char* q) { return q == end || *q == ','; };
+  auto advance = [&](const char* q, bool last) -> const char* {
+    if (last) return q == end ? q : nullptr;
+    return q != end && *q == ',' ? q + 1 : nullptr;
+  };
+  bool ok = true;
+  {
+    auto [q, ec] = std::from_chars(p, end, s.t_ns);
+    ok = ec == std::errc() && (p = advance(q, false)) != nullptr;
+  }
+  auto read_float = [&](bool present, float& dst, bool last) {
+    if (!ok) return;
+    if (!present) {
+      dst = 0.0f;
+      ok = field_end(p) && (p = advance(p, last)) != nullptr;
+      return;
+    }
+    const char* q = detail::parse_float_prefix(p, end, dst);
+    if (!q) {  // rare: let from_chars decide
+      q = p;
+      while (!field_end(q)) ++q;
+      auto [r, ec] = std::from_chars(p, q, dst);
+      if (ec != std::errc() || r != q) q = nullptr;
+    }
+    ok = q && q != p && std::isfinite(dst) && (p = advance(q, last)) != nullptr;
+  };
+  auto read_block = [&](EyeSample& e, bool with_pupil, bool last_block) {
+    if (!ok) return;
+    auto [q, ec] = std::from_chars(p, end, e.valid);
+    ok = ec == std::errc() && e.valid <= (with_pupil ? kValidAll : 3u) && (p = advance(q, false)) != nullptr;
+    for (int i = 0; i < 3; ++i) read_float(e.has(kValidDirection), e.direction[i], false);
+    for (int i = 0; i < 3; ++i) read_float(e.has(kValidOrigin), e.origin_mm[i], last_block && !with_pupil && i == 2);
+    if (with_pupil) {
+      read_float(e.has(kValidPupil), e.pupil_mm, false);
+      read_float(e.has(kValidOpenness), e.openness, last_block);
+    }
+  };
+  read_block(s.eyes[0], true, false);
+  read_block(s.eyes[1], true, false);
+  read_block(s.combined, false, true);
+  if (!ok || !line.terminated) return describe_row_error(line);
+  if (samples_ > 0 && s.t_ns <= last_t_)
+    return row_error(line.number, gaze_log_columns()[0],
+                     std::to_string(s.t_ns) +
+                         (s.t_ns == last_t_ ? " repeats the previous timestamp"
+                                            : " goes back from " + std::to_string(last_t_)) +
+                         "; timestamps must increase strictly");
+  last_t_ = s.t_ns;
+  ++samples_;
+  out = s;
+  return true;
+}
+
+Error GazeLogReader::describe_row_error(const LineReader::Line& line) {
+  const auto& cols = gaze_log_columns();
   split_fields(line.text, ',', fields_);
   if (fields_.size() < kRowFields) {
     const std::string what = line.terminated ? "missing (row has " + std::to_string(fields_.size()) + " of " +
@@ -124,53 +185,34 @@ Result<bool> GazeLogReader::next(GazeSample& out) {
   if (fields_.size() > kRowFields)
     return bad_input(where(path(), line.number) + ": row has " + std::to_string(fields_.size()) +
                      " fields, expected " + std::to_string(kRowFields));
-  if (!line.terminated)
-    return bad_input(where(path(), line.number) + ": truncated last row (no line end)");
+  if (!line.terminated) return bad_input(where(path(), line.number) + ": truncated last row (no line end)");
 
-  GazeSample s;
-  if (!parse_number(fields_[0], s.t_ns)) return row_error(line.number, cols[0], "'" + std::string(fields_[0]) + "' is not an integer");
-  if (samples_ > 0 && s.t_ns <= last_t_)
-    return row_error(line.number, cols[0], std::to_string(s.t_ns) + (s.t_ns == last_t_ ? " repeats" : " goes back from ") +
-                                               (s.t_ns == last_t_ ? " the previous timestamp" : std::to_string(last_t_)) +
-                                               "; timestamps must increase strictly");
-
+  std::int64_t t = 0;
+  if (!parse_number(fields_[0], t))
+    return row_error(line.number, cols[0], "'" + std::string(fields_[0]) + "' is not an integer");
   std::size_t col = 1;
-  auto read_float = [&](bool present, float& dst) -> Status {
-    const std::size_t c = col++;
-    const std::string_view f = fields_[c];
-    if (!present) {
-      if (!f.empty()) return row_error(line.number, cols[c], "has a value but its validity bit is clear");
-      dst = 0.0f;
-      return {};
+  std::uint32_t valid = 0;
+  for (int block = 0; block < 3; ++block) {
+    const bool with_pupil = block < 2;
+    const std::uint32_t max_mask = with_pupil ? kValidAll : 3u;
+    if (!parse_number(fields_[col], valid) || valid > max_mask)
+      return row_error(line.number, cols[col], "'" + std::string(fields_[col]) + "' is not a validity mask (0.." +
+                                                   std::to_string(max_mask) + ")");
+    ++col;
+    const std::uint32_t bits[] = {kValidDirection, kValidDirection, kValidDirection, kValidOrigin,
+                                  kValidOrigin,    kValidOrigin,    kValidPupil,     kValidOpenness};
+    for (int i = 0; i < (with_pupil ? 8 : 6); ++i, ++col) {
+      const std::string_view f = fields_[col];
+      const bool present = (valid & bits[i]) != 0;
+      if (!present && !f.empty()) return row_error(line.number, cols[col], "has a value but its validity bit is clear");
+      if (!present) continue;
+      if (f.empty()) return row_error(line.number, cols[col], "empty but its validity bit is set");
+      float v = 0;
+      if (!parse_number(f, v)) return row_error(line.number, cols[col], "'" + std::string(f) + "' is not a number");
+      if (!std::isfinite(v)) return row_error(line.number, cols[col], "'" + std::string(f) + "' is not finite");
     }
-    if (f.empty()) return row_error(line.number, cols[c], "empty but its validity bit is set");
-    if (!parse_number(f, dst)) return row_error(line.number, cols[c], "'" + std::string(f) + "' is not a number");
-    if (!std::isfinite(dst)) return row_error(line.number, cols[c], "'" + std::string(f) + "' is not finite");
-    return {};
-  };
-  auto read_block = [&](EyeSample& e, bool with_pupil) -> Status {
-    const std::size_t c = col++;
-    if (!parse_number(fields_[c], e.valid) || e.valid > kValidAll || (!with_pupil && (e.valid & ~3u)))
-      return row_error(line.number, cols[c], "'" + std::string(fields_[c]) + "' is not a validity mask (0.." +
-                                                 std::to_string(with_pupil ? kValidAll : 3u) + ")");
-    for (int i = 0; i < 3; ++i)
-      if (Status st = read_float(e.has(kValidDirection), e.direction[i]); !st) return st;
-    for (int i = 0; i < 3; ++i)
-      if (Status st = read_float(e.has(kValidOrigin), e.origin_mm[i]); !st) return st;
-    if (with_pupil) {
-      if (Status st = read_float(e.has(kValidPupil), e.pupil_mm); !st) return st;
-      if (Status st = read_float(e.has(kValidOpenness), e.openness); !st) return st;
-    }
-    return {};
-  };
-  for (EyeSample& e : s.eyes)
-    if (Status st = read_block(e, true); !st) return st.error();
-  if (Status st = read_block(s.combined, false); !st) return st.error();
-
-  last_t_ = s.t_ns;
-  ++samples_;
-  out = s;
-  return true;
+  }
+  return bad_input(where(path(), line.number) + ": malformed row");
 }
 
 Result<std::vector<GazeSample>> read_gaze_log(const std::string& path, GazeLogHeader* header) {

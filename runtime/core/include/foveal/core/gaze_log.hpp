@@ -46,6 +46,7 @@ class GazeLogReader {
   GazeLogReader(LineReader lines) : lines_(std::move(lines)) {}
   Status read_header();
   Error row_error(std::uint64_t line, std::string_view column, const std::string& what) const;
+  Error describe_row_error(const LineReader::Line& line);
 
   LineReader lines_;
   GazeLogHeader header_;

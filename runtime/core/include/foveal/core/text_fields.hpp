@@ -1,6 +1,9 @@
 #pragma once
 // Splitting delimited rows and parsing numbers without allocation (std::from_chars).
+#include <bit>
 #include <charconv>
+#include <cmath>
+#include <cstring>
 #include <cstdint>
 #include <string_view>
 #include <system_error>
@@ -24,6 +27,73 @@ inline void split_fields(std::string_view line, char delim, std::vector<std::str
   }
 }
 
+namespace detail {
+
+/// Accumulates the digit run at p (not past e) into m; returns the end of the run.
+/// (A word-at-a-time variant measured slower here: the runs are short.)
+inline const char* read_digits(const char* p, const char* e, std::uint64_t& m, int& count) {
+  while (p != e && static_cast<unsigned>(*p - '0') < 10) {
+    m = m * 10 + static_cast<unsigned>(*p++ - '0');
+    ++count;
+  }
+  return p;
+}
+
+/// Fast path for plain decimal floats ("-0.1235", "3.5e-7") at the start of [b, e):
+/// digits into an integer mantissa, one correctly rounded double operation (exact for
+/// mantissa < 2^53 and |exponent| <= 22), then to float unless the double lies too
+/// close to a midpoint between two floats, where double rounding could differ. Returns
+/// the end of the number, or nullptr when it cannot decide (the caller then uses
+/// std::from_chars), so results always equal std::from_chars.
+inline const char* parse_float_prefix(const char* b, const char* e, float& out) {
+  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                      1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  const char* p = b;
+  const bool neg = p != e && *p == '-';
+  if (neg) ++p;
+  std::uint64_t m = 0;
+  int digits = 0, exp10 = 0;
+  const char* start = p;
+  p = read_digits(p, e, m, digits);
+  const int int_digits = digits;
+  if (p != e && *p == '.') {
+    p = read_digits(p + 1, e, m, digits);
+    exp10 = int_digits - digits;
+  }
+  if (p == start || digits == 0 || digits > 15) return nullptr;
+  if (p != e && (*p == 'e' || *p == 'E')) {
+    ++p;
+    bool eneg = false;
+    if (p != e && (*p == '-' || *p == '+')) eneg = *p++ == '-';
+    int x = 0, xd = 0;
+    while (p != e && static_cast<unsigned>(*p - '0') < 10 && xd < 4) {
+      x = x * 10 + (*p++ - '0');
+      ++xd;
+    }
+    if (xd == 0) return nullptr;
+    exp10 += eneg ? -x : x;
+  }
+  if (exp10 < -22 || exp10 > 22) return nullptr;
+  double d = static_cast<double>(m);
+  d = exp10 < 0 ? d / kPow10[-exp10] : d * kPow10[exp10];
+  const float f = static_cast<float>(d);
+  if (d == static_cast<double>(f)) {
+    out = neg ? -f : f;
+    return p;
+  }
+  // Is d safely away from the midpoint between f and its neighbour on d's side?
+  // (d > 0 here, so the neighbour is one step up or down in the bit pattern.)
+  if (!std::isfinite(f)) return nullptr;
+  const std::uint32_t bits = std::bit_cast<std::uint32_t>(f);
+  const float g = std::bit_cast<float>(d > static_cast<double>(f) ? bits + 1 : bits - 1);
+  const double mid = 0.5 * (static_cast<double>(f) + static_cast<double>(g));
+  if (std::fabs(d - mid) <= d * 0x1p-50) return nullptr;
+  out = neg ? -f : f;
+  return p;
+}
+
+}  // namespace detail
+
 /// Parses the whole field as T; false if empty, partial, out of range or not a number.
 /// Accepts "nan"/"inf" for floating types: callers decide whether those are allowed.
 template <class T>
@@ -32,7 +102,9 @@ bool parse_number(std::string_view s, T& out) {
   const char* b = s.data();
   const char* e = b + s.size();
   if constexpr (std::is_floating_point_v<T>) {
-    if (*b == '+') ++b;  // from_chars rejects a leading '+', some writers emit one
+    if (*b == '+' && ++b != e && *b == '-') return false;  // from_chars rejects '+'; some writers emit it
+    if constexpr (std::is_same_v<T, float>)
+      if (detail::parse_float_prefix(b, e, out) == e) return true;
   }
   auto [p, ec] = std::from_chars(b, e, out);
   return ec == std::errc() && p == e;
