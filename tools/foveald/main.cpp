@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -66,6 +68,7 @@ int run(const Options& o) {
   if (Status s = source.start(); !s) return cli::report(s.error(), "foveald");
   RawFoveaMapper mapper(model);
   std::vector<double> lateness_ms;  // delivery time minus due time
+  std::size_t worst_index = 0;
   std::uint64_t samples = 0, state_counts[2][5] = {};
   TimeNs first_t = 0, last_t = 0;
   const TimeNs wall0 = monotonic_now_ns();
@@ -75,7 +78,10 @@ int run(const Options& o) {
     if (r.status == ReadStatus::end) break;
     if (r.status != ReadStatus::sample) return cli::report(r.error, "foveald");
     const TimeNs now = monotonic_now_ns();
-    if (o.speed > 0) lateness_ms.push_back(static_cast<double>(now - r.sample.t_ns) / 1e6);
+    if (o.speed > 0) {
+      lateness_ms.push_back(static_cast<double>(now - r.sample.t_ns) / 1e6);
+      if (lateness_ms.back() > lateness_ms[worst_index]) worst_index = lateness_ms.size() - 1;
+    }
     const FoveaFrame f = mapper.update(r.sample);
     if (samples == 0) first_t = f.t_ns;
     last_t = f.t_ns;
@@ -111,10 +117,15 @@ int run(const Options& o) {
       {"fovea_states", states},
       {"trace", o.out + "/trace.csv"}};
   if (!lateness_ms.empty()) {
+    const double worst = lateness_ms[worst_index];
     summary["pacing_error_ms"] = {{"p50", percentile(lateness_ms, 0.5)},
                                   {"p99", percentile(lateness_ms, 0.99)},
-                                  {"max", *std::max_element(lateness_ms.begin(), lateness_ms.end())}};
+                                  {"max", worst},
+                                  {"max_at_sample", worst_index}};
   }
+  rusage ru{};
+  ::getrusage(RUSAGE_SELF, &ru);
+  summary["peak_rss_mb"] = static_cast<double>(ru.ru_maxrss) / 1024.0;
   if (Status s = write_file_atomically(o.out + "/summary.json", summary.dump(2) + "\n"); !s)
     return cli::report(s.error(), "foveald");
   if (o.json) cli::print_json(summary);
