@@ -41,9 +41,15 @@ void print_text(const std::string& path, const GazeLogStats& s) {
   std::printf("  longest gap        %.2f ms at %.3f s\n", s.longest_gap_ms, s.longest_gap_at_s);
   std::printf("  invalid runs       %zu (%llu blink-like)\n", s.invalid_runs.size(),
               static_cast<unsigned long long>(s.blinks));
-  for (const InvalidRun& r : s.invalid_runs)
+  // In time order, capped: --json has them all.
+  constexpr std::size_t kMaxListed = 20;
+  for (std::size_t i = 0; i < s.invalid_runs.size() && i < kMaxListed; ++i) {
+    const InvalidRun& r = s.invalid_runs[i];
     std::printf("    %-8s at %8.3f s  %4llu samples  %8.1f ms%s\n", r.kind.c_str(), r.start_s,
                 static_cast<unsigned long long>(r.samples), r.duration_ms, r.at_end ? "  (until the end)" : "");
+  }
+  if (s.invalid_runs.size() > kMaxListed)
+    std::printf("    ... %zu more (--json lists all)\n", s.invalid_runs.size() - kMaxListed);
 }
 
 }  // namespace
