@@ -54,6 +54,29 @@ void BM_ReplaySpeed0(benchmark::State& state) {
 }
 BENCHMARK(BM_ReplaySpeed0)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The bundled real Vive Pro Eye recording (7-digit SRanipal values), looped.
+void BM_ReplayRealLogLooped(benchmark::State& state) {
+  std::uint64_t samples = 0;
+  for (auto _ : state) {
+    foveal::ReplayOptions o;
+    o.path = std::string(FOVEAL_SOURCE_DIR) + "/data/gaze/vive_pro_eye_TESTNA01.csv";
+    o.speed = 0;
+    o.loop = true;
+    foveal::ReplaySource src(o);
+    if (!src.open() || !src.start()) {
+      state.SkipWithError("cannot open the bundled log");
+      return;
+    }
+    for (int i = 0; i < 100000; ++i) {
+      foveal::ReadResult r = src.next(std::chrono::milliseconds(1));
+      benchmark::DoNotOptimize(r.sample);
+    }
+    samples += 100000;
+  }
+  state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ReplayRealLogLooped)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // The reader alone, to separate parsing from delivery.
 void BM_GazeLogRead(benchmark::State& state) {
   const std::string& path = bench_log();

@@ -137,7 +137,7 @@ Result<bool> GazeLogReader::next(GazeSample& out) {
       ok = field_end(p) && (p = advance(p, last)) != nullptr;
       return;
     }
-    const char* q = detail::parse_float_prefix(p, end, dst);
+    const char* q = detail::parse_float_prefix<true>(p, end, dst);
     if (!q) {  // rare: let from_chars decide
       q = p;
       while (!field_end(q)) ++q;

@@ -11,6 +11,7 @@ namespace foveal {
 
 namespace {
 constexpr std::size_t kBufSize = 1u << 20;  // also the longest line accepted
+constexpr std::size_t kPadding = 8;         // readable bytes after any line (see header)
 }
 
 Result<LineReader> LineReader::open(const std::string& path) {
@@ -18,7 +19,7 @@ Result<LineReader> LineReader::open(const std::string& path) {
   r.path_ = path;
   r.fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (r.fd_ < 0) return io_error(path + ": cannot open: " + std::strerror(errno));
-  r.buf_ = std::make_unique<char[]>(kBufSize);
+  r.buf_ = std::make_unique<char[]>(kBufSize + kPadding);  // value-initialised: padding is 0
 #ifdef POSIX_FADV_SEQUENTIAL
   ::posix_fadvise(r.fd_, 0, 0, POSIX_FADV_SEQUENTIAL);
 #endif

@@ -13,7 +13,8 @@ namespace foveal {
 class LineReader {
  public:
   struct Line {
-    std::string_view text;     ///< without the line end ('\n', and '\r' if crlf)
+    std::string_view text;     ///< without the line end ('\n', and '\r' if crlf); the
+                               ///< 8 bytes after text.end() are readable (word-wise parsing)
     std::uint64_t number = 0;  ///< 1-based
     bool crlf = false;         ///< the line ended in "\r\n"
     bool terminated = true;    ///< false for a last line with no line end
