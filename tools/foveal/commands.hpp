@@ -10,5 +10,6 @@ namespace foveal::cmd {
 void add_import(CLI::App& app, int& exit_code);
 void add_log(CLI::App& app, int& exit_code);
 void add_synth(CLI::App& app, int& exit_code);
+void add_hid(CLI::App& app, int& exit_code);
 
 }  // namespace foveal::cmd

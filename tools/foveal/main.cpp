@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   foveal::cmd::add_import(app, exit_code);
   foveal::cmd::add_log(app, exit_code);
   foveal::cmd::add_synth(app, exit_code);
+  foveal::cmd::add_hid(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
