@@ -72,22 +72,23 @@ inline const char* read_digits_padded(const char* p, const char* e, std::uint64_
 }
 
 /// Fast path for plain decimal floats ("-0.1235", "3.5e-7") at the start of [b, e):
-/// digits into an integer mantissa, one correctly rounded double operation (exact for
-/// mantissa < 2^53 and |exponent| <= 22), then to float unless the double lies too
-/// close to a midpoint between two floats, where double rounding could differ. Returns
-/// the end of the number, or nullptr when it cannot decide (the caller then uses
-/// std::from_chars), so results always equal std::from_chars.
+/// digits into an integer mantissa m < 2^53, scaled by one correctly rounded double
+/// multiply or divide by an exact power of ten (<= 1e22), then rounded to float unless
+/// the double lies within 2^-50 (relative) of a midpoint between two floats, where
+/// rounding twice could differ from rounding once. Returns the end of the number, or nullptr
+/// when it cannot decide (the caller then uses std::from_chars), so the results always
+/// equal std::from_chars. kPadded: see read_digits_padded.
 template <bool kPadded = false>
 inline const char* parse_float_prefix(const char* b, const char* e, float& out) {
   static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
                                       1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
   const char* p = b;
   const bool neg = p != e && *p == '-';
-  if (neg) ++p;
+  p += neg;  // no branch: signs of gaze components are as good as random
   std::uint64_t m = 0;
   int digits = 0, exp10 = 0;
   const char* start = p;
-  p = read_digits(p, e, m, digits);
+  p = read_digits(p, e, m, digits);  // integer parts are short: a plain loop is cheapest
   const int int_digits = digits;
   if (p != e && *p == '.') {
     if constexpr (kPadded) p = read_digits_padded(p + 1, e, m, digits);
@@ -108,16 +109,14 @@ inline const char* parse_float_prefix(const char* b, const char* e, float& out) 
     exp10 += eneg ? -x : x;
   }
   if (exp10 < -22 || exp10 > 22) return nullptr;
-  double d = static_cast<double>(m);
-  d = exp10 < 0 ? d / kPow10[-exp10] : d * kPow10[exp10];
+  const double d = exp10 < 0 ? static_cast<double>(m) / kPow10[-exp10] : static_cast<double>(m) * kPow10[exp10];
   const float f = static_cast<float>(d);
-  if (d == static_cast<double>(f)) {
-    out = neg ? -f : f;
+  if (d == 0.0) {
+    out = neg ? -0.0f : 0.0f;
     return p;
   }
-  // Is d safely away from the midpoint between f and its neighbour on d's side?
-  // (d > 0 here, so the neighbour is one step up or down in the bit pattern.)
   if (!std::isfinite(f)) return nullptr;
+  // d > 0: the neighbour float on d's side is one step up or down in the bit pattern.
   const std::uint32_t bits = std::bit_cast<std::uint32_t>(f);
   const float g = std::bit_cast<float>(d > static_cast<double>(f) ? bits + 1 : bits - 1);
   const double mid = 0.5 * (static_cast<double>(f) + static_cast<double>(g));
