@@ -12,7 +12,9 @@ int main(int argc, char** argv) {
   foveal::cmd::add_import(app, exit_code);
   foveal::cmd::add_log(app, exit_code);
   foveal::cmd::add_synth(app, exit_code);
+#ifdef FOVEAL_HAVE_HID
   foveal::cmd::add_hid(app, exit_code);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
