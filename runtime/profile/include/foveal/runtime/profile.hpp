@@ -1,0 +1,70 @@
+#pragma once
+// Per-user settings: dominant eye, the EFR pair (sigma_d, sigma_nd), f_x/f_y, IPD,
+// display model and filter overrides (docs/profiles.md).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "foveal/core/error.hpp"
+#include "foveal/core/gaze_sample.hpp"
+
+namespace foveal {
+
+struct Profile {
+  std::string name;
+  Eye dominant_eye = Eye::right;   ///< ~70% of people are right-eye dominant
+  double sigma_d = 2.0;            ///< dominant eye's foveation level (EFR seed: sigma_UF)
+  double sigma_nd = 3.0;           ///< non-dominant eye's level (EFR seed: sigma_NF), >= sigma_d
+  std::optional<double> f_x = 0.3; ///< fraction of W; nullopt = "auto"
+  std::optional<double> f_y = 0.3; ///< fraction of H; nullopt = "auto"
+  double ipd_mm = 63.0;
+  std::string display_model = "htc_vive_pro_eye";  ///< a name in data/display or a path
+  nlohmann::json filter = nlohmann::json::object(); ///< filter config overrides
+
+  /// sigma for an eye: sigma_d for the dominant one, sigma_nd for the other.
+  double sigma(Eye e) const { return e == dominant_eye ? sigma_d : sigma_nd; }
+
+  nlohmann::json to_json() const;
+  /// Strict: unknown keys, wrong types and out-of-range values are errors naming
+  /// `where` and the key. Missing keys take the defaults above.
+  static Result<Profile> from_json(const nlohmann::json& j, const std::string& name, const std::string& where);
+  /// Checks ranges: 1 <= sigma_d <= sigma_nd <= 16, 0 < f <= 100, 40 < ipd < 90 mm.
+  Status validate(const std::string& where) const;
+  /// Sets one key from text ("dominant_eye" "left", "sigma_d" "2.2", "f_x" "auto"...).
+  Status set(const std::string& key, const std::string& value);
+};
+
+/// True for names made of letters, digits, '-' and '_', 1..64 characters.
+bool valid_profile_name(const std::string& name);
+
+/// Profiles on disk: <config>/foveal/profiles/NAME.json, the active one's name in
+/// <config>/foveal/active; <config> is $XDG_CONFIG_HOME or ~/.config. Every write is
+/// atomic. Not synchronised across processes beyond that.
+class ProfileStore {
+ public:
+  /// The store under the user's config directory.
+  static ProfileStore user();
+  explicit ProfileStore(std::string root) : root_(std::move(root)) {}
+
+  const std::string& root() const { return root_; }
+  std::string path_of(const std::string& name) const { return root_ + "/profiles/" + name + ".json"; }
+
+  Result<std::vector<std::string>> list() const;
+  Result<Profile> load(const std::string& name) const;
+  /// Loads a profile file from anywhere (import, daemon reload).
+  static Result<Profile> load_file(const std::string& path, const std::string& name);
+  Status save(const Profile& p) const;
+  Status remove(const std::string& name) const;
+  bool exists(const std::string& name) const;
+
+  /// The active profile's name: the one `use` chose, else "default".
+  std::string active() const;
+  Status set_active(const std::string& name) const;
+
+ private:
+  std::string root_;
+};
+
+}  // namespace foveal

@@ -1,0 +1,129 @@
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+
+#include "foveal/runtime/profile.hpp"
+
+namespace foveal {
+
+namespace {
+
+constexpr const char* kFormat = "foveal-profile v1";
+
+Result<double> number(const nlohmann::json& v, const std::string& where, const std::string& key) {
+  if (!v.is_number()) return bad_input(where + ": " + key + ": expected a number");
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) return bad_input(where + ": " + key + ": must be finite");
+  return d;
+}
+
+Result<std::optional<double>> number_or_auto(const nlohmann::json& v, const std::string& where, const std::string& key) {
+  if (v.is_string() && v.get<std::string>() == "auto") return std::optional<double>{};
+  auto d = number(v, where, key);
+  if (!d) return bad_input(where + ": " + key + ": expected a number or \"auto\"");
+  return std::optional<double>{*d};
+}
+
+Result<Eye> eye_from(const std::string& s, const std::string& where) {
+  if (s == "left") return Eye::left;
+  if (s == "right") return Eye::right;
+  return bad_input(where + ": dominant_eye: '" + s + "' is not left or right");
+}
+
+}  // namespace
+
+bool valid_profile_name(const std::string& name) {
+  if (name.empty() || name.size() > 64) return false;
+  for (char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_')) return false;
+  return true;
+}
+
+nlohmann::json Profile::to_json() const {
+  nlohmann::json j;
+  j["format"] = kFormat;
+  j["dominant_eye"] = eye_name(dominant_eye);
+  j["sigma_d"] = sigma_d;
+  j["sigma_nd"] = sigma_nd;
+  j["f_x"] = f_x ? nlohmann::json(*f_x) : nlohmann::json("auto");
+  j["f_y"] = f_y ? nlohmann::json(*f_y) : nlohmann::json("auto");
+  j["ipd_mm"] = ipd_mm;
+  j["display_model"] = display_model;
+  j["filter"] = filter;
+  return j;
+}
+
+Status Profile::validate(const std::string& where) const {
+  if (!(sigma_d >= 1.0 && sigma_d <= 16.0)) return bad_input(where + ": sigma_d: must be in [1, 16]");
+  if (!(sigma_nd >= 1.0 && sigma_nd <= 16.0)) return bad_input(where + ": sigma_nd: must be in [1, 16]");
+  if (sigma_nd < sigma_d)
+    return bad_input(where + ": sigma_nd (" + std::to_string(sigma_nd) + ") must be >= sigma_d (" +
+                     std::to_string(sigma_d) + "): the non-dominant eye is foveated at least as much");
+  for (const auto& [key, f] : {std::pair{"f_x", f_x}, std::pair{"f_y", f_y}})
+    if (f && !(*f > 0.0 && *f <= 100.0)) return bad_input(where + ": " + key + ": must be in (0, 100] or \"auto\"");
+  if (!(ipd_mm > 40.0 && ipd_mm < 90.0)) return bad_input(where + ": ipd_mm: must be in (40, 90)");
+  if (display_model.empty()) return bad_input(where + ": display_model: must not be empty");
+  if (!filter.is_object()) return bad_input(where + ": filter: expected an object");
+  return {};
+}
+
+Result<Profile> Profile::from_json(const nlohmann::json& j, const std::string& name, const std::string& where) {
+  if (!j.is_object()) return bad_input(where + ": expected a JSON object");
+  Profile p;
+  p.name = name;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string& k = it.key();
+    const nlohmann::json& v = it.value();
+    if (k == "format") {
+      if (!v.is_string() || v.get<std::string>() != kFormat)
+        return bad_input(where + ": format: expected \"" + std::string(kFormat) + "\"");
+    } else if (k == "dominant_eye") {
+      if (!v.is_string()) return bad_input(where + ": dominant_eye: expected \"left\" or \"right\"");
+      auto e = eye_from(v.get<std::string>(), where);
+      if (!e) return e.error();
+      p.dominant_eye = *e;
+    } else if (k == "sigma_d" || k == "sigma_nd" || k == "ipd_mm") {
+      auto d = number(v, where, k);
+      if (!d) return d.error();
+      (k == "sigma_d" ? p.sigma_d : k == "sigma_nd" ? p.sigma_nd : p.ipd_mm) = *d;
+    } else if (k == "f_x" || k == "f_y") {
+      auto f = number_or_auto(v, where, k);
+      if (!f) return f.error();
+      (k == "f_x" ? p.f_x : p.f_y) = *f;
+    } else if (k == "display_model") {
+      if (!v.is_string()) return bad_input(where + ": display_model: expected a string");
+      p.display_model = v.get<std::string>();
+    } else if (k == "filter") {
+      p.filter = v;
+    } else {
+      return bad_input(where + ": unknown key '" + k + "'");
+    }
+  }
+  if (Status s = p.validate(where); !s) return s.error();
+  return p;
+}
+
+Status Profile::set(const std::string& key, const std::string& value) {
+  nlohmann::json j = to_json();
+  if (!j.contains(key) || key == "format") return bad_input("profile " + name + ": unknown key '" + key + "'");
+  if (key == "filter") {
+    try {
+      j[key] = nlohmann::json::parse(value);
+    } catch (const nlohmann::json::exception&) {
+      return bad_input("profile " + name + ": filter: expected a JSON object");
+    }
+  } else if (key == "dominant_eye" || key == "display_model" || value == "auto") {
+    j[key] = value;
+  } else {
+    char* end = nullptr;
+    const double d = std::strtod(value.c_str(), &end);
+    if (value.empty() || *end != '\0') return bad_input("profile " + name + ": " + key + ": '" + value + "' is not a number");
+    j[key] = d;
+  }
+  auto p = from_json(j, name, "profile " + name);
+  if (!p) return p.error();
+  *this = *p;
+  return {};
+}
+
+}  // namespace foveal

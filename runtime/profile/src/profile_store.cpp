@@ -1,0 +1,86 @@
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "foveal/core/atomic_file.hpp"
+#include "foveal/runtime/profile.hpp"
+
+namespace foveal {
+
+namespace fs = std::filesystem;
+
+ProfileStore ProfileStore::user() {
+  if (const char* x = std::getenv("XDG_CONFIG_HOME"); x && *x) return ProfileStore(std::string(x) + "/foveal");
+  const char* home = std::getenv("HOME");
+  return ProfileStore(std::string(home && *home ? home : ".") + "/.config/foveal");
+}
+
+Result<std::vector<std::string>> ProfileStore::list() const {
+  std::vector<std::string> names;
+  std::error_code ec;
+  const fs::path dir = root_ + "/profiles";
+  if (!fs::exists(dir, ec)) return names;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const fs::path& p = entry.path();
+    if (p.extension() == ".json" && valid_profile_name(p.stem().string())) names.push_back(p.stem().string());
+  }
+  if (ec) return io_error(dir.string() + ": cannot list: " + ec.message());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+bool ProfileStore::exists(const std::string& name) const {
+  std::error_code ec;
+  return valid_profile_name(name) && fs::is_regular_file(path_of(name), ec);
+}
+
+Result<Profile> ProfileStore::load_file(const std::string& path, const std::string& name) {
+  std::ifstream in(path);
+  if (!in) return io_error(path + ": cannot open profile");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const nlohmann::json::exception& e) {
+    return bad_input(path + ": not valid JSON: " + e.what());
+  }
+  return Profile::from_json(j, name, path);
+}
+
+Result<Profile> ProfileStore::load(const std::string& name) const {
+  if (!valid_profile_name(name)) return bad_input("profile name '" + name + "': use letters, digits, '-' and '_'");
+  if (!exists(name)) return bad_input("profile '" + name + "' does not exist (" + path_of(name) + ")");
+  return load_file(path_of(name), name);
+}
+
+Status ProfileStore::save(const Profile& p) const {
+  if (!valid_profile_name(p.name)) return bad_input("profile name '" + p.name + "': use letters, digits, '-' and '_'");
+  if (Status s = p.validate("profile " + p.name); !s) return s;
+  std::error_code ec;
+  fs::create_directories(root_ + "/profiles", ec);
+  if (ec) return io_error(root_ + "/profiles: cannot create: " + ec.message());
+  return write_file_atomically(path_of(p.name), p.to_json().dump(2) + "\n");
+}
+
+Status ProfileStore::remove(const std::string& name) const {
+  if (!exists(name)) return bad_input("profile '" + name + "' does not exist");
+  std::error_code ec;
+  fs::remove(path_of(name), ec);
+  if (ec) return io_error(path_of(name) + ": cannot remove: " + ec.message());
+  return {};
+}
+
+std::string ProfileStore::active() const {
+  std::ifstream in(root_ + "/active");
+  std::string name;
+  std::getline(in, name);
+  return valid_profile_name(name) ? name : "default";
+}
+
+Status ProfileStore::set_active(const std::string& name) const {
+  if (!exists(name)) return bad_input("profile '" + name + "' does not exist");
+  return write_file_atomically(root_ + "/active", name + "\n");
+}
+
+}  // namespace foveal

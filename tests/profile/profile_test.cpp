@@ -1,0 +1,134 @@
+#include <gtest/gtest.h>
+
+#include "foveal/runtime/profile.hpp"
+#include "test_support.hpp"
+
+namespace foveal {
+namespace {
+
+TEST(Profile, DefaultsAreTheEfrSeedPair) {
+  Profile p;
+  EXPECT_EQ(p.dominant_eye, Eye::right);
+  EXPECT_DOUBLE_EQ(p.sigma_d, 2.0);
+  EXPECT_DOUBLE_EQ(p.sigma_nd, 3.0);
+  EXPECT_DOUBLE_EQ(p.sigma(Eye::right), 2.0);
+  EXPECT_DOUBLE_EQ(p.sigma(Eye::left), 3.0);
+  EXPECT_TRUE(p.validate("x"));
+}
+
+TEST(Profile, JsonRoundTrip) {
+  Profile p;
+  p.name = "alice";
+  p.dominant_eye = Eye::left;
+  p.sigma_d = 2.2;
+  p.sigma_nd = 3.4;
+  p.f_x.reset();
+  p.f_y = 0.25;
+  p.filter = {{"min_cutoff_hz", 1.0}};
+  auto q = Profile::from_json(p.to_json(), "alice", "test");
+  ASSERT_TRUE(q) << q.error().message;
+  EXPECT_EQ(q->dominant_eye, Eye::left);
+  EXPECT_DOUBLE_EQ(q->sigma(Eye::left), 2.2);
+  EXPECT_DOUBLE_EQ(q->sigma(Eye::right), 3.4);
+  EXPECT_FALSE(q->f_x.has_value());
+  EXPECT_DOUBLE_EQ(*q->f_y, 0.25);
+  EXPECT_EQ(q->filter, p.filter);
+}
+
+struct BadProfile {
+  const char* name;
+  const char* json;
+  const char* expect;
+};
+
+class ProfileRejects : public ::testing::TestWithParam<BadProfile> {};
+
+TEST_P(ProfileRejects, WithAMessageNamingTheKey) {
+  const auto j = nlohmann::json::parse(GetParam().json);
+  auto p = Profile::from_json(j, "x", "prof.json");
+  ASSERT_FALSE(p) << GetParam().name;
+  EXPECT_NE(p.error().message.find("prof.json"), std::string::npos) << p.error().message;
+  EXPECT_NE(p.error().message.find(GetParam().expect), std::string::npos) << p.error().message;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, ProfileRejects,
+    ::testing::Values(BadProfile{"unknown_key", R"({"sigma":2})", "unknown key 'sigma'"},
+                      BadProfile{"sigma_below_1", R"({"sigma_d":0.9})", "sigma_d"},
+                      BadProfile{"sigma_nd_below_sigma_d", R"({"sigma_d":3,"sigma_nd":2})", "must be >= sigma_d"},
+                      BadProfile{"eye_not_left_right", R"({"dominant_eye":"both"})", "not left or right"},
+                      BadProfile{"eye_not_string", R"({"dominant_eye":1})", "dominant_eye"},
+                      BadProfile{"sigma_string", R"({"sigma_d":"2"})", "expected a number"},
+                      BadProfile{"f_negative", R"({"f_x":-0.1})", "f_x"},
+                      BadProfile{"f_word", R"({"f_y":"wide"})", "\"auto\""},
+                      BadProfile{"ipd_absurd", R"({"ipd_mm":300})", "ipd_mm"},
+                      BadProfile{"filter_not_object", R"({"filter":3})", "filter"},
+                      BadProfile{"wrong_format", R"({"format":"foveal-profile v9"})", "format"},
+                      BadProfile{"not_object", R"([1,2])", "object"}),
+    [](const auto& param_info) { return std::string(param_info.param.name); });
+
+TEST(Profile, SetParsesAndValidates) {
+  Profile p;
+  p.name = "a";
+  EXPECT_TRUE(p.set("sigma_nd", "3.5"));
+  EXPECT_DOUBLE_EQ(p.sigma_nd, 3.5);
+  EXPECT_TRUE(p.set("f_x", "auto"));
+  EXPECT_FALSE(p.f_x.has_value());
+  EXPECT_TRUE(p.set("dominant_eye", "left"));
+  EXPECT_EQ(p.dominant_eye, Eye::left);
+  EXPECT_FALSE(p.set("sigma_d", "4"));  // above sigma_nd 3.5
+  EXPECT_DOUBLE_EQ(p.sigma_d, 2.0);     // unchanged on failure
+  EXPECT_FALSE(p.set("sigma_d", "two"));
+  EXPECT_FALSE(p.set("colour", "red"));
+}
+
+TEST(ProfileStore, SaveLoadListActiveDelete) {
+  test::TempDir dir;
+  ProfileStore store(dir.path("foveal"));
+  EXPECT_EQ(store.active(), "default");
+  Profile p;
+  p.name = "bob";
+  p.sigma_nd = 2.6;
+  ASSERT_TRUE(store.save(p));
+  p.name = "alice";
+  ASSERT_TRUE(store.save(p));
+  auto names = store.list();
+  ASSERT_TRUE(names);
+  EXPECT_EQ(*names, (std::vector<std::string>{"alice", "bob"}));
+  auto bob = store.load("bob");
+  ASSERT_TRUE(bob) << bob.error().message;
+  EXPECT_DOUBLE_EQ(bob->sigma_nd, 2.6);
+  ASSERT_TRUE(store.set_active("bob"));
+  EXPECT_EQ(store.active(), "bob");
+  EXPECT_FALSE(store.set_active("nobody"));
+  ASSERT_TRUE(store.remove("alice"));
+  EXPECT_FALSE(store.exists("alice"));
+  EXPECT_FALSE(store.remove("alice"));
+}
+
+TEST(ProfileStore, RejectsUnsafeNames) {
+  test::TempDir dir;
+  ProfileStore store(dir.path());
+  Profile p;
+  for (const char* bad : {"", "../etc", "a b", "a/b", "x.json"}) {
+    p.name = bad;
+    EXPECT_FALSE(store.save(p)) << bad;
+    EXPECT_FALSE(store.load(bad)) << bad;
+  }
+}
+
+TEST(ProfileStore, ABrokenFileIsReportedNotLoaded) {
+  test::TempDir dir;
+  ProfileStore store(dir.path());
+  Profile p;
+  p.name = "ok";
+  ASSERT_TRUE(store.save(p));
+  test::write_file(store.path_of("ok"), "{ \"sigma_d\": 2.0, ");  // truncated by hand
+  auto q = store.load("ok");
+  ASSERT_FALSE(q);
+  EXPECT_NE(q.error().message.find("ok.json"), std::string::npos) << q.error().message;
+  EXPECT_NE(q.error().message.find("not valid JSON"), std::string::npos) << q.error().message;
+}
+
+}  // namespace
+}  // namespace foveal

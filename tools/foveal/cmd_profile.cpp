@@ -1,0 +1,166 @@
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "commands.hpp"
+#include "foveal/core/atomic_file.hpp"
+#include "foveal/runtime/profile.hpp"
+#include "foveal/tools/cli.hpp"
+
+namespace foveal::cmd {
+
+namespace {
+
+struct ProfileArgs {
+  std::string name, key, value, file, from;
+  std::string dominant;
+  std::optional<double> sigma_d, sigma_nd;
+  std::optional<std::string> fx, fy;
+  bool json = false, force = false;
+};
+
+void print_profile(const Profile& p, bool active, bool json) {
+  nlohmann::json j = p.to_json();
+  j["name"] = p.name;
+  j["active"] = active;
+  if (json) {
+    cli::print_json(j);
+    return;
+  }
+  std::printf("%s%s\n%s\n", p.name.c_str(), active ? " (active)" : "", p.to_json().dump(2).c_str());
+}
+
+}  // namespace
+
+void add_profile(CLI::App& app, int& exit_code) {
+  CLI::App* prof = app.add_subcommand("profile", "Manage user profiles (dominant eye, sigma pair, f, IPD, filter)");
+  prof->require_subcommand(1);
+  auto a = std::make_shared<ProfileArgs>();
+  auto fail = [&exit_code](const Error& e) { exit_code = cli::report(e); };
+
+  CLI::App* create = prof->add_subcommand("create", "Create a profile (defaults: right eye dominant, sigma 2.0/3.0, f 0.3)");
+  create->add_option("name", a->name, "Profile name (letters, digits, - and _)")->required();
+  create->add_option("--from", a->from, "Copy this existing profile");
+  create->add_option("--dominant", a->dominant, "Dominant eye")->check(CLI::IsMember({"left", "right"}));
+  create->add_option("--sigma-d", a->sigma_d, "Dominant eye's sigma");
+  create->add_option("--sigma-nd", a->sigma_nd, "Non-dominant eye's sigma (>= sigma-d)");
+  create->add_option("--fx", a->fx, "f_x as a fraction of W, or auto");
+  create->add_option("--fy", a->fy, "f_y as a fraction of H, or auto");
+  create->add_flag("--force", a->force, "Overwrite an existing profile");
+  create->add_flag("--json", a->json, "Print the profile as JSON");
+  create->callback([a, fail] {
+    const ProfileStore store = ProfileStore::user();
+    if (!valid_profile_name(a->name)) return fail(bad_input("profile name '" + a->name + "': use letters, digits, '-' and '_'"));
+    if (store.exists(a->name) && !a->force) return fail(bad_input("profile '" + a->name + "' exists (use --force)"));
+    Profile p;
+    if (!a->from.empty()) {
+      auto base = store.load(a->from);
+      if (!base) return fail(base.error());
+      p = *base;
+    }
+    p.name = a->name;
+    // Apply every option, then validate once: the sigma pair is checked together.
+    nlohmann::json j = p.to_json();
+    if (!a->dominant.empty()) j["dominant_eye"] = a->dominant;
+    if (a->sigma_d) j["sigma_d"] = *a->sigma_d;
+    if (a->sigma_nd) j["sigma_nd"] = *a->sigma_nd;
+    for (const auto& [key, text] : {std::pair{"f_x", a->fx}, std::pair{"f_y", a->fy}}) {
+      if (!text) continue;
+      char* end = nullptr;
+      const double v = std::strtod(text->c_str(), &end);
+      if (*text == "auto") j[key] = "auto";
+      else if (!text->empty() && *end == '\0') j[key] = v;
+      else return fail(bad_input(std::string("--") + (key[2] == 'x' ? "fx" : "fy") + ": '" + *text + "' is not a number or auto"));
+    }
+    auto built = Profile::from_json(j, a->name, "profile " + a->name);
+    if (!built) return fail(built.error());
+    if (Status s = store.save(*built); !s) return fail(s.error());
+    print_profile(*built, store.active() == a->name, a->json);
+  });
+
+  CLI::App* list = prof->add_subcommand("list", "List profiles");
+  list->add_flag("--json", a->json, "Print JSON");
+  list->callback([a, fail] {
+    const ProfileStore store = ProfileStore::user();
+    auto names = store.list();
+    if (!names) return fail(names.error());
+    const std::string active = store.active();
+    if (a->json) {
+      cli::print_json({{"profiles", *names}, {"active", active}, {"directory", store.root() + "/profiles"}});
+      return;
+    }
+    if (names->empty()) std::printf("no profiles in %s/profiles (foveal profile create NAME)\n", store.root().c_str());
+    for (const auto& n : *names) std::printf("%s %s\n", n == active ? "*" : " ", n.c_str());
+  });
+
+  CLI::App* show = prof->add_subcommand("show", "Show a profile (default: the active one)");
+  show->add_option("name", a->name, "Profile name");
+  show->add_flag("--json", a->json, "Print JSON");
+  show->callback([a, fail] {
+    const ProfileStore store = ProfileStore::user();
+    const std::string name = a->name.empty() ? store.active() : a->name;
+    auto p = store.load(name);
+    if (!p) return fail(p.error());
+    print_profile(*p, store.active() == name, a->json);
+  });
+
+  CLI::App* set = prof->add_subcommand("set", "Set one key of a profile, e.g. 'set alice sigma_nd 3.2'");
+  set->add_option("name", a->name, "Profile name")->required();
+  set->add_option("key", a->key, "dominant_eye, sigma_d, sigma_nd, f_x, f_y, ipd_mm, display_model, filter")->required();
+  set->add_option("value", a->value, "New value (f_x/f_y accept auto; filter takes a JSON object)")->required();
+  set->add_flag("--json", a->json, "Print the profile as JSON");
+  set->callback([a, fail] {
+    const ProfileStore store = ProfileStore::user();
+    auto p = store.load(a->name);
+    if (!p) return fail(p.error());
+    if (Status s = p->set(a->key, a->value); !s) return fail(s.error());
+    if (Status s = store.save(*p); !s) return fail(s.error());
+    print_profile(*p, store.active() == a->name, a->json);
+  });
+
+  CLI::App* use = prof->add_subcommand("use", "Make a profile the active one");
+  use->add_option("name", a->name, "Profile name")->required();
+  use->callback([a, fail] {
+    if (Status s = ProfileStore::user().set_active(a->name); !s) return fail(s.error());
+    std::printf("active profile: %s\n", a->name.c_str());
+  });
+
+  CLI::App* del = prof->add_subcommand("delete", "Delete a profile");
+  del->add_option("name", a->name, "Profile name")->required();
+  del->callback([a, fail] {
+    if (Status s = ProfileStore::user().remove(a->name); !s) return fail(s.error());
+    std::printf("deleted profile %s\n", a->name.c_str());
+  });
+
+  CLI::App* exp = prof->add_subcommand("export", "Write a profile to a file");
+  exp->add_option("name", a->name, "Profile name")->required();
+  exp->add_option("file", a->file, "Output file (written atomically)")->required();
+  exp->callback([a, fail] {
+    auto p = ProfileStore::user().load(a->name);
+    if (!p) return fail(p.error());
+    if (Status s = write_file_atomically(a->file, p->to_json().dump(2) + "\n"); !s) return fail(s.error());
+    std::printf("exported %s -> %s\n", a->name.c_str(), a->file.c_str());
+  });
+
+  CLI::App* imp = prof->add_subcommand("import", "Add a profile from a file (validated first)");
+  imp->add_option("file", a->file, "Profile file")->required();
+  imp->add_option("--name", a->name, "Name to store it under (default: the file's name)");
+  imp->add_flag("--force", a->force, "Overwrite an existing profile");
+  imp->callback([a, fail] {
+    const ProfileStore store = ProfileStore::user();
+    std::string name = a->name;
+    if (name.empty()) {
+      name = a->file.substr(a->file.find_last_of('/') + 1);
+      if (auto dot = name.rfind('.'); dot != std::string::npos) name.resize(dot);
+    }
+    if (store.exists(name) && !a->force) return fail(bad_input("profile '" + name + "' exists (use --force)"));
+    auto p = ProfileStore::load_file(a->file, name);
+    if (!p) return fail(p.error());
+    if (Status s = store.save(*p); !s) return fail(s.error());
+    std::printf("imported %s as profile %s\n", a->file.c_str(), name.c_str());
+  });
+}
+
+}  // namespace foveal::cmd
