@@ -1,0 +1,82 @@
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "commands.hpp"
+#include "foveal/runtime/control_server.hpp"
+#include "foveal/tools/cli.hpp"
+
+namespace foveal::cmd {
+
+namespace {
+
+// "sigma_d=2.2" -> {"sigma_d": 2.2}; "f_x=auto" -> {"f_x": "auto"}.
+Status parse_assignment(const std::string& text, nlohmann::json& into) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) return bad_input("'" + text + "': expected KEY=VALUE");
+  const std::string key = text.substr(0, eq), value = text.substr(eq + 1);
+  char* end = nullptr;
+  const double d = std::strtod(value.c_str(), &end);
+  into[key] = (!value.empty() && *end == '\0') ? nlohmann::json(d) : nlohmann::json(value);
+  return {};
+}
+
+}  // namespace
+
+void add_ctl(CLI::App& app, int& exit_code) {
+  struct Args {
+    std::string socket = default_control_socket_path();
+    std::vector<std::string> words;
+    bool json = false;
+    int timeout_ms = 2000;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* ctl = app.add_subcommand("ctl", "Talk to a running foveald over its control socket");
+  ctl->footer(
+      "Requests:\n"
+      "  status                   daemon state, rates, latency, memory\n"
+      "  fovea                    the latest per-eye fovea\n"
+      "  profiles                 list profiles and the active one\n"
+      "  use NAME                 switch to another profile\n"
+      "  set KEY=VALUE...         sigma_d, sigma_nd, f_x, f_y at run time\n"
+      "  pause | resume           stop / restart rendering and gaze processing\n");
+  ctl->add_option("request", a->words, "The request and its arguments")->required();
+  ctl->add_option("--socket", a->socket, "Control socket")->capture_default_str();
+  ctl->add_option("--timeout-ms", a->timeout_ms, "How long to wait for the reply")->capture_default_str();
+  ctl->add_flag("--json", a->json, "Print the reply as JSON (the default prints it indented too)");
+  ctl->callback([a, &exit_code] {
+    const std::string& cmd = a->words.front();
+    nlohmann::json req = {{"cmd", cmd}};
+    if (cmd == "use") {
+      if (a->words.size() != 2) {
+        exit_code = cli::report(bad_input("ctl use: expected one profile name"));
+        return;
+      }
+      req["profile"] = a->words[1];
+    } else if (cmd == "set") {
+      if (a->words.size() < 2) {
+        exit_code = cli::report(bad_input("ctl set: expected KEY=VALUE..."));
+        return;
+      }
+      for (std::size_t i = 1; i < a->words.size(); ++i)
+        if (Status s = parse_assignment(a->words[i], req); !s) {
+          exit_code = cli::report(s.error());
+          return;
+        }
+    } else if (a->words.size() != 1) {
+      exit_code = cli::report(bad_input("ctl " + cmd + ": takes no arguments"));
+      return;
+    }
+    auto reply = control_request(a->socket, req, a->timeout_ms);
+    if (!reply) {
+      exit_code = cli::report(reply.error());
+      return;
+    }
+    std::printf("%s\n", a->json ? reply->dump().c_str() : reply->dump(2).c_str());
+    if (!reply->value("ok", false)) exit_code = cli::kExitBadInput;
+  });
+}
+
+}  // namespace foveal::cmd
