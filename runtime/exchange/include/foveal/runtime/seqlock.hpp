@@ -1,8 +1,8 @@
 #pragma once
 // Latest-value exchange for one writer and any number of readers that never block
 // the writer (the driver thread) and never block themselves (the render thread).
-// The data lives in relaxed atomic words, so the protocol is race-free in the C++
-// memory model (and under ThreadSanitizer), not only in practice.
+// The data lives in atomic words, so the protocol is race-free in the C++ memory
+// model (and under ThreadSanitizer), not only in practice.
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -27,8 +27,9 @@ class SeqLock {
     std::memcpy(w.data(), &v, sizeof(T));
     const std::uint32_t s = seq_.load(std::memory_order_relaxed);
     seq_.store(s + 1, std::memory_order_relaxed);  // odd: a write is in progress
-    std::atomic_thread_fence(std::memory_order_release);
-    for (std::size_t i = 0; i < kWords; ++i) words_[i].store(w[i], std::memory_order_relaxed);
+    // Release stores keep the odd sequence number ahead of the data (no fences: they
+    // cost nothing on x86 and ThreadSanitizer understands them).
+    for (std::size_t i = 0; i < kWords; ++i) words_[i].store(w[i], std::memory_order_release);
     seq_.store(s + 2, std::memory_order_release);
   }
 
@@ -39,8 +40,8 @@ class SeqLock {
       const std::uint32_t s1 = seq_.load(std::memory_order_acquire);
       if (s1 & 1u) continue;
       std::array<std::uint64_t, kWords> w;
-      for (std::size_t i = 0; i < kWords; ++i) w[i] = words_[i].load(std::memory_order_relaxed);
-      std::atomic_thread_fence(std::memory_order_acquire);
+      // Acquire loads keep the sequence re-check behind the data.
+      for (std::size_t i = 0; i < kWords; ++i) w[i] = words_[i].load(std::memory_order_acquire);
       if (seq_.load(std::memory_order_relaxed) == s1) {
         std::memcpy(&out, w.data(), sizeof(T));
         return true;
