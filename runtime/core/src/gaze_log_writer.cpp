@@ -70,7 +70,10 @@ Status GazeLogWriter::write(const GazeSample& s) {
     }
     return ok;
   };
-  const bool ok = block(s.eyes[0], true) & block(s.eyes[1], true) & block(s.combined, false);
+  // Every block is written (no short-circuit): the row stays complete either way.
+  bool ok = block(s.eyes[0], true);
+  ok = block(s.eyes[1], true) && ok;
+  ok = block(s.combined, false) && ok;
   if (!ok)
     return bad_input(file_.path() + ": sample " + std::to_string(samples_ + 1) +
                      ": a field marked valid is NaN or infinite");

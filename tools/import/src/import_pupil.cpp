@@ -19,12 +19,17 @@ struct NormalColumns {
   long c[3] = {-1, -1, -1};  // eye_center*_3d (mm), optional
 };
 
-NormalColumns normal_columns(const TableReader& t, int cam) {
+// A camera's columns: each x/y/z triple is all there or all absent.
+Result<NormalColumns> normal_columns(const TableReader& t, int cam) {
   NormalColumns nc;
   const char axes[] = {'x', 'y', 'z'};
-  for (int a = 0; a < 3; ++a) {
-    nc.n[a] = t.find_column("gaze_normal" + std::to_string(cam) + "_" + axes[a]);
-    nc.c[a] = t.find_column("eye_center" + std::to_string(cam) + "_3d_" + axes[a]);
+  const std::string prefixes[] = {"gaze_normal" + std::to_string(cam) + "_", "eye_center" + std::to_string(cam) + "_3d_"};
+  long* dst[] = {nc.n, nc.c};
+  for (int g = 0; g < 2; ++g) {
+    int found = 0;
+    for (int a = 0; a < 3; ++a) found += (dst[g][a] = t.find_column(prefixes[g] + axes[a])) >= 0;
+    for (int a = 0; a < 3 && found > 0 && found < 3; ++a)
+      if (dst[g][a] < 0) return bad_input(t.path() + ":1: column '" + prefixes[g] + axes[a] + "' is missing from the header");
   }
   return nc;
 }
@@ -68,7 +73,10 @@ Result<ImportSummary> import_pupil(const std::string& in, const std::string& out
   if (!conf_col) return conf_col.error();
   for (const char* required : {"norm_pos_x", "norm_pos_y", "gaze_normal0_x", "gaze_normal0_y", "gaze_normal0_z"})
     if (auto c = t.column(required); !c) return c.error();
-  const NormalColumns right = normal_columns(t, 0), left = normal_columns(t, 1);
+  auto right = normal_columns(t, 0);
+  if (!right) return right.error();
+  auto left = normal_columns(t, 1);
+  if (!left) return left.error();
 
   // Pupil Core has no fixed rate; the header gets the rate measured over the file,
   // which needs a first pass.
@@ -113,8 +121,8 @@ Result<ImportSummary> import_pupil(const std::string& in, const std::string& out
     const bool confident = *conf >= kMinConfidence;
     GazeSample s;
     s.t_ns = static_cast<TimeNs>(std::llround((*ts - first_s) * 1e9));
-    if (Status st = read_eye(t2, left, confident, s.eye(Eye::left)); !st) return st.error();
-    if (Status st = read_eye(t2, right, confident, s.eye(Eye::right)); !st) return st.error();
+    if (Status st = read_eye(t2, *left, confident, s.eye(Eye::left)); !st) return st.error();
+    if (Status st = read_eye(t2, *right, confident, s.eye(Eye::right)); !st) return st.error();
     for (int e = 0; e < 2; ++e) sum.invalid[e] += s.eyes[e].has(kValidDirection) ? 0 : 1;
     if (Status st = writer->write(s); !st)
       return t2.field_error(*ts_col, "rounds to the same nanosecond as the previous row");

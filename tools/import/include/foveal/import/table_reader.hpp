@@ -26,6 +26,7 @@ class TableReader {
   Result<bool> next();
   std::string_view field(std::size_t i) const { return fields_[i]; }
   std::uint64_t line() const { return line_no_; }
+  const std::string& path() const { return lines_.path(); }
 
   /// Parses field i as T. Empty, partial, non-numeric and (for floats) NaN/Inf fields
   /// are errors naming the file, line and column.
