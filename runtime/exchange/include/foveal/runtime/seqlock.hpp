@@ -43,7 +43,7 @@ class SeqLock {
       // Acquire loads keep the sequence re-check behind the data.
       for (std::size_t i = 0; i < kWords; ++i) w[i] = words_[i].load(std::memory_order_acquire);
       if (seq_.load(std::memory_order_relaxed) == s1) {
-        std::memcpy(&out, w.data(), sizeof(T));
+        std::memcpy(static_cast<void*>(&out), w.data(), sizeof(T));  // T is trivially copyable
         return true;
       }
     }

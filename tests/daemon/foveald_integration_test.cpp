@@ -1,0 +1,142 @@
+// foveald end to end: a real process, a real control socket, real signals.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "foveal/core/clock.hpp"
+#include "foveal/runtime/control_server.hpp"
+#include "test_support.hpp"
+
+extern char** environ;
+
+namespace foveal {
+namespace {
+
+class Foveald : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::filesystem::create_directories(dir_.path("config/foveal/profiles"));
+    std::filesystem::create_directories(dir_.path("run"));
+    test::write_file(dir_.path("config/foveal/profiles/bob.json"),
+                     R"({"format":"foveal-profile v1","dominant_eye":"left","sigma_d":2.4,"sigma_nd":3.2})");
+    socket_ = dir_.path("run/foveal/control.sock");
+  }
+  void TearDown() override {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+  }
+
+  void start(std::vector<std::string> args) {
+    std::vector<std::string> env_store = {"XDG_CONFIG_HOME=" + dir_.path("config"), "XDG_RUNTIME_DIR=" + dir_.path("run"),
+                                          "PATH=/usr/bin:/bin"};
+    args.insert(args.begin(), test::bin("foveald"));
+    std::vector<char*> argv, envp;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    for (auto& e : env_store) envp.push_back(e.data());
+    envp.push_back(nullptr);
+    ASSERT_EQ(::posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), envp.data()), 0);
+    // The socket appears once foveald is set up.
+    for (int i = 0; i < 500 && !std::filesystem::exists(socket_); ++i) sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
+    ASSERT_TRUE(std::filesystem::exists(socket_)) << "foveald did not open its control socket";
+  }
+  nlohmann::json ctl(const nlohmann::json& req) {
+    auto r = control_request(socket_, req);
+    EXPECT_TRUE(r) << r.error().message;
+    return r ? *r : nlohmann::json{};
+  }
+  /// Waits for the process; returns its exit code, or -1 if it is still running after `ms`.
+  int wait_exit(int ms) {
+    for (int i = 0; i < ms; ++i) {
+      int status = 0;
+      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+        pid_ = -1;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      }
+      sleep_until_ns(monotonic_now_ns() + kNsPerMs);
+    }
+    return -1;
+  }
+
+  test::TempDir dir_;
+  std::string socket_;
+  pid_t pid_ = -1;
+};
+
+TEST_F(Foveald, StatusProfilesSettingsAndCleanSigterm) {
+  start({"--loop", "--end", "5", "--speed", "1", "-q", "--no-shm", "--out", dir_.path("out")});
+  sleep_until_ns(monotonic_now_ns() + 300 * kNsPerMs);
+  auto st = ctl({{"cmd", "status"}});
+  EXPECT_EQ(st["ok"], true);
+  EXPECT_EQ(st["state"], "running");
+  EXPECT_GT(st["samples"].get<int>(), 10);
+  EXPECT_EQ(st["profile"], "default");
+  EXPECT_LT(st["latency_ms"]["p99"].get<double>(), 1.0);
+
+  auto used = ctl({{"cmd", "use"}, {"profile", "bob"}});
+  EXPECT_EQ(used["profile"], "bob");
+  EXPECT_EQ(used["settings"]["dominant_eye"], "left");
+  EXPECT_DOUBLE_EQ(used["settings"]["sigma_nd"].get<double>(), 3.2);
+  const int gen = used["settings"]["generation"].get<int>();
+
+  auto set = ctl({{"cmd", "set"}, {"sigma_d", 2.8}, {"f_x", "auto"}});
+  EXPECT_EQ(set["ok"], true);
+  EXPECT_DOUBLE_EQ(set["settings"]["sigma_d"].get<double>(), 2.8);
+  EXPECT_EQ(set["settings"]["f_x"], "auto");
+  EXPECT_EQ(set["settings"]["generation"].get<int>(), gen + 1);
+
+  auto bad = ctl({{"cmd", "set"}, {"sigma_nd", 1.5}});  // below sigma_d: refused, nothing changes
+  EXPECT_EQ(bad["ok"], false);
+  EXPECT_EQ(ctl({{"cmd", "status"}})["settings"]["generation"].get<int>(), gen + 1);
+  EXPECT_EQ(ctl({{"cmd", "use"}, {"profile", "nobody"}})["ok"], false);
+
+  auto fovea = ctl({{"cmd", "fovea"}});
+  EXPECT_EQ(fovea["ok"], true);
+  EXPECT_GE(fovea["left"]["x_px"].get<double>(), 0.0);
+  EXPECT_LT(fovea["left"]["x_px"].get<double>(), 1440.0);
+
+  EXPECT_EQ(ctl({{"cmd", "pause"}})["state"], "paused");
+  EXPECT_EQ(ctl({{"cmd", "resume"}})["state"], "running");
+
+  ASSERT_EQ(::kill(pid_, SIGTERM), 0);
+  EXPECT_EQ(wait_exit(1000), 0) << "foveald must exit 0 within 1 s of SIGTERM";
+  const auto summary = nlohmann::json::parse(test::read_file(dir_.path("out/summary.json")));
+  EXPECT_EQ(summary["state"], "stopped");
+  EXPECT_EQ(summary["profile"], "bob");
+  EXPECT_FALSE(std::filesystem::exists(socket_)) << "the socket is removed on exit";
+}
+
+TEST_F(Foveald, ABrokenProfileOnSighupKeepsTheLastGoodOne) {
+  start({"--profile", "bob", "--loop", "--end", "5", "-q", "--no-shm", "--out", dir_.path("out")});
+  test::write_file(dir_.path("config/foveal/profiles/bob.json"), "{ \"sigma_d\": ");  // broken by hand
+  ASSERT_EQ(::kill(pid_, SIGHUP), 0);
+  sleep_until_ns(monotonic_now_ns() + 200 * kNsPerMs);
+  auto st = ctl({{"cmd", "status"}});
+  EXPECT_EQ(st["state"], "running");
+  EXPECT_DOUBLE_EQ(st["settings"]["sigma_d"].get<double>(), 2.4);
+  ASSERT_EQ(::kill(pid_, SIGINT), 0);
+  EXPECT_EQ(wait_exit(1000), 0);
+}
+
+TEST_F(Foveald, MalformedAndOversizedSocketMessagesDoNotStopIt) {
+  start({"--loop", "--end", "5", "-q", "--no-shm", "--out", dir_.path("out")});
+  auto r = control_request(socket_, nlohmann::json::array({1, 2}));  // not an object
+  ASSERT_TRUE(r);
+  EXPECT_EQ((*r)["ok"], false);
+  r = control_request(socket_, {{"cmd", std::string(70000, 'x')}});  // oversized line
+  ASSERT_TRUE(r);
+  EXPECT_EQ((*r)["ok"], false);
+  EXPECT_EQ(ctl({{"cmd", "status"}})["control"]["bad_requests"].get<int>(), 2);
+  ASSERT_EQ(::kill(pid_, SIGTERM), 0);
+  EXPECT_EQ(wait_exit(1000), 0);
+}
+
+}  // namespace
+}  // namespace foveal

@@ -1,0 +1,43 @@
+#pragma once
+// Per-sample fovea trace (trace.csv), written on the gaze thread, committed atomically.
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include "foveal/core/atomic_file.hpp"
+#include "foveal/runtime/fovea.hpp"
+
+namespace foveal::daemon {
+
+class TraceWriter {
+ public:
+  static Result<TraceWriter> create(const std::string& path) {
+    auto f = AtomicFile::create(path);
+    if (!f) return f.error();
+    TraceWriter w(std::move(f.value()));
+    w.file_->write("t_ns,left_state,left_x_px,left_y_px,left_confidence,right_state,right_x_px,right_y_px,right_confidence\n");
+    return w;
+  }
+  /// Times are written relative to the first sample.
+  void write(const FoveaFrame& f) {
+    if (!have_t0_) {
+      t0_ = f.t_ns;
+      have_t0_ = true;
+    }
+    const FoveaPoint &l = f.eye(Eye::left), &r = f.eye(Eye::right);
+    char row[256];
+    const int n = std::snprintf(row, sizeof row, "%lld,%s,%.3f,%.3f,%.2f,%s,%.3f,%.3f,%.2f\n",
+                                static_cast<long long>(f.t_ns - t0_), fovea_state_name(l.state), l.px.x, l.px.y,
+                                l.confidence, fovea_state_name(r.state), r.px.x, r.px.y, r.confidence);
+    file_->write(std::string_view(row, static_cast<std::size_t>(n)));
+  }
+  Status commit() { return file_->commit(); }
+
+ private:
+  explicit TraceWriter(AtomicFile f) : file_(std::move(f)) {}
+  std::optional<AtomicFile> file_;
+  TimeNs t0_ = 0;
+  bool have_t0_ = false;
+};
+
+}  // namespace foveal::daemon
