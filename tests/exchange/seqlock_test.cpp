@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <thread>
 #include <vector>
 
@@ -47,6 +48,8 @@ TEST(SeqLock, ReadersNeverSeeATornValue) {
         last = p.a;
       }
     });
+  // Let the readers get going first: on a loaded machine they may start late.
+  for (int i = 0; i < 2000 && reads.load() < 100; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   constexpr std::uint64_t kWrites = 200000;
   for (std::uint64_t k = 1; k <= kWrites; ++k)
     s.store({k, k, k, static_cast<double>(k), static_cast<std::uint32_t>(k)});
