@@ -13,5 +13,6 @@ void add_synth(CLI::App& app, int& exit_code);
 void add_hid(CLI::App& app, int& exit_code);
 void add_profile(CLI::App& app, int& exit_code);
 void add_ctl(CLI::App& app, int& exit_code);
+void add_calibrate(CLI::App& app, int& exit_code);
 
 }  // namespace foveal::cmd

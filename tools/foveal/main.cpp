@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   foveal::cmd::add_synth(app, exit_code);
   foveal::cmd::add_profile(app, exit_code);
   foveal::cmd::add_ctl(app, exit_code);
+  foveal::cmd::add_calibrate(app, exit_code);
 #ifdef FOVEAL_HAVE_HID
   foveal::cmd::add_hid(app, exit_code);
 #endif
