@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "foveal/core/data_paths.hpp"
+#include "foveal/runtime/gaze_pipeline.hpp"
 #include "foveal/tools/cli.hpp"
 #include "foveal/tools/log.hpp"
 
@@ -69,11 +70,20 @@ Status DaemonApp::apply_profile(const Profile& p, const char* why) {
       model_ = *m;
     }
   }
+  const bool filter_changed = p.filter != profile_.filter;
   profile_ = p;
   settings_.store(RenderSettings::from(p, ++settings_generation_));
+  if (loop_ && filter_changed) loop_->set_mapper(make_mapper());
   log::info(std::string("profile '") + p.name + "' " + why + ": dominant " + eye_name(p.dominant_eye) +
             ", sigma_d " + std::to_string(p.sigma_d) + ", sigma_nd " + std::to_string(p.sigma_nd));
   return {};
+}
+
+GazeLoop::Mapper DaemonApp::make_mapper() const {
+  // The profile's filter section was validated when it was loaded.
+  auto cfg = FilterConfig::from_json(profile_.filter, "profile " + profile_.name);
+  auto pipe = std::make_shared<GazePipeline>(model_, cfg ? *cfg : FilterConfig{});
+  return [pipe](const GazeSample& s) { return pipe->update(s); };
 }
 
 Status DaemonApp::setup() {
@@ -221,9 +231,8 @@ int DaemonApp::run() {
   if (Status s = source_->start(); !s) return cli::report(s.error(), "foveald");
 
   const int eye_w = model_.eye_width, eye_h = model_.eye_height;
-  RawFoveaMapper mapper(model_);
   loop_ = std::make_unique<GazeLoop>(
-      *source_, [mapper](const GazeSample& s) mutable { return mapper.update(s); },
+      *source_, make_mapper(),
       [this, eye_w, eye_h](const GazeSample& s, const FoveaFrame& f) {
         if (replay_.speed > 0) pacing_.add(monotonic_now_ns() - s.t_ns);
         trace_->write(f);

@@ -28,6 +28,7 @@ class DaemonApp {
   Status setup();
   Status apply_profile(const Profile& p, const char* why);
   Result<Profile> load_startup_profile() const;
+  GazeLoop::Mapper make_mapper() const;
   nlohmann::json handle(const nlohmann::json& request);
   nlohmann::json status_json() const;
   nlohmann::json summary_json() const;

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "foveal/runtime/filter_config.hpp"
 #include "foveal/runtime/profile.hpp"
 
 namespace foveal {
@@ -63,7 +64,7 @@ Status Profile::validate(const std::string& where) const {
     if (f && !(*f > 0.0 && *f <= 100.0)) return bad_input(where + ": " + key + ": must be in (0, 100] or \"auto\"");
   if (!(ipd_mm > 40.0 && ipd_mm < 90.0)) return bad_input(where + ": ipd_mm: must be in (40, 90)");
   if (display_model.empty()) return bad_input(where + ": display_model: must not be empty");
-  if (!filter.is_object()) return bad_input(where + ": filter: expected an object");
+  if (auto f = FilterConfig::from_json(filter, where); !f) return f.error();
   return {};
 }
 

@@ -6,7 +6,6 @@
 #include <glm/vec2.hpp>
 
 #include "foveal/core/clock.hpp"
-#include "foveal/core/display_model.hpp"
 #include "foveal/core/gaze_sample.hpp"
 
 namespace foveal {
@@ -24,21 +23,6 @@ struct FoveaFrame {
   TimeNs t_ns = 0;  ///< time of the sample it came from
   std::array<FoveaPoint, 2> eyes{};
   const FoveaPoint& eye(Eye e) const { return eyes[static_cast<std::size_t>(e)]; }
-};
-
-/// The unfiltered mapping: each eye's valid direction through the display model,
-/// clamped into the viewport; an invalid eye keeps its last point (state blink/lost),
-/// the viewport centre before any valid sample. The filter pipeline replaces it.
-class RawFoveaMapper {
- public:
-  explicit RawFoveaMapper(DisplayModel model) : model_(std::move(model)) { reset(); }
-  FoveaFrame update(const GazeSample& s);
-  void reset();
-  const DisplayModel& model() const { return model_; }
-
- private:
-  DisplayModel model_;
-  FoveaFrame last_{};
 };
 
 }  // namespace foveal

@@ -21,7 +21,7 @@ struct Profile {
   std::optional<double> f_y = 0.3; ///< fraction of H; nullopt = "auto"
   double ipd_mm = 63.0;
   std::string display_model = "htc_vive_pro_eye";  ///< a name in data/display or a path
-  nlohmann::json filter = nlohmann::json::object(); ///< filter config overrides
+  nlohmann::json filter = nlohmann::json::object(); ///< FilterConfig overrides (validated)
 
   /// sigma for an eye: sigma_d for the dominant one, sigma_nd for the other.
   double sigma(Eye e) const { return e == dominant_eye ? sigma_d : sigma_nd; }
