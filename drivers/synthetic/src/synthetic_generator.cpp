@@ -8,6 +8,7 @@ namespace foveal {
 
 namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kSaccadeLabelSpeed = 30.0;  // deg/s
 
 // Minimum-jerk position profile: smooth start and stop, bell-shaped velocity.
 double min_jerk(double tau) {
@@ -164,9 +165,15 @@ bool SyntheticGenerator::next(GazeSample& sample, GazeTruth& truth) {
       break;
     }
     case GazeEvent::saccade: {
-      const double s = min_jerk((t - event_t0_) / event_len_s_);
+      const double tau = (t - event_t0_) / event_len_s_;
+      const double s = min_jerk(tau);
       az_ = from_az_ + (to_az_ - from_az_) * s;
       el_ = from_el_ + (to_el_ - from_el_) * s;
+      // Label by speed, as I-VT ground truth is: the slow first and last moments of the
+      // movement (below 30 deg/s) still count as fixation.
+      const double amp = std::hypot(to_az_ - from_az_, to_el_ - from_el_);
+      const double speed = amp / event_len_s_ * 30.0 * tau * tau * (1.0 - tau) * (1.0 - tau);
+      if (speed < kSaccadeLabelSpeed) label = GazeEvent::fixation;
       break;
     }
     case GazeEvent::pursuit:

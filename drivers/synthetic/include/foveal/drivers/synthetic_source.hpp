@@ -44,7 +44,8 @@ struct GazeTruth {
 
 /// Generates samples on the fly: same options -> bit-identical samples and truth, on
 /// any machine (own Gaussian sampler, no std distributions). Saccades follow the main
-/// sequence (duration = 2.2 ms/deg * A + 21 ms, minimum-jerk profile).
+/// sequence (duration = 2.2 ms/deg * A + 21 ms, minimum-jerk profile); a sample is
+/// labelled saccade while the true speed exceeds 30 deg/s (the I-VT convention).
 class SyntheticGenerator {
  public:
   explicit SyntheticGenerator(const SyntheticOptions& opts);
