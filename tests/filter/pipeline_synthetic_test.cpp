@@ -1,7 +1,7 @@
 // The acceptance figures on synthetic scanpaths with ground truth at 0.5 deg RMS noise.
 #include <gtest/gtest.h>
 
-#include "filter_metrics.hpp"
+#include "foveal/runtime/filter_score.hpp"
 
 namespace foveal {
 namespace {
@@ -17,7 +17,7 @@ SyntheticOptions scanpath(std::uint64_t seed) {
 class PipelineOnSynthetic : public ::testing::TestWithParam<std::uint64_t> {};
 
 TEST_P(PipelineOnSynthetic, MeetsTheAcceptanceFigures) {
-  const test::FilterScore s = test::score_pipeline(scanpath(GetParam()), FilterConfig{});
+  const FilterScore s = score_pipeline(scanpath(GetParam()), FilterConfig{});
   RecordProperty("onset_f1", std::to_string(s.onset_f1));
   std::printf("seed %llu: saccades %d, onset P %.3f R %.3f F1 %.3f, jitter raw %.3f filtered %.3f (%.2fx), "
               "lag %.2f ms, landed %.3f\n",

@@ -14,5 +14,7 @@ void add_hid(CLI::App& app, int& exit_code);
 void add_profile(CLI::App& app, int& exit_code);
 void add_ctl(CLI::App& app, int& exit_code);
 void add_calibrate(CLI::App& app, int& exit_code);
+void add_replay(CLI::App& app, int& exit_code);
+void add_filter_chart(CLI::App& app, int& exit_code);
 
 }  // namespace foveal::cmd

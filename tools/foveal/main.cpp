@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   foveal::cmd::add_profile(app, exit_code);
   foveal::cmd::add_ctl(app, exit_code);
   foveal::cmd::add_calibrate(app, exit_code);
+  foveal::cmd::add_replay(app, exit_code);
+  foveal::cmd::add_filter_chart(app, exit_code);
 #ifdef FOVEAL_HAVE_HID
   foveal::cmd::add_hid(app, exit_code);
 #endif

@@ -1,6 +1,6 @@
 #pragma once
 // Runs the gaze pipeline over a synthetic scanpath and scores it against the ground
-// truth (shared by the acceptance tests and `foveal filter-chart`'s test twin).
+// truth: used by the acceptance tests and by `foveal filter-chart`.
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -8,7 +8,7 @@
 #include "foveal/drivers/synthetic_source.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
 
-namespace foveal::test {
+namespace foveal {
 
 struct FilterScore {
   double raw_fixation_rms_deg = 0;       ///< raw error in settled fixations
@@ -16,6 +16,7 @@ struct FilterScore {
   double onset_precision = 0, onset_recall = 0, onset_f1 = 0;
   double mean_fixation_lag_ms = 0;       ///< fixation start -> output within 1 deg of truth
   double landing_within_1deg = 0;        ///< share of saccades landed within 1 deg one sample after the end
+  double pursuit_lag_ms = 0;             ///< in pursuit: mean error / target speed (how far behind)
   int saccades = 0;
   bool any_nan = false;
 };
@@ -31,7 +32,9 @@ inline void true_angles(const glm::vec3& d, double& az, double& el) {
 
 /// Scores the left eye's output. `settle_ms`: fixation samples this soon after a
 /// fixation starts are left out of the jitter figure (they measure settling, not jitter).
-inline FilterScore score_pipeline(const SyntheticOptions& opts, const FilterConfig& cfg, double settle_ms = 50.0) {
+/// `raw`: score the unfiltered samples instead (the "no filter" reference).
+inline FilterScore score_pipeline(const SyntheticOptions& opts, const FilterConfig& cfg, double settle_ms = 50.0,
+                                  bool raw = false) {
   SyntheticGenerator gen(opts);
   GazePipeline pipe(DisplayModel::vive_pro_eye(), cfg);
   struct Row {
@@ -53,6 +56,10 @@ inline FilterScore score_pipeline(const SyntheticOptions& opts, const FilterConf
     r.raw_valid = s.eyes[0].has(kValidDirection);
     if (r.raw_valid) true_angles(s.eyes[0].direction, r.r_az, r.r_el);
     true_angles(ev.direction(), r.o_az, r.o_el);
+    if (raw && r.raw_valid) {
+      r.o_az = r.r_az;
+      r.o_el = r.r_el;
+    }
     if (!std::isfinite(f.eyes[0].px.x) || !std::isfinite(f.eyes[0].px.y)) sc.any_nan = true;
     if (ev.saccade_onset) {
       const double period = 1e9 / opts.rate_hz;
@@ -117,7 +124,21 @@ inline FilterScore score_pipeline(const SyntheticOptions& opts, const FilterConf
   sc.raw_fixation_rms_deg = n ? std::sqrt(raw2 / static_cast<double>(n)) : 0;
   sc.filtered_fixation_rms_deg = n ? std::sqrt(out2 / static_cast<double>(n)) : 0;
   sc.mean_fixation_lag_ms = fixations ? lag_sum / static_cast<double>(fixations) : 0;
+  // Pursuit lag: error along the motion over the target's speed, where the speed is known.
+  double lag_ms = 0;
+  std::size_t lag_n = 0;
+  for (std::size_t i = 3; i < rows.size(); ++i) {
+    if (rows[i].label != GazeEvent::pursuit || rows[i - 3].label != GazeEvent::pursuit) continue;
+    const double vaz = (rows[i].t_az - rows[i - 1].t_az) * opts.rate_hz, vel = (rows[i].t_el - rows[i - 1].t_el) * opts.rate_hz;
+    const double speed = std::hypot(vaz, vel);
+    if (speed < 1.0) continue;
+    // Positive when the output trails the target.
+    const double along = ((rows[i].t_az - rows[i].o_az) * vaz + (rows[i].t_el - rows[i].o_el) * vel) / speed;
+    lag_ms += along / speed * 1000.0;
+    ++lag_n;
+  }
+  sc.pursuit_lag_ms = lag_n ? lag_ms / static_cast<double>(lag_n) : 0;
   return sc;
 }
 
-}  // namespace foveal::test
+}  // namespace foveal

@@ -1,0 +1,155 @@
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include "commands.hpp"
+#include "foveal/core/atomic_file.hpp"
+#include "foveal/core/data_paths.hpp"
+#include "foveal/core/gaze_log.hpp"
+#include "foveal/import/importers.hpp"
+#include "foveal/runtime/filter_score.hpp"
+#include "foveal/tools/cli.hpp"
+
+namespace foveal::cmd {
+
+namespace {
+
+struct Variant {
+  std::string method, label;
+  FilterConfig cfg;
+  bool raw = false;
+};
+
+std::vector<Variant> variants() {
+  std::vector<Variant> v;
+  v.push_back({"none", "no filter", {}, true});
+  for (auto [mc, beta] : {std::pair{0.3, 0.0}, {1.0, 0.0}, {1.0, 0.1}, {2.0, 0.1}, {4.0, 0.3}, {8.0, 0.5}}) {
+    FilterConfig c;
+    c.saccade_aware = false;
+    c.one_euro = {mc, beta, 1.0};
+    std::ostringstream l;
+    l << "1euro mc=" << mc << " b=" << beta;
+    v.push_back({"one_euro", l.str(), c});
+  }
+  for (double mc : {0.1, 0.3, 1.0, 2.0}) {
+    FilterConfig c;
+    c.one_euro.min_cutoff_hz = mc;
+    std::ostringstream l;
+    l << "saccade-aware mc=" << mc;
+    v.push_back({"saccade_aware", l.str(), c});
+  }
+  return v;
+}
+
+// Real data has no truth: jitter is the RMS distance of the output from its own
+// 100 ms centred mean over runs the pipeline calls fixation.
+double real_jitter_deg(const std::vector<GazeSample>& samples, const FilterConfig& cfg, bool raw) {
+  GazePipeline pipe(DisplayModel::vive_pro_eye(), cfg);
+  std::vector<std::pair<glm::vec3, bool>> out;
+  for (const GazeSample& s : samples) {
+    const FoveaFrame f = pipe.update(s);
+    const bool fix = f.eyes[0].state == FoveaState::fixation;
+    out.emplace_back(raw ? s.eyes[0].direction : pipe.events(Eye::left).direction(), fix && s.eyes[0].has(kValidDirection));
+  }
+  double sum = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 6; i + 6 < out.size(); ++i) {
+    bool all = true;
+    glm::vec3 mean{0.0f};
+    for (std::size_t k = i - 6; k <= i + 6; ++k) {
+      all &= out[k].second;
+      mean += out[k].first;
+    }
+    if (!all) continue;
+    mean /= 13.0f;
+    const glm::vec3 d = out[i].first - mean;
+    sum += static_cast<double>(d.x * d.x + d.y * d.y + d.z * d.z);
+    ++n;
+  }
+  return n ? std::sqrt(sum / static_cast<double>(n)) * 180.0 / 3.14159265358979 : 0.0;
+}
+
+}  // namespace
+
+void add_filter_chart(CLI::App& app, int& exit_code) {
+  struct Args {
+    std::string out = "filter-chart";
+    std::string vive_dir = "../shared/data/gaze/vive_pro_eye";
+    double seconds = 120;
+    bool json = false, no_png = false;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* sub = app.add_subcommand("filter-chart", "Chart jitter against lag for no filter, 1€ presets and the saccade-aware pipeline");
+  sub->add_option("--out,-o", a->out, "Output directory (CSV, JSON, PNG)")->capture_default_str();
+  sub->add_option("--vive-dir", a->vive_dir, "Folder of SRanipal recordings to chart jitter on (imported on the fly)")->capture_default_str();
+  sub->add_option("--seconds", a->seconds, "Synthetic scanpath length per seed")->capture_default_str();
+  sub->add_flag("--no-png", a->no_png, "Write the data only (no matplotlib)");
+  sub->add_flag("--json", a->json, "Print the results as JSON");
+  sub->callback([a, &exit_code] {
+    auto fail = [&exit_code](const Error& e) { exit_code = cli::report(e); };
+    std::error_code ec;
+    std::filesystem::create_directories(a->out, ec);
+    if (ec) return fail(io_error(a->out + ": cannot create: " + ec.message()));
+    const auto vs = variants();
+    std::string csv = "method,label,min_cutoff_hz,beta,jitter_deg,step_lag_ms,pursuit_lag_ms,onset_f1\n";
+    nlohmann::json results = nlohmann::json::array();
+    cli::Progress progress("filter-chart", vs.size(), !a->json);
+    std::size_t done = 0;
+    for (const Variant& v : vs) {
+      FilterScore avg;
+      const int seeds = 3;
+      for (int seed = 1; seed <= seeds; ++seed) {
+        SyntheticOptions o;
+        o.seed = static_cast<std::uint64_t>(seed);
+        o.duration_s = a->seconds;
+        const FilterScore s = score_pipeline(o, v.cfg, 50.0, v.raw);
+        avg.filtered_fixation_rms_deg += s.filtered_fixation_rms_deg / seeds;
+        avg.mean_fixation_lag_ms += s.mean_fixation_lag_ms / seeds;
+        avg.pursuit_lag_ms += s.pursuit_lag_ms / seeds;
+        avg.onset_f1 += s.onset_f1 / seeds;
+      }
+      char row[256];
+      std::snprintf(row, sizeof row, "%s,%s,%g,%g,%.4f,%.2f,%.2f,%.3f\n", v.method.c_str(), v.label.c_str(),
+                    v.cfg.one_euro.min_cutoff_hz, v.cfg.one_euro.beta, avg.filtered_fixation_rms_deg,
+                    avg.mean_fixation_lag_ms, avg.pursuit_lag_ms, v.raw ? 0.0 : avg.onset_f1);
+      csv += row;
+      results.push_back({{"method", v.method}, {"label", v.label}, {"jitter_deg", avg.filtered_fixation_rms_deg},
+                         {"step_lag_ms", avg.mean_fixation_lag_ms}, {"pursuit_lag_ms", avg.pursuit_lag_ms}});
+      progress.update(++done);
+    }
+    progress.finish();
+    // Real recordings: jitter only.
+    std::string real_csv = "recording,method,label,jitter_deg\n";
+    std::error_code dir_ec;
+    if (std::filesystem::is_directory(a->vive_dir, dir_ec)) {
+      for (const auto& entry : std::filesystem::directory_iterator(a->vive_dir)) {
+        if (entry.path().extension() != ".csv") continue;
+        const std::string tmp = a->out + "/.import.csv";
+        if (auto imp = import_sranipal(entry.path().string(), tmp); !imp) return fail(imp.error());
+        auto samples = read_gaze_log(tmp);
+        std::filesystem::remove(tmp, ec);
+        if (!samples) return fail(samples.error());
+        for (const Variant& v : vs)
+          real_csv += entry.path().stem().string() + "," + v.method + "," + v.label + "," +
+                      std::to_string(real_jitter_deg(*samples, v.cfg, v.raw)) + "\n";
+      }
+    }
+    if (Status s = write_file_atomically(a->out + "/filter_chart.csv", csv); !s) return fail(s.error());
+    if (Status s = write_file_atomically(a->out + "/filter_chart_real.csv", real_csv); !s) return fail(s.error());
+    if (Status s = write_file_atomically(a->out + "/filter_chart.json", results.dump(2) + "\n"); !s) return fail(s.error());
+    if (!a->no_png) {
+      const std::string script = data_path("tools/charts/filter_chart.py");
+      const std::string cmd = "/usr/bin/python3 '" + script + "' '" + a->out + "'";
+      if (std::system(cmd.c_str()) != 0)
+        return fail(io_error("charts: '" + cmd + "' failed (is python3-matplotlib installed?); the CSV files are written"));
+    }
+    if (a->json) cli::print_json({{"synthetic", results}, {"out", a->out}});
+    else std::printf("wrote %s/filter_chart.{csv,json,png} and filter_chart_real.csv\n", a->out.c_str());
+  });
+}
+
+}  // namespace foveal::cmd
