@@ -1,0 +1,113 @@
+// The replay driver: order, re-based timestamps, speed, window, loop, errors.
+#include <gtest/gtest.h>
+
+#include "foveal/core/gaze_log.hpp"
+#include "foveal/drivers/replay_source.hpp"
+#include "test_support.hpp"
+
+namespace foveal {
+namespace {
+
+std::vector<GazeSample> drain(ReplaySource& src, std::size_t max = 1u << 20) {
+  std::vector<GazeSample> out;
+  while (out.size() < max) {
+    ReadResult r = src.next(std::chrono::seconds(1));
+    if (r.status != ReadStatus::sample) break;
+    out.push_back(r.sample);
+  }
+  return out;
+}
+
+const std::string& bundled() {
+  static const std::string p = test::source_path("data/gaze/vive_pro_eye_TESTNA01.csv");
+  return p;
+}
+
+TEST(Replay, SpeedZeroDeliversEverySampleWithTheRecordedSpacing) {
+  auto log = read_gaze_log(bundled());
+  ASSERT_TRUE(log);
+  ReplaySource src({bundled(), 0.0});
+  ASSERT_TRUE(src.open());
+  const TimeNs before = monotonic_now_ns();
+  ASSERT_TRUE(src.start());
+  const auto out = drain(src);
+  ASSERT_EQ(out.size(), log->size());
+  EXPECT_GE(out[0].t_ns, before);  // re-based onto the runtime clock
+  for (std::size_t i = 1; i < out.size(); ++i) {
+    EXPECT_EQ(out[i].t_ns - out[i - 1].t_ns, (*log)[i].t_ns - (*log)[i - 1].t_ns) << i;
+    EXPECT_EQ(out[i].eyes, (*log)[i].eyes) << i;
+  }
+  EXPECT_EQ(src.next(std::chrono::milliseconds(1)).status, ReadStatus::end);
+  EXPECT_EQ(src.info().driver, "replay");
+  EXPECT_DOUBLE_EQ(src.info().nominal_rate_hz, 120.0);
+}
+
+TEST(Replay, SpeedScalesTheTimeline) {
+  auto log = read_gaze_log(bundled());
+  ASSERT_TRUE(log);
+  ReplayOptions o{bundled(), 20.0};
+  o.end_s = 0.5;  // 60 samples in 25 ms
+  ReplaySource src(o);
+  ASSERT_TRUE(src.open());
+  ASSERT_TRUE(src.start());
+  const auto out = drain(src);
+  ASSERT_GT(out.size(), 50u);
+  for (std::size_t i = 1; i < out.size(); ++i) {
+    const double recorded = static_cast<double>((*log)[i].t_ns - (*log)[0].t_ns) / 20.0;
+    EXPECT_NEAR(static_cast<double>(out[i].t_ns - out[0].t_ns), recorded, 1.0) << i;
+  }
+}
+
+TEST(Replay, WindowSelectsTheRightSamples) {
+  auto log = read_gaze_log(bundled());
+  ASSERT_TRUE(log);
+  ReplayOptions o{bundled(), 0.0};
+  o.start_s = 2.0;
+  o.end_s = 3.0;
+  ReplaySource src(o);
+  ASSERT_TRUE(src.open());
+  ASSERT_TRUE(src.start());
+  const auto out = drain(src);
+  std::vector<GazeSample> expected;
+  for (const auto& s : *log) {
+    const double t = static_cast<double>(s.t_ns - (*log)[0].t_ns) / 1e9;
+    if (t >= 2.0 && t <= 3.0) expected.push_back(s);
+  }
+  ASSERT_EQ(out.size(), expected.size());
+  EXPECT_EQ(out.front().eyes, expected.front().eyes);
+  EXPECT_EQ(out.back().eyes, expected.back().eyes);
+}
+
+TEST(Replay, LoopKeepsTimestampsIncreasing) {
+  ReplayOptions o{bundled(), 0.0};
+  o.loop = true;
+  o.end_s = 1.0;
+  ReplaySource src(o);
+  ASSERT_TRUE(src.open());
+  ASSERT_TRUE(src.start());
+  const auto out = drain(src, 700);  // ~5.8 passes of ~120 samples
+  ASSERT_EQ(out.size(), 700u);
+  for (std::size_t i = 1; i < out.size(); ++i) ASSERT_GT(out[i].t_ns, out[i - 1].t_ns) << i;
+  EXPECT_GE(src.loops_completed(), 5u);
+}
+
+TEST(Replay, ErrorsAreValues) {
+  test::TempDir dir;
+  ReplaySource missing({dir.path("nope.csv"), 1.0});
+  auto s = missing.open();
+  ASSERT_FALSE(s);
+  EXPECT_NE(s.error().message.find("nope.csv"), std::string::npos);
+  ReplaySource not_started({bundled(), 1.0});
+  ASSERT_TRUE(not_started.open());
+  EXPECT_EQ(not_started.next(std::chrono::milliseconds(1)).status, ReadStatus::error);
+  ReplayOptions bad{bundled(), -1.0};
+  EXPECT_FALSE(ReplaySource(bad).open());
+  ReplayOptions empty_window{bundled(), 0.0};
+  empty_window.start_s = 100.0;
+  ReplaySource e(empty_window);
+  ASSERT_TRUE(e.open());
+  EXPECT_FALSE(e.start());
+}
+
+}  // namespace
+}  // namespace foveal
