@@ -18,6 +18,13 @@ std::vector<GazeSample> drain(ReplaySource& src, std::size_t max = 1u << 20) {
   return out;
 }
 
+ReplayOptions options(const std::string& path, double speed) {
+  ReplayOptions o;
+  o.path = path;
+  o.speed = speed;
+  return o;
+}
+
 const std::string& bundled() {
   static const std::string p = test::source_path("data/gaze/vive_pro_eye_TESTNA01.csv");
   return p;
@@ -26,7 +33,7 @@ const std::string& bundled() {
 TEST(Replay, SpeedZeroDeliversEverySampleWithTheRecordedSpacing) {
   auto log = read_gaze_log(bundled());
   ASSERT_TRUE(log);
-  ReplaySource src({bundled(), 0.0});
+  ReplaySource src(options(bundled(), 0.0));
   ASSERT_TRUE(src.open());
   const TimeNs before = monotonic_now_ns();
   ASSERT_TRUE(src.start());
@@ -45,7 +52,7 @@ TEST(Replay, SpeedZeroDeliversEverySampleWithTheRecordedSpacing) {
 TEST(Replay, SpeedScalesTheTimeline) {
   auto log = read_gaze_log(bundled());
   ASSERT_TRUE(log);
-  ReplayOptions o{bundled(), 20.0};
+  ReplayOptions o = options(bundled(), 20.0);
   o.end_s = 0.5;  // 60 samples in 25 ms
   ReplaySource src(o);
   ASSERT_TRUE(src.open());
@@ -61,7 +68,7 @@ TEST(Replay, SpeedScalesTheTimeline) {
 TEST(Replay, WindowSelectsTheRightSamples) {
   auto log = read_gaze_log(bundled());
   ASSERT_TRUE(log);
-  ReplayOptions o{bundled(), 0.0};
+  ReplayOptions o = options(bundled(), 0.0);
   o.start_s = 2.0;
   o.end_s = 3.0;
   ReplaySource src(o);
@@ -79,7 +86,7 @@ TEST(Replay, WindowSelectsTheRightSamples) {
 }
 
 TEST(Replay, LoopKeepsTimestampsIncreasing) {
-  ReplayOptions o{bundled(), 0.0};
+  ReplayOptions o = options(bundled(), 0.0);
   o.loop = true;
   o.end_s = 1.0;
   ReplaySource src(o);
@@ -93,16 +100,16 @@ TEST(Replay, LoopKeepsTimestampsIncreasing) {
 
 TEST(Replay, ErrorsAreValues) {
   test::TempDir dir;
-  ReplaySource missing({dir.path("nope.csv"), 1.0});
+  ReplaySource missing(options(dir.path("nope.csv"), 1.0));
   auto s = missing.open();
   ASSERT_FALSE(s);
   EXPECT_NE(s.error().message.find("nope.csv"), std::string::npos);
-  ReplaySource not_started({bundled(), 1.0});
+  ReplaySource not_started(options(bundled(), 1.0));
   ASSERT_TRUE(not_started.open());
   EXPECT_EQ(not_started.next(std::chrono::milliseconds(1)).status, ReadStatus::error);
-  ReplayOptions bad{bundled(), -1.0};
+  ReplayOptions bad = options(bundled(), -1.0);
   EXPECT_FALSE(ReplaySource(bad).open());
-  ReplayOptions empty_window{bundled(), 0.0};
+  ReplayOptions empty_window = options(bundled(), 0.0);
   empty_window.start_s = 100.0;
   ReplaySource e(empty_window);
   ASSERT_TRUE(e.open());
