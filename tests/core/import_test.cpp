@@ -57,7 +57,9 @@ TEST_P(ViveImport, OneSamplePerRowWithEyesTimesAndFramesRight) {
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const GazeSample& s = (*log)[i];
     EXPECT_EQ(s.t_ns, (std::stoll(rows[i][col(h, "time(100ns)")]) - tick0) * 100) << i;
-    if (i > 0) ASSERT_GT(s.t_ns, (*log)[i - 1].t_ns);
+    if (i > 0) {
+      ASSERT_GT(s.t_ns, (*log)[i - 1].t_ns);
+    }
     for (const char side : {'L', 'R'}) {
       const std::string sd(1, side);
       const bool dir_bit = (std::stoi(rows[i][col(h, "eye_valid_" + sd)]) & 2) != 0;
