@@ -3,12 +3,12 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <vector>
 
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/gaze_log.hpp"
+#include "foveal/core/json_file.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
 #include "foveal/runtime/latency_histogram.hpp"
 #include "foveal/runtime/profile.hpp"
@@ -34,11 +34,9 @@ void add_replay(CLI::App& app, int& exit_code) {
     FilterConfig cfg;
     if (!a->config.empty() && !a->profile.empty()) return fail(bad_input("replay: give --config or --profile, not both"));
     if (!a->config.empty()) {
-      std::ifstream in(a->config);
-      if (!in) return fail(io_error(a->config + ": cannot open"));
-      nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-      if (j.is_discarded()) return fail(bad_input(a->config + ": not valid JSON"));
-      auto c = FilterConfig::from_json(j, a->config);
+      auto j = read_json_file(a->config, "filter settings");
+      if (!j) return fail(j.error());
+      auto c = FilterConfig::from_json(*j, a->config);
       if (!c) return fail(c.error());
       cfg = *c;
     } else if (!a->profile.empty()) {

@@ -1,10 +1,11 @@
 #include "foveal/core/display_model.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <limits>
 
 #include <nlohmann/json.hpp>
+
+#include "foveal/core/json_file.hpp"
 
 namespace foveal {
 
@@ -73,14 +74,9 @@ Status DisplayModel::validate(const std::string& where) const {
 }
 
 Result<DisplayModel> DisplayModel::load(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return io_error(path + ": cannot open display model");
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const nlohmann::json::exception& ex) {
-    return bad_input(path + ": not valid JSON: " + ex.what());
-  }
+  auto parsed = read_json_file(path, "display model");
+  if (!parsed) return parsed.error();
+  const nlohmann::json& j = *parsed;
   DisplayModel m;
   try {
     for (auto it = j.begin(); it != j.end(); ++it) {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "foveal/core/atomic_file.hpp"
+#include "foveal/core/json_file.hpp"
 #include "foveal/runtime/profile.hpp"
 
 namespace foveal {
@@ -37,15 +38,9 @@ bool ProfileStore::exists(const std::string& name) const {
 }
 
 Result<Profile> ProfileStore::load_file(const std::string& path, const std::string& name) {
-  std::ifstream in(path);
-  if (!in) return io_error(path + ": cannot open profile");
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const nlohmann::json::exception& e) {
-    return bad_input(path + ": not valid JSON: " + e.what());
-  }
-  return Profile::from_json(j, name, path);
+  auto j = read_json_file(path, "profile");
+  if (!j) return j.error();
+  return Profile::from_json(*j, name, path);
 }
 
 Result<Profile> ProfileStore::load(const std::string& name) const {
