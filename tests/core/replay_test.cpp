@@ -35,8 +35,8 @@ TEST(Replay, SpeedZeroDeliversEverySampleWithTheRecordedSpacing) {
   ASSERT_TRUE(log);
   ReplaySource src(options(bundled(), 0.0));
   ASSERT_TRUE(src.open());
-  const TimeNs before = monotonic_now_ns();
   ASSERT_TRUE(src.start());
+  const TimeNs before = monotonic_now_ns();
   const auto out = drain(src);
   ASSERT_EQ(out.size(), log->size());
   EXPECT_GE(out[0].t_ns, before);  // re-based onto the runtime clock

@@ -143,6 +143,7 @@ nlohmann::json DaemonApp::status_json() const {
           {"samples_skipped_paused", st.skipped},
           {"sample_rate_hz", up_s > 0 ? static_cast<double>(st.samples) / up_s : 0.0},
           {"latency_ms", {{"p50", ms(st.latency_p50_ns)}, {"p99", ms(st.latency_p99_ns)}, {"max", ms(st.latency_max_ns)}}},
+          {"realtime", st.realtime},
           {"disconnects", st.disconnects},
           {"reconnects", st.reconnects},
           {"resident_mb", current_rss_mb()},
@@ -238,7 +239,7 @@ int DaemonApp::run() {
         trace_->write(f);
         if (shm_) shm_->publish(f, eye_w, eye_h);
       });
-  loop_->start();
+  loop_->start(o_.rt_priority);
 
   while (!loop_->finished()) {
     if (control_) control_->poll(20, [this](const nlohmann::json& r) { return handle(r); });

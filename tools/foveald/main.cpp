@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
   app.add_option("--control", o.control, "Control socket path (default: $XDG_RUNTIME_DIR/foveal/control.sock)");
   app.add_flag("--no-control", o.no_control, "Do not open the control socket");
   app.add_flag("!--no-shm", o.shm, "Do not publish the fovea in shared memory");
+  app.add_option("--realtime", o.rt_priority, "Run the gaze thread with SCHED_FIFO at this priority (1-99; needs CAP_SYS_NICE)")
+      ->check(CLI::Range(1, 99));
   app.add_flag("--headless", o.headless, "Run without a window (the default for now)");
   app.add_flag("--json", o.json, "Print the summary as JSON");
   app.add_flag("-v,--verbose", verbose, "More log output (repeatable); also $FOVEAL_LOG=debug|info|warn|error");

@@ -19,6 +19,7 @@ struct Options {
   bool headless = true;
   bool json = false;
   int verbosity = 0;          ///< +1 per -v, -1 per -q
+  int rt_priority = 0;        ///< > 0: SCHED_FIFO for the gaze thread
 };
 
 }  // namespace foveal::daemon

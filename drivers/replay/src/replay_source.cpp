@@ -38,7 +38,7 @@ Status ReplaySource::start() {
   window_first_ = pending_.t_ns;
   // Fine-grained sleeps: the default 50 us timer slack would show in pacing accuracy.
   ::prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0);
-  pacer_.start(window_first_);
+  anchored_ = false;  // the clock starts at the first next(), on the reading thread
   started_ = true;
   return {};
 }
@@ -102,6 +102,10 @@ ReadResult ReplaySource::next(std::chrono::nanoseconds timeout) {
       r.status = ReadStatus::end;
       return r;
     }
+  }
+  if (!anchored_) {
+    pacer_.start(window_first_);
+    anchored_ = true;
   }
   const TimeNs due = pacer_.due(pending_.t_ns);
   if (!pacer_.wait(due, timeout)) {

@@ -1,5 +1,8 @@
 #include "foveal/runtime/gaze_loop.hpp"
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
 
 namespace foveal {
@@ -14,7 +17,8 @@ GazeLoop::GazeLoop(GazeSource& source, Mapper mapper, Observer observer)
 
 GazeLoop::~GazeLoop() { stop(); }
 
-void GazeLoop::start() {
+void GazeLoop::start(int rt_priority) {
+  rt_priority_ = rt_priority;
   stop_ = false;
   finished_ = false;
   thread_ = std::thread([this] { run(); });
@@ -64,6 +68,13 @@ bool GazeLoop::reconnect() {
 }
 
 void GazeLoop::run() {
+  if (rt_priority_ > 0) {
+    // Pacing and latency depend on waking on time; a real-time class keeps other load
+    // from delaying this thread. The thread sleeps between samples, so it cannot starve.
+    sched_param sp{};
+    sp.sched_priority = rt_priority_;
+    local_.realtime = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp) == 0;
+  }
   while (!stop_.load(std::memory_order_acquire)) {
     if (mapper_pending_.load(std::memory_order_acquire)) {
       std::lock_guard lock(mutex_);

@@ -20,7 +20,8 @@ struct ReplayOptions {
 };
 
 /// Streams the file (constant memory whatever its length) and re-bases timestamps onto
-/// the runtime clock: a sample recorded at t is delivered at start + (t - t_first)/speed.
+/// the runtime clock: a sample recorded at t is delivered at start + (t - t_first)/speed,
+/// where start is the time of the first next() call.
 /// Not thread-safe: one thread drives it.
 class ReplaySource final : public GazeSource {
  public:
@@ -45,6 +46,7 @@ class ReplaySource final : public GazeSource {
   Pacer pacer_;
   std::optional<GazeLogReader> reader_;
   bool started_ = false;
+  bool anchored_ = false;  ///< the pacer's clock has started (at the first next())
   bool have_pending_ = false;
   bool ended_ = false;
   GazeSample pending_{};

@@ -23,6 +23,7 @@ struct GazeLoopStats {
   std::int64_t latency_p50_ns = 0;  ///< sample arrival -> visible in latest()
   std::int64_t latency_p99_ns = 0;
   std::int64_t latency_max_ns = 0;
+  bool realtime = false;            ///< the gaze thread runs with SCHED_FIFO
   bool ended = false;               ///< the source is exhausted (replay without loop)
   bool failed = false;              ///< stopped on an error (last_error)
   std::string last_error;
@@ -42,7 +43,9 @@ class GazeLoop {
   GazeLoop(const GazeLoop&) = delete;
   GazeLoop& operator=(const GazeLoop&) = delete;
 
-  void start();
+  /// Starts the gaze thread; with `rt_priority` > 0 it asks for SCHED_FIFO at that
+  /// priority (needs CAP_SYS_NICE or an rtprio limit; stats().realtime says if it got it).
+  void start(int rt_priority = 0);
   /// Asks the thread to stop and joins it (returns within ~50 ms).
   void stop();
   bool finished() const { return finished_.load(std::memory_order_acquire); }
@@ -76,6 +79,7 @@ class GazeLoop {
   LatencyHistogram latency_;
   GazeLoopStats local_;
   TimeNs last_publish_ = 0;
+  int rt_priority_ = 0;
 };
 
 }  // namespace foveal
