@@ -11,7 +11,8 @@
 
 namespace {
 
-// A synthetic log (full columns, both eyes, blinks) written once per process.
+// A synthetic stress log written once per process: every field present in both eyes,
+// and values with 8-10 significant digits (real trackers write 7).
 const std::string& bench_log() {
   static const std::string path = [] {
     std::string p = "/tmp/foveal-bench-replay-" + std::to_string(::getpid()) + ".csv";
@@ -31,7 +32,7 @@ const std::string& bench_log() {
   return path;
 }
 
-void BM_ReplaySpeed0(benchmark::State& state) {
+void BM_ReplaySyntheticStress(benchmark::State& state) {
   const std::string& path = bench_log();
   std::uint64_t samples = 0;
   for (auto _ : state) {
@@ -52,10 +53,11 @@ void BM_ReplaySpeed0(benchmark::State& state) {
   }
   state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_ReplaySpeed0)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ReplaySyntheticStress)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// The bundled real Vive Pro Eye recording (7-digit SRanipal values), looped.
-void BM_ReplayRealLogLooped(benchmark::State& state) {
+// The bundled real Vive Pro Eye recording (7-digit SRanipal values, 13% invalid rows),
+// looped: the acceptance figure (>= 5 M samples/s).
+void BM_ReplayViveRecording(benchmark::State& state) {
   std::uint64_t samples = 0;
   for (auto _ : state) {
     foveal::ReplayOptions o;
@@ -75,7 +77,7 @@ void BM_ReplayRealLogLooped(benchmark::State& state) {
   }
   state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_ReplayRealLogLooped)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ReplayViveRecording)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The reader alone, to separate parsing from delivery.
 void BM_GazeLogRead(benchmark::State& state) {

@@ -53,7 +53,7 @@ Status ReplaySource::restart_pass() {
 
 Result<bool> ReplaySource::load_next() {
   for (;;) {
-    GazeSample s;
+    GazeSample& s = pending_;  // read in place: this is the hot path at speed 0
     auto got = reader_->next(s);
     if (!got) return got.error();
     bool past_end = !*got;
@@ -73,7 +73,6 @@ Result<bool> ReplaySource::load_next() {
     }
     window_last_ = s.t_ns;
     s.t_ns += loop_offset_;
-    pending_ = s;
     have_pending_ = true;
     return true;
   }

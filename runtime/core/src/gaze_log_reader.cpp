@@ -119,7 +119,7 @@ Result<bool> GazeLogReader::next(GazeSample& out) {
   // (describe_row_error) re-reads the row to say exactly what is wrong.
   const char* p = line.text.data();
   const char* const end = p + line.text.size();
-  GazeSample s;
+  GazeSample& s = out;  // parsed in place; `out` is unspecified after an error
   auto field_end = [&](const char* q) { return q == end || *q == ','; };
   auto advance = [&](const char* q, bool last) -> const char* {
     if (last) return q == end ? q : nullptr;
@@ -148,8 +148,11 @@ Result<bool> GazeLogReader::next(GazeSample& out) {
   };
   auto read_block = [&](EyeSample& e, bool with_pupil, bool last_block) {
     if (!ok) return;
-    auto [q, ec] = std::from_chars(p, end, e.valid);
-    ok = ec == std::errc() && e.valid <= (with_pupil ? kValidAll : 3u) && (p = advance(q, false)) != nullptr;
+    // The mask is one or two digits (0..15): no need for from_chars.
+    const char* q = p;
+    e.valid = 0;
+    while (q != end && static_cast<unsigned>(*q - '0') < 10 && q - p < 3) e.valid = e.valid * 10 + static_cast<unsigned>(*q++ - '0');
+    ok = q != p && e.valid <= (with_pupil ? kValidAll : 3u) && (p = advance(q, false)) != nullptr;
     for (int i = 0; i < 3; ++i) read_float(e.has(kValidDirection), e.direction[i], false);
     for (int i = 0; i < 3; ++i) read_float(e.has(kValidOrigin), e.origin_mm[i], last_block && !with_pupil && i == 2);
     if (with_pupil) {
@@ -169,7 +172,6 @@ Result<bool> GazeLogReader::next(GazeSample& out) {
                          "; timestamps must increase strictly");
   last_t_ = s.t_ns;
   ++samples_;
-  out = s;
   return true;
 }
 

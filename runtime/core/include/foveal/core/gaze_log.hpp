@@ -37,6 +37,7 @@ class GazeLogReader {
   const GazeLogHeader& header() const { return header_; }
   const std::string& path() const { return lines_.path(); }
   /// Next sample into `out`; false at the end of the file (an error if it held none).
+  /// After an error `out` holds an unspecified, partly parsed sample.
   Result<bool> next(GazeSample& out);
   /// Back to the first sample.
   Status rewind();

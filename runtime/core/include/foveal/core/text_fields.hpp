@@ -109,6 +109,14 @@ inline const char* parse_float_prefix(const char* b, const char* e, float& out) 
     exp10 += eneg ? -x : x;
   }
   if (exp10 < -22 || exp10 > 22) return nullptr;
+  if (m < (1u << 24) && exp10 <= 0 && exp10 >= -10) {
+    // Clinger's fast path in float itself: m and 10^k (k <= 10) are exact floats and one
+    // IEEE division rounds correctly. Covers the 7-digit values trackers write.
+    static constexpr float kPow10f[] = {1e0f, 1e1f, 1e2f, 1e3f, 1e4f, 1e5f, 1e6f, 1e7f, 1e8f, 1e9f, 1e10f};
+    const float f = static_cast<float>(m) / kPow10f[-exp10];
+    out = neg ? -f : f;
+    return p;
+  }
   const double d = exp10 < 0 ? static_cast<double>(m) / kPow10[-exp10] : static_cast<double>(m) * kPow10[exp10];
   const float f = static_cast<float>(d);
   if (d == 0.0) {
