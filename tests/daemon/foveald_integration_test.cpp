@@ -96,6 +96,7 @@ TEST_F(Foveald, StatusProfilesSettingsAndCleanSigterm) {
   EXPECT_EQ(bad["ok"], false);
   EXPECT_EQ(ctl({{"cmd", "status"}})["settings"]["generation"].get<int>(), gen + 1);
   EXPECT_EQ(ctl({{"cmd", "use"}, {"profile", "nobody"}})["ok"], false);
+  EXPECT_EQ(ctl({{"cmd", "set"}, {"ipd_mm", 70}})["ok"], false);  // not a run-time setting
 
   auto fovea = ctl({{"cmd", "fovea"}});
   EXPECT_EQ(fovea["ok"], true);

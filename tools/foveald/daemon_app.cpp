@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <set>
 
 #include "foveal/core/data_paths.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
@@ -174,11 +175,14 @@ nlohmann::json DaemonApp::handle(const nlohmann::json& req) {
   }
   if (cmd == "set") {
     // Validate the change as a whole profile so that bad pairs never reach a frame.
+    static const std::set<std::string> kRunTimeKeys = {"dominant_eye", "sigma_d", "sigma_nd", "f_x", "f_y"};
     nlohmann::json j = profile_.to_json();
-    for (const char* key : {"dominant_eye", "sigma_d", "sigma_nd", "f_x", "f_y"})
-      if (req.contains(key)) j[key] = req[key];
-    for (auto it = req.begin(); it != req.end(); ++it)
-      if (it.key() != "cmd" && !profile_.to_json().contains(it.key())) return error_reply("set: unknown key '" + it.key() + "'");
+    for (auto it = req.begin(); it != req.end(); ++it) {
+      if (it.key() == "cmd") continue;
+      if (!kRunTimeKeys.count(it.key()))
+        return error_reply("set: '" + it.key() + "' cannot be set at run time (dominant_eye, sigma_d, sigma_nd, f_x, f_y)");
+      j[it.key()] = it.value();
+    }
     auto p = Profile::from_json(j, profile_.name, "set");
     if (!p) return error_reply(p.error().message);
     if (Status s = apply_profile(*p, "changed"); !s) return error_reply(s.error().message);
