@@ -6,13 +6,13 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "foveal/core/atomic_file.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/core/json_file.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
 #include "foveal/runtime/latency_histogram.hpp"
 #include "foveal/runtime/profile.hpp"
 #include "foveal/tools/cli.hpp"
+#include "foveal/tools/fovea_trace.hpp"
 
 namespace foveal::cmd {
 
@@ -52,12 +52,11 @@ void add_replay(CLI::App& app, int& exit_code) {
     }
     auto reader = GazeLogReader::open(a->log);
     if (!reader) return fail(reader.error());
-    std::optional<AtomicFile> trace;
+    std::optional<cli::FoveaTrace> trace;
     if (!a->trace.empty()) {
-      auto f = AtomicFile::create(a->trace);
-      if (!f) return fail(f.error());
-      trace.emplace(std::move(f.value()));
-      trace->write("t_ns,left_state,left_x_px,left_y_px,left_confidence,right_state,right_x_px,right_y_px,right_confidence\n");
+      auto t = cli::FoveaTrace::create(a->trace);
+      if (!t) return fail(t.error());
+      trace.emplace(std::move(t.value()));
     }
     GazePipeline pipe(model, cfg);
     LatencyHistogram cost;
@@ -87,14 +86,7 @@ void add_replay(CLI::App& app, int& exit_code) {
         if (st == FoveaState::lost && samples > 0) lost_ms[e] += static_cast<double>(s.t_ns - prev_t) / 1e6;
         prev[e] = st;
       }
-      if (trace) {
-        char row[256];
-        const FoveaPoint &l = f.eyes[0], &r = f.eyes[1];
-        const int n = std::snprintf(row, sizeof row, "%lld,%s,%.3f,%.3f,%.2f,%s,%.3f,%.3f,%.2f\n",
-                                    static_cast<long long>(s.t_ns - t0), fovea_state_name(l.state), l.px.x, l.px.y,
-                                    l.confidence, fovea_state_name(r.state), r.px.x, r.px.y, r.confidence);
-        trace->write(std::string_view(row, static_cast<std::size_t>(n)));
-      }
+      if (trace) trace->write(f);
       prev_t = s.t_ns;
       ++samples;
     }

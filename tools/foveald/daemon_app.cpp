@@ -109,7 +109,7 @@ Status DaemonApp::setup() {
   std::error_code ec;
   std::filesystem::create_directories(o_.out, ec);
   if (ec) return io_error(o_.out + ": cannot create output directory: " + ec.message());
-  auto trace = TraceWriter::create(o_.out + "/trace.csv");
+  auto trace = cli::FoveaTrace::create(o_.out + "/trace.csv");
   if (!trace) return trace.error();
   trace_.emplace(std::move(trace.value()));
 

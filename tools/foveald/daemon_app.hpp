@@ -13,8 +13,8 @@
 #include "foveal/runtime/gaze_loop.hpp"
 #include "foveal/runtime/profile.hpp"
 #include "options.hpp"
+#include "foveal/tools/fovea_trace.hpp"
 #include "render_settings.hpp"
-#include "trace_writer.hpp"
 
 namespace foveal::daemon {
 
@@ -43,7 +43,7 @@ class DaemonApp {
   ReplayOptions replay_;
   std::unique_ptr<ReplaySource> source_;
   std::unique_ptr<GazeLoop> loop_;
-  std::optional<TraceWriter> trace_;
+  std::optional<cli::FoveaTrace> trace_;
   std::optional<ControlServer> control_;
   std::optional<FoveaShm> shm_;
   LatencyHistogram pacing_;  // gaze thread only until the loop has stopped

@@ -1,5 +1,7 @@
 #pragma once
-// Per-sample fovea trace (trace.csv), written on the gaze thread, committed atomically.
+// The per-sample fovea trace (foveald's trace.csv, foveal replay --trace): time from
+// the first sample, then per eye state, viewport pixel and confidence. Written through
+// an AtomicFile: nothing appears until commit().
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -7,14 +9,14 @@
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/runtime/fovea.hpp"
 
-namespace foveal::daemon {
+namespace foveal::cli {
 
-class TraceWriter {
+class FoveaTrace {
  public:
-  static Result<TraceWriter> create(const std::string& path) {
+  static Result<FoveaTrace> create(const std::string& path) {
     auto f = AtomicFile::create(path);
     if (!f) return f.error();
-    TraceWriter w(std::move(f.value()));
+    FoveaTrace w(std::move(f.value()));
     w.file_->write("t_ns,left_state,left_x_px,left_y_px,left_confidence,right_state,right_x_px,right_y_px,right_confidence\n");
     return w;
   }
@@ -34,10 +36,10 @@ class TraceWriter {
   Status commit() { return file_->commit(); }
 
  private:
-  explicit TraceWriter(AtomicFile f) : file_(std::move(f)) {}
+  explicit FoveaTrace(AtomicFile f) : file_(std::move(f)) {}
   std::optional<AtomicFile> file_;
   TimeNs t0_ = 0;
   bool have_t0_ = false;
 };
 
-}  // namespace foveal::daemon
+}  // namespace foveal::cli
