@@ -17,6 +17,18 @@ TEST(LatencyHistogram, PercentilesWithinTwoPercent) {
   EXPECT_LE(h.percentile(1.0), h.max());
 }
 
+TEST(LatencyHistogram, EveryBucketGivesAValueInsideIt) {
+  for (std::int64_t v : {std::int64_t{63}, std::int64_t{64}, std::int64_t{100}, std::int64_t{127}, std::int64_t{128},
+                         std::int64_t{1000}, std::int64_t{123456789}}) {
+    LatencyHistogram h;
+    h.add(v);
+    h.add(v + 1000000000);  // a larger max, so the bucket value is not clamped
+    const std::int64_t p = h.percentile(0.0);
+    EXPECT_GE(p, v - v / 50 - 1) << v;
+    EXPECT_LE(p, v + v / 50 + 1) << v;
+  }
+}
+
 TEST(LatencyHistogram, SmallValuesAreExactAndEmptyIsZero) {
   LatencyHistogram h;
   EXPECT_EQ(h.percentile(0.5), 0);

@@ -18,8 +18,9 @@ std::int64_t LatencyHistogram::bucket_value(int b) {
   if (b < kSub) return b;
   const int octave = b / kSub, sub = b % kSub;
   const int msb = octave + 5;
-  // The middle of the bucket.
-  return (std::int64_t{1} << msb) + (static_cast<std::int64_t>(sub) << (msb - 6)) + (std::int64_t{1} << (msb - 7));
+  // The middle of the bucket (the first octave's buckets are one unit wide).
+  const std::int64_t half = msb >= 7 ? std::int64_t{1} << (msb - 7) : 0;
+  return (std::int64_t{1} << msb) + (static_cast<std::int64_t>(sub) << (msb - 6)) + half;
 }
 
 void LatencyHistogram::add(std::int64_t ns) {
