@@ -163,6 +163,7 @@ Result<bool> GazeLogReader::next(GazeSample& out) {
   read_block(s.eyes[0], true, false);
   read_block(s.eyes[1], true, false);
   read_block(s.combined, false, true);
+  s.combined.pupil_mm = s.combined.openness = 0.0f;  // not stored for the combined gaze
   if (!ok || !line.terminated) return describe_row_error(line);
   if (samples_ > 0 && s.t_ns <= last_t_)
     return row_error(line.number, gaze_log_columns()[0],
