@@ -111,6 +111,7 @@ std::vector<ImportCase> sranipal_cases() {
   std::string missing = kSrHeader;
   missing.replace(missing.find(";gaze_direct_R.z"), 16, "");
   std::string truncated = kSrHeader + sr_row(100) + sr_row(200);
+  // (time_span_overflow: ticks whose span in ns does not fit int64, found by fuzzing)
   truncated.resize(truncated.size() - 10);
   return {
       {"empty_file", "", ":1: file is empty"},
@@ -121,6 +122,7 @@ std::vector<ImportCase> sranipal_cases() {
       {"decreasing_time", kSrHeader + sr_row(200) + sr_row(100), ":3: time(100ns)"},
       {"duplicate_time", kSrHeader + sr_row(200) + sr_row(200), ":3: time(100ns)"},
       {"nan", kSrHeader + sr_row(100, "nan"), ":2: gaze_direct_L.x: 'nan' is not finite"},
+      {"time_span_overflow", kSrHeader + sr_row(0) + sr_row(361582867577684445), ":3: time(100ns)"},
   };
 }
 

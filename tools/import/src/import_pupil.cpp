@@ -120,7 +120,9 @@ Result<ImportSummary> import_pupil(const std::string& in, const std::string& out
     if (!conf) return conf.error();
     const bool confident = *conf >= kMinConfidence;
     GazeSample s;
-    s.t_ns = static_cast<TimeNs>(std::llround((*ts - first_s) * 1e9));
+    const double ns = (*ts - first_s) * 1e9;
+    if (!(ns < 9.2e18)) return t2.field_error(*ts_col, "too far from the first row's time");
+    s.t_ns = static_cast<TimeNs>(std::llround(ns));
     if (Status st = read_eye(t2, *left, confident, s.eye(Eye::left)); !st) return st.error();
     if (Status st = read_eye(t2, *right, confident, s.eye(Eye::right)); !st) return st.error();
     for (int e = 0; e < 2; ++e) sum.invalid[e] += s.eyes[e].has(kValidDirection) ? 0 : 1;
