@@ -1,7 +1,6 @@
 // Checks udev/70-foveal.rules against the xr-hardware conventions (docs: DESIGN §9).
 #include <gtest/gtest.h>
 
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -36,16 +35,35 @@ TEST(UdevRules, RemoveEventsSkipToTheEndLabel) {
   EXPECT_EQ(r.lines.back(), R"(LABEL="foveal_end")");
 }
 
+// Splits 'SUBSYSTEM=="usb", ATTRS{idVendor}=="054c", ATTRS{idProduct}=="0cde", TAG+="uaccess"'
+// into subsystem and vendor:product; false if the line has any other shape.
+bool parse_device_line(const std::string& line, std::string& subsystem, std::string& id) {
+  auto quoted_after = [&](const std::string& key, std::size_t from, std::size_t& end) -> std::string {
+    const std::size_t k = line.find(key, from);
+    if (k == std::string::npos) return {};
+    const std::size_t b = k + key.size();
+    end = line.find('"', b);
+    return end == std::string::npos ? std::string() : line.substr(b, end - b);
+  };
+  std::size_t e1 = 0, e2 = 0, e3 = 0;
+  subsystem = quoted_after("SUBSYSTEM==\"", 0, e1);
+  const std::string vendor = quoted_after(", ATTRS{idVendor}==\"", e1, e2);
+  const std::string product = quoted_after(", ATTRS{idProduct}==\"", e2, e3);
+  const bool hex4 = vendor.size() == 4 && product.size() == 4 &&
+                    (vendor + product).find_first_not_of("0123456789abcdef") == std::string::npos;
+  id = vendor + ":" + product;
+  return line.rfind("SUBSYSTEM==\"", 0) == 0 && (subsystem == "hidraw" || subsystem == "usb") && hex4 &&
+         line.substr(e3 + 1) == ", TAG+=\"uaccess\"";
+}
+
 TEST(UdevRules, EverySupportedTrackerHasHidrawAndUsbLinesWithUaccess) {
   const Rules r = load_rules();
   const std::set<std::string> expected = {"2104:020f", "054c:0cde", "03f0:0680", "35bd:0202"};
-  const std::regex device_line(
-      R"re(SUBSYSTEM=="(hidraw|usb)", ATTRS\{idVendor\}=="([0-9a-f]{4})", ATTRS\{idProduct\}=="([0-9a-f]{4})", TAG\+="uaccess")re");
   std::set<std::string> hidraw, usb;
   for (std::size_t i = 1; i + 1 < r.lines.size(); ++i) {
-    std::smatch m;
-    ASSERT_TRUE(std::regex_match(r.lines[i], m, device_line)) << "unexpected rule: " << r.lines[i];
-    (m[1] == "hidraw" ? hidraw : usb).insert(m[2].str() + ":" + m[3].str());
+    std::string subsystem, id;
+    ASSERT_TRUE(parse_device_line(r.lines[i], subsystem, id)) << "unexpected rule: " << r.lines[i];
+    (subsystem == "hidraw" ? hidraw : usb).insert(id);
   }
   EXPECT_EQ(hidraw, expected);
   EXPECT_EQ(usb, expected);
