@@ -1,0 +1,100 @@
+#pragma once
+// The RMFR + EFR compositor (docs/rmfr.md): per eye, a full-resolution G-buffer, then
+// either the full method (lighting on the G-buffer, the reference) or RMFR (mapping into
+// a w×h transformed G-buffer, lighting there, inverse mapping with bilinear filtering into
+// the eye's half of the side-by-side output). Each eye has its own σ and f (EFR).
+//
+// Thread safety: none; use a Compositor on the thread whose GL context created it, and
+// destroy it while that context is current.
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "foveal/core/display_model.hpp"
+#include "foveal/core/error.hpp"
+#include "foveal/image/image.hpp"
+#include "foveal/render/gl.hpp"
+#include "foveal/render/shader_loader.hpp"
+
+namespace foveal::render {
+
+struct Scene;
+
+enum class Method { full, rmfr };
+const char* method_name(Method m);
+/// "full" or "rmfr"; bad_input otherwise.
+Result<Method> parse_method(const std::string& s);
+
+/// One eye's foveation for one frame.
+struct EyeFoveation {
+  double sigma = 1.0;              ///< W/w = H/h, >= 1; 1 renders at full rate (no warp)
+  double fx = 0.3, fy = 0.3;       ///< RMFR's f per axis as fractions of W and H, > 0
+  double fovea_x = 0.5, fovea_y = 0.5;  ///< normalised, origin top-left of the eye's viewport;
+                                        ///< NaN/Inf -> centre, outside [0,1] -> clamped
+};
+
+struct FrameParams {
+  Method method = Method::rmfr;
+  std::array<EyeFoveation, 2> eyes{};  ///< indexed by Eye
+};
+
+/// EFR: the dominant eye at sigma_d, the other at sigma_nd.
+FrameParams efr_frame(Method method, Eye dominant, double sigma_d, double sigma_nd, double fx, double fy);
+
+/// Milliseconds per pass, both eyes summed (the rows of the RMFR paper's Table 3).
+struct PassTimes {
+  double shadow = 0, gbuffer = 0, mapping = 0, lighting = 0, inverse = 0;
+  double gpu_total = 0;  ///< first to last GPU timestamp of the frame
+  double cpu = 0;        ///< wall time of render() including the wait for the GPU
+};
+
+struct CompositorOptions {
+  int width = 2880, height = 1600;  ///< side-by-side output; each eye width/2 × height
+  DisplayModel model = DisplayModel::vive_pro_eye();
+  bool float_output = false;  ///< RGBA32F reduced buffers and output (for NaN/Inf tests)
+  int shadow_map_size = 2048;
+  int point_lights = 64;
+};
+
+/// Bytes held by the render targets right now.
+struct TargetMemory {
+  std::size_t gbuffer = 0, transformed = 0, reduced = 0, output = 0, shadow = 0;
+  std::size_t total() const { return gbuffer + transformed + reduced + output + shadow; }
+};
+
+class Compositor {
+ public:
+  /// Compiles the shaders and allocates the full-size targets. Needs a current GL 4.5
+  /// context. Errors: bad sizes (bad_input), shader files missing (io) or not compiling.
+  static Result<Compositor> create(const CompositorOptions& options, const gl::ShaderLoader& shaders = gl::ShaderLoader());
+  Compositor(Compositor&&) noexcept;
+  Compositor& operator=(Compositor&&) noexcept;
+  ~Compositor();
+
+  /// Renders one frame into the output and waits for it. σ < 1 or f <= 0 (or not finite)
+  /// are bad_input; transformed buffers are (re)allocated when an eye's w×h changes.
+  Result<PassTimes> render(const Scene& scene, const FrameParams& params);
+
+  /// The output as 8-bit sRGB, top row first. With float_output, the float pixels
+  /// (linear, bottom row first) come from read_float().
+  image::Image read_image() const;
+  std::vector<float> read_float() const;
+
+  GLuint output_framebuffer() const;
+  int width() const;
+  int height() const;
+  int eye_width() const;
+  /// The w×h of an eye's transformed buffer in the last frame (W×H for full).
+  std::array<int, 2> buffer_size(Eye e) const;
+  TargetMemory memory() const;
+  /// "vendor / renderer / version".
+  std::string renderer() const;
+
+ private:
+  struct Impl;
+  explicit Compositor(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace foveal::render

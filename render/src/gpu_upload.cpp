@@ -1,0 +1,48 @@
+#include <algorithm>
+#include <cmath>
+
+#include "scene_internal.hpp"
+
+namespace foveal::render::detail {
+
+Primitive upload_primitive(const std::vector<Vertex>& vertices, const std::vector<std::uint32_t>& indices, int material) {
+  Primitive p;
+  p.vertices = gl::Buffer::create();
+  p.indices = gl::Buffer::create();
+  glNamedBufferStorage(p.vertices.id(), static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)), vertices.data(), 0);
+  glNamedBufferStorage(p.indices.id(), static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(), 0);
+  p.vao = gl::VertexArray::create();
+  const GLuint vao = p.vao.id();
+  glVertexArrayVertexBuffer(vao, 0, p.vertices.id(), 0, sizeof(Vertex));
+  glVertexArrayElementBuffer(vao, p.indices.id());
+  auto attrib = [vao](GLuint loc, GLint n, std::size_t offset) {
+    glEnableVertexArrayAttrib(vao, loc);
+    glVertexArrayAttribFormat(vao, loc, n, GL_FLOAT, GL_FALSE, static_cast<GLuint>(offset));
+    glVertexArrayAttribBinding(vao, loc, 0);
+  };
+  attrib(0, 3, offsetof(Vertex, position));
+  attrib(1, 3, offsetof(Vertex, normal));
+  attrib(2, 2, offsetof(Vertex, uv));
+  attrib(3, 4, offsetof(Vertex, tangent));
+  p.index_count = static_cast<int>(indices.size());
+  p.material = material;
+  return p;
+}
+
+gl::Texture upload_rgba8(const std::uint8_t* rgba, int width, int height, bool srgb, GLenum wrap_s, GLenum wrap_t,
+                         std::size_t* bytes) {
+  const int levels = 1 + static_cast<int>(std::floor(std::log2(std::max(width, height))));
+  gl::Texture t = gl::make_texture_2d(srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, width, height, levels);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(t.id(), 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+  glGenerateTextureMipmap(t.id());
+  glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap_s));
+  glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap_t));
+  glTextureParameterf(t.id(), GL_TEXTURE_MAX_ANISOTROPY, 8.0f);  // core since 4.6, EXT in Mesa/NVIDIA
+  if (bytes) *bytes += static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4 * 4 / 3;
+  return t;
+}
+
+}  // namespace foveal::render::detail

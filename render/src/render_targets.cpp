@@ -1,0 +1,79 @@
+#include "render_targets.hpp"
+
+namespace foveal::render::detail {
+
+namespace {
+void nearest_clamped(GLuint t) {
+  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+}  // namespace
+
+SurfaceTargets SurfaceTargets::create(int width, int height, bool depth_as_color) {
+  SurfaceTargets s;
+  s.width = width;
+  s.height = height;
+  s.albedo = gl::make_texture_2d(GL_SRGB8_ALPHA8, width, height);
+  s.normal = gl::make_texture_2d(GL_RG16_SNORM, width, height);
+  s.material = gl::make_texture_2d(GL_RGBA8, width, height);
+  s.emissive = gl::make_texture_2d(GL_R11F_G11F_B10F, width, height);
+  s.depth = gl::make_texture_2d(depth_as_color ? GL_R32F : GL_DEPTH_COMPONENT32F, width, height);
+  s.fbo = gl::Framebuffer::create();
+  const GLuint f = s.fbo.id();
+  const GLuint color[] = {s.albedo.id(), s.normal.id(), s.material.id(), s.emissive.id(), s.depth.id()};
+  for (GLuint t : color) nearest_clamped(t);
+  for (int i = 0; i < 4; ++i) glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i), color[i], 0);
+  if (depth_as_color) {
+    glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT4, s.depth.id(), 0);
+    const GLenum bufs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
+    glNamedFramebufferDrawBuffers(f, 5, bufs);
+  } else {
+    glNamedFramebufferTexture(f, GL_DEPTH_ATTACHMENT, s.depth.id(), 0);
+    const GLenum bufs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(f, 4, bufs);
+  }
+  return s;
+}
+
+void SurfaceTargets::bind_textures() const {
+  const GLuint t[] = {albedo.id(), normal.id(), material.id(), emissive.id(), depth.id()};
+  glBindTextures(0, 5, t);
+}
+
+ColorTarget ColorTarget::create(int width, int height, GLenum format, bool linear_filter) {
+  ColorTarget c;
+  c.width = width;
+  c.height = height;
+  c.bytes_per_pixel = format == GL_RGBA32F ? 16 : 4;
+  c.texture = gl::make_texture_2d(format, width, height);
+  nearest_clamped(c.texture.id());
+  if (linear_filter) {
+    glTextureParameteri(c.texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(c.texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  }
+  c.fbo = gl::Framebuffer::create();
+  glNamedFramebufferTexture(c.fbo.id(), GL_COLOR_ATTACHMENT0, c.texture.id(), 0);
+  glNamedFramebufferDrawBuffer(c.fbo.id(), GL_COLOR_ATTACHMENT0);
+  return c;
+}
+
+ColorTarget ColorTarget::create_shadow(int size) {
+  ColorTarget c;
+  c.width = c.height = size;
+  c.texture = gl::make_texture_2d(GL_DEPTH_COMPONENT32F, size, size);
+  const GLuint t = c.texture.id();
+  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(t, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  glTextureParameteri(t, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  c.fbo = gl::Framebuffer::create();
+  glNamedFramebufferTexture(c.fbo.id(), GL_DEPTH_ATTACHMENT, t, 0);
+  glNamedFramebufferDrawBuffer(c.fbo.id(), GL_NONE);
+  return c;
+}
+
+}  // namespace foveal::render::detail

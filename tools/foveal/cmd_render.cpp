@@ -1,0 +1,122 @@
+// foveal render: one frame of a scene through the compositor (full or RMFR + EFR),
+// saved as PNG, with per-pass timings (median of --frames timed frames after warm-up).
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "foveal/render/egl_context.hpp"
+#include "foveal/render/scene.hpp"
+#include "foveal/tools/cli.hpp"
+#include "render_args.hpp"
+
+namespace foveal::cmd {
+
+namespace {
+
+struct Args {
+  RenderArgs render;
+  std::string out;
+  int frames = 5, warmup = 2;
+  bool json = false;
+};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+double mb(std::size_t bytes) { return static_cast<double>(bytes) / (1024.0 * 1024.0); }
+
+int run(const Args& a) {
+  auto setup = resolve(a.render);
+  if (!setup) return cli::report(setup.error());
+  if (a.frames < 1) return cli::report(bad_input("--frames must be >= 1"));
+  auto ctx = gl::EglContext::create();
+  if (!ctx) return cli::report(ctx.error());
+  auto scene = render::load_scene(setup->scene);
+  if (!scene) return cli::report(scene.error());
+  auto comp = render::Compositor::create(setup->compositor);
+  if (!comp) return cli::report(comp.error());
+
+  cli::Progress progress("render", static_cast<std::uint64_t>(a.warmup + a.frames), !a.json);
+  std::vector<render::PassTimes> times;
+  for (int i = 0; i < a.warmup + a.frames; ++i) {
+    auto t = comp->render(*scene, setup->frame);
+    if (!t) return cli::report(t.error());
+    if (i >= a.warmup) times.push_back(*t);
+    progress.update(static_cast<std::uint64_t>(i + 1));
+  }
+  progress.finish();
+  const image::Image img = comp->read_image();
+  if (Status s = image::save_png(a.out, img); !s) return cli::report(s.error());
+
+  auto med = [&](double render::PassTimes::*field) {
+    std::vector<double> v;
+    for (const auto& t : times) v.push_back(t.*field);
+    return median(v);
+  };
+  using PT = render::PassTimes;
+  const render::TargetMemory mem = comp->memory();
+  rusage ru{};
+  ::getrusage(RUSAGE_SELF, &ru);
+  nlohmann::json eyes;
+  for (Eye e : kEyes) {
+    const auto& f = setup->frame.eyes[static_cast<std::size_t>(e)];
+    const auto b = comp->buffer_size(e);
+    eyes[eye_name(e)] = {{"sigma", f.sigma}, {"fx", f.fx}, {"fy", f.fy}, {"fovea", {f.fovea_x, f.fovea_y}}, {"buffer", {b[0], b[1]}}};
+  }
+  const nlohmann::json j = {
+      {"scene", setup->scene},
+      {"triangles", scene->triangles},
+      {"view", scene->view.source},
+      {"method", render::method_name(setup->frame.method)},
+      {"size", {comp->width(), comp->height()}},
+      {"eyes", eyes},
+      {"renderer", comp->renderer()},
+      {"frames", a.frames},
+      {"passes_ms", {{"shadow", med(&PT::shadow)}, {"gbuffer", med(&PT::gbuffer)}, {"mapping", med(&PT::mapping)},
+                     {"lighting", med(&PT::lighting)}, {"inverse", med(&PT::inverse)}, {"gpu_total", med(&PT::gpu_total)},
+                     {"cpu_frame", med(&PT::cpu)}}},
+      {"targets_mb", {{"gbuffer", mb(mem.gbuffer)}, {"transformed", mb(mem.transformed)}, {"reduced", mb(mem.reduced)},
+                      {"output", mb(mem.output)}, {"shadow", mb(mem.shadow)}, {"total", mb(mem.total())}}},
+      {"textures_mb", mb(scene->texture_bytes)},
+      {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0},
+      {"out", a.out}};
+  if (a.json) {
+    cli::print_json(j);
+  } else {
+    std::printf("%s: %s %dx%d, %s -> %s\n", setup->scene.c_str(), render::method_name(setup->frame.method), comp->width(),
+                comp->height(), comp->renderer().c_str(), a.out.c_str());
+    for (Eye e : kEyes) {
+      const auto b = comp->buffer_size(e);
+      std::printf("  %-5s sigma %.2f  buffer %dx%d\n", eye_name(e), setup->frame.eyes[static_cast<std::size_t>(e)].sigma, b[0], b[1]);
+    }
+    std::printf("  ms (median of %d): shadow %.2f  G-buffer %.2f  mapping %.2f  lighting %.2f  inverse %.2f  GPU total %.2f  CPU frame %.2f\n",
+                a.frames, med(&PT::shadow), med(&PT::gbuffer), med(&PT::mapping), med(&PT::lighting), med(&PT::inverse),
+                med(&PT::gpu_total), med(&PT::cpu));
+    std::printf("  render targets %.1f MB, textures %.1f MB, peak RSS %.0f MB\n", mb(mem.total()), mb(scene->texture_bytes),
+                static_cast<double>(ru.ru_maxrss) / 1024.0);
+  }
+  return cli::kExitOk;
+}
+
+}  // namespace
+
+void add_render(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<Args>();
+  CLI::App* sub = app.add_subcommand("render", "Render one frame (full or RMFR + EFR) to PNG, with per-pass timings");
+  add_render_options(*sub, args->render);
+  sub->add_option("--out,-o", args->out, "Output PNG")->required();
+  sub->add_option("--frames", args->frames, "Timed frames (the median is reported)")->capture_default_str();
+  sub->add_option("--warmup", args->warmup, "Untimed frames first")->capture_default_str()->check(CLI::Range(0, 1000));
+  sub->add_flag("--json", args->json, "Print sizes, per-pass milliseconds and memory as JSON");
+  sub->callback([args, &exit_code] { exit_code = run(*args); });
+}
+
+}  // namespace foveal::cmd

@@ -1,0 +1,58 @@
+#include "render_args.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include "foveal/core/data_paths.hpp"
+#include "foveal/tools/args.hpp"
+
+namespace foveal::cmd {
+
+std::string default_scene() { return data_path("data/scenes/Dungeon/dungeon_simplified.gltf"); }
+
+void add_render_options(CLI::App& sub, RenderArgs& a) {
+  sub.add_option("--scene", a.scene, "glTF file or pattern:NAME[@DEG] (checker, stripes-h, stripes-v, noise); default: the bundled Dungeon");
+  sub.add_option("--method", a.method, "full (the reference) or rmfr")->check(CLI::IsMember({"full", "rmfr"}))->capture_default_str();
+  sub.add_option("--sigma-d", a.sigma_d, "RMFR level of the dominant eye (>= 1)")->capture_default_str();
+  sub.add_option("--sigma-nd", a.sigma_nd, "RMFR level of the other eye (>= sigma-d)")->capture_default_str();
+  sub.add_option("--dominant", a.dominant, "Dominant eye")->check(CLI::IsMember({"left", "right"}))->capture_default_str();
+  sub.add_option("--fx", a.fx, "RMFR f along x, a fraction of the eye's width (> 0)")->capture_default_str();
+  sub.add_option("--fy", a.fy, "RMFR f along y, a fraction of the eye's height (> 0)")->capture_default_str();
+  sub.add_option("--fovea-left", a.fovea_left, "Left-eye fovea X,Y in [0,1], origin top-left of the eye's viewport")->capture_default_str();
+  sub.add_option("--fovea-right", a.fovea_right, "Right-eye fovea X,Y in [0,1]")->capture_default_str();
+  sub.add_option("--size", a.size, "Side-by-side output size WxH (even width)")->capture_default_str();
+  sub.add_option("--display", a.display, "Display-model JSON (default: HTC Vive Pro Eye)");
+}
+
+Result<RenderSetup> resolve(const RenderArgs& a) {
+  RenderSetup s;
+  s.scene = a.scene.empty() ? default_scene() : a.scene;
+  auto method = render::parse_method(a.method);
+  if (!method) return method.error();
+  if (!(a.sigma_d >= 1.0)) return bad_input("--sigma-d must be >= 1");
+  if (!(a.sigma_nd >= a.sigma_d)) return bad_input("--sigma-nd must be >= --sigma-d (EFR: the non-dominant eye is foveated at least as much)");
+  if (!(a.fx > 0) || !(a.fy > 0)) return bad_input("--fx and --fy must be > 0");
+  const Eye dominant = a.dominant == "left" ? Eye::left : Eye::right;
+  s.frame = render::efr_frame(*method, dominant, a.sigma_d, a.sigma_nd, a.fx, a.fy);
+  const std::pair<const std::string*, const char*> foveae[2] = {{&a.fovea_left, "--fovea-left"}, {&a.fovea_right, "--fovea-right"}};
+  for (std::size_t i = 0; i < 2; ++i) {
+    auto p = cli::parse_point(*foveae[i].first, foveae[i].second);
+    if (!p) return p.error();
+    if (p->first < 0 || p->first > 1 || p->second < 0 || p->second > 1)
+      return bad_input(std::string(foveae[i].second) + ": X and Y must lie in [0,1], got '" + *foveae[i].first + "'");
+    s.frame.eyes[i].fovea_x = p->first;
+    s.frame.eyes[i].fovea_y = p->second;
+  }
+  auto size = cli::parse_size(a.size, "--size");
+  if (!size) return size.error();
+  if (size->first % 2 != 0) return bad_input("--size: the width must be even (two eyes side by side)");
+  s.compositor.width = size->first;
+  s.compositor.height = size->second;
+  if (!a.display.empty()) {
+    auto m = DisplayModel::load(a.display);
+    if (!m) return m.error();
+    s.compositor.model = *m;
+  }
+  return s;
+}
+
+}  // namespace foveal::cmd

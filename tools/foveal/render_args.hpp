@@ -1,0 +1,39 @@
+#pragma once
+// Options shared by the commands that render (render, bench): scene, method, EFR levels,
+// f, per-eye fovea, output size, display model.
+#include <string>
+
+#include "foveal/core/display_model.hpp"
+#include "foveal/render/compositor.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace foveal::cmd {
+
+struct RenderArgs {
+  std::string scene;  ///< default: the bundled Dungeon
+  std::string method = "rmfr";
+  double sigma_d = 2.0, sigma_nd = 3.0;
+  std::string dominant = "right";
+  double fx = 0.3, fy = 0.3;
+  std::string fovea_left = "0.5,0.5", fovea_right = "0.5,0.5";
+  std::string size = "2880x1600";
+  std::string display;
+};
+
+void add_render_options(CLI::App& sub, RenderArgs& a);
+
+/// What the options mean once checked: the compositor's options and the frame.
+struct RenderSetup {
+  std::string scene;
+  render::CompositorOptions compositor;
+  render::FrameParams frame;
+};
+Result<RenderSetup> resolve(const RenderArgs& a);
+
+/// The bundled default scene.
+std::string default_scene();
+
+}  // namespace foveal::cmd
