@@ -172,7 +172,7 @@ TEST(Cli, EveryCommandHasHelp) {
   for (const char* cmd : {"foveal --help", "foveal import --help", "foveal log validate --help", "foveal synth --help",
                           "foveal replay --help", "foveal profile create --help", "foveal ctl --help",
                           "foveal calibrate --help", "foveal filter-chart --help", "foveal hid decode --help",
-                          "foveald --help"}) {
+                          "foveal render --help", "foveal foveate --help", "foveald --help"}) {
     auto r = test::run(test::bin("") + cmd);
     EXPECT_EQ(r.exit_code, 0) << cmd << r.err;
     EXPECT_NE(r.out.find("--"), std::string::npos) << cmd;

@@ -71,7 +71,9 @@ class Foveald : public ::testing::Test {
 };
 
 TEST_F(Foveald, StatusProfilesSettingsAndCleanSigterm) {
-  start({"--loop", "--end", "5", "--speed", "1", "-q", "--no-shm", "--out", dir_.path("out")});
+  // A small compositor at 60 Hz on a pattern: the frame stats show every settings change.
+  start({"--loop", "--end", "5", "--speed", "1", "-q", "--no-shm", "--out", dir_.path("out"), "--scene",
+         "pattern:checker", "--size", "64x36", "--fps", "60"});
   sleep_until_ns(monotonic_now_ns() + 300 * kNsPerMs);
   auto st = ctl({{"cmd", "status"}});
   EXPECT_EQ(st["ok"], true);
@@ -91,6 +93,14 @@ TEST_F(Foveald, StatusProfilesSettingsAndCleanSigterm) {
   EXPECT_DOUBLE_EQ(set["settings"]["sigma_d"].get<double>(), 2.8);
   EXPECT_EQ(set["settings"]["f_x"], "auto");
   EXPECT_EQ(set["settings"]["generation"].get<int>(), gen + 1);
+  // The next frames render with the new pair: bob is left-dominant, so left 2.8, right 3.2.
+  sleep_until_ns(monotonic_now_ns() + 150 * kNsPerMs);
+  auto frames = ctl({{"cmd", "status"}})["render"];
+  EXPECT_GT(frames["frames"].get<int>(), 10);
+  EXPECT_EQ(frames["settings_generation"].get<int>(), gen + 1);
+  EXPECT_DOUBLE_EQ(frames["last_frame"]["left"]["sigma"].get<double>(), 2.8);
+  EXPECT_DOUBLE_EQ(frames["last_frame"]["right"]["sigma"].get<double>(), 3.2);
+  EXPECT_EQ(frames["last_frame"]["left"]["buffer"][0].get<int>(), 11);  // round(32 / 2.8)
 
   auto bad = ctl({{"cmd", "set"}, {"sigma_nd", 1.5}});  // below sigma_d: refused, nothing changes
   EXPECT_EQ(bad["ok"], false);
@@ -112,10 +122,16 @@ TEST_F(Foveald, StatusProfilesSettingsAndCleanSigterm) {
   EXPECT_EQ(summary["state"], "stopped");
   EXPECT_EQ(summary["profile"], "bob");
   EXPECT_FALSE(std::filesystem::exists(socket_)) << "the socket is removed on exit";
+  // frames.csv holds the default pair (right-dominant: left 3.0), then bob's, then the change.
+  const std::string csv = test::read_file(dir_.path("out/frames.csv"));
+  EXPECT_NE(csv.find(",3.000,2.000,"), std::string::npos);
+  EXPECT_NE(csv.find(",2.400,3.200,"), std::string::npos);
+  EXPECT_NE(csv.find(",2.800,3.200,"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir_.path("out/frame_000000.png")));
 }
 
 TEST_F(Foveald, ABrokenProfileOnSighupKeepsTheLastGoodOne) {
-  start({"--profile", "bob", "--loop", "--end", "5", "-q", "--no-shm", "--out", dir_.path("out")});
+  start({"--profile", "bob", "--loop", "--end", "5", "-q", "--no-shm", "--no-render", "--out", dir_.path("out")});
   test::write_file(dir_.path("config/foveal/profiles/bob.json"), "{ \"sigma_d\": ");  // broken by hand
   ASSERT_EQ(::kill(pid_, SIGHUP), 0);
   sleep_until_ns(monotonic_now_ns() + 200 * kNsPerMs);
@@ -127,7 +143,7 @@ TEST_F(Foveald, ABrokenProfileOnSighupKeepsTheLastGoodOne) {
 }
 
 TEST_F(Foveald, MalformedAndOversizedSocketMessagesDoNotStopIt) {
-  start({"--loop", "--end", "5", "-q", "--no-shm", "--out", dir_.path("out")});
+  start({"--loop", "--end", "5", "-q", "--no-shm", "--no-render", "--out", dir_.path("out")});
   auto r = control_request(socket_, nlohmann::json::array({1, 2}));  // not an object
   ASSERT_TRUE(r);
   EXPECT_EQ((*r)["ok"], false);

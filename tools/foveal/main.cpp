@@ -17,9 +17,7 @@ int main(int argc, char** argv) {
   foveal::cmd::add_calibrate(app, exit_code);
   foveal::cmd::add_replay(app, exit_code);
   foveal::cmd::add_filter_chart(app, exit_code);
-#ifdef FOVEAL_HAVE_RENDER
   foveal::cmd::add_render(app, exit_code);
-#endif
   foveal::cmd::add_foveate(app, exit_code);
 #ifdef FOVEAL_HAVE_HID
   foveal::cmd::add_hid(app, exit_code);

@@ -11,6 +11,7 @@
 
 #include "foveal/core/data_paths.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
+#include "foveal/tools/args.hpp"
 #include "foveal/tools/cli.hpp"
 #include "foveal/tools/log.hpp"
 
@@ -124,7 +125,34 @@ Status DaemonApp::setup() {
     if (s) shm_.emplace(std::move(s.value()));
     else log::warn(s.error().message + "; the fovea stream is off");
   }
+  return setup_renderer();
+}
+
+Status DaemonApp::setup_renderer() {
+  if (!o_.render) return {};
+  RenderOptions ro;
+  ro.scene = o_.scene;
+  ro.method = o_.method;
+  ro.save_every = o_.save_every;
+  ro.window = !o_.headless;
+  ro.monitor = o_.monitor;
+  if (!o_.size.empty()) {
+    auto size = cli::parse_size(o_.size, "--size");
+    if (!size) return size.error();
+    if (size->first % 2 != 0) return bad_input("--size: the width must be even (two eyes side by side)");
+    ro.width = size->first;
+    ro.height = size->second;
+  }
+  auto r = FrameRenderer::create(ro, model_, o_.out);
+  if (!r) return r.error();
+  renderer_ = std::move(*r);
+  log::info("compositor: " + renderer_->stats_json()["renderer"].get<std::string>());
   return {};
+}
+
+void DaemonApp::serve_control(int timeout_ms) {
+  if (control_) control_->poll(timeout_ms, [this](const nlohmann::json& r) { return handle(r); });
+  else if (timeout_ms > 0) sleep_until_ns(monotonic_now_ns() + timeout_ms * kNsPerMs);
 }
 
 nlohmann::json DaemonApp::status_json() const {
@@ -148,6 +176,7 @@ nlohmann::json DaemonApp::status_json() const {
           {"disconnects", st.disconnects},
           {"reconnects", st.reconnects},
           {"resident_mb", current_rss_mb()},
+          {"render", renderer_ ? renderer_->stats_json() : nlohmann::json(nullptr)},
           {"control", {{"requests", control_ ? control_->requests_served() : 0}, {"bad_requests", control_ ? control_->bad_requests() : 0}}}};
 }
 
@@ -245,9 +274,28 @@ int DaemonApp::run() {
       });
   loop_->start(o_.rt_priority);
 
+  int rc = cli::kExitOk;
+  TimeNs next_frame = monotonic_now_ns();
   while (!loop_->finished()) {
-    if (control_) control_->poll(20, [this](const nlohmann::json& r) { return handle(r); });
-    else sleep_until_ns(monotonic_now_ns() + 20 * kNsPerMs);
+    if (renderer_) {
+      // The render thread takes the latest fovea and settings without waiting for anyone.
+      serve_control(0);
+      FoveaFrame f;
+      (void)loop_->latest().load(f);
+      RenderSettings rs;
+      (void)settings_.load(rs);
+      if (Status s = renderer_->render(f, rs, model_); !s) {
+        rc = cli::report(s.error(), "foveald");
+        break;
+      }
+      if ((o_.frames > 0 && renderer_->frames() >= o_.frames) || renderer_->window_closed()) break;
+      if (o_.fps > 0) {
+        next_frame += static_cast<TimeNs>(1e9 / o_.fps);
+        sleep_until_ns(next_frame);
+      }
+    } else {
+      serve_control(20);
+    }
     signalfd_siginfo si{};
     while (sigfd >= 0 && ::read(sigfd, &si, sizeof si) == static_cast<ssize_t>(sizeof si)) {
       if (si.ssi_signo == SIGHUP) {
@@ -266,9 +314,10 @@ int DaemonApp::run() {
   if (log::enabled(log::Level::info) && !o_.json && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
 
   const GazeLoopStats st = loop_->stats();
-  int rc = cli::kExitOk;
   if (st.failed) rc = cli::report(bad_input(st.last_error), "foveald");
   if (Status s = trace_->commit(); !s) return cli::report(s.error(), "foveald");
+  if (renderer_)
+    if (Status s = renderer_->finish(); !s) return cli::report(s.error(), "foveald");
   const nlohmann::json summary = summary_json();
   if (Status s = write_file_atomically(o_.out + "/summary.json", summary.dump(2) + "\n"); !s)
     return cli::report(s.error(), "foveald");
@@ -277,6 +326,10 @@ int DaemonApp::run() {
     std::printf("foveald: %s %llu samples from %s -> %s/trace.csv, %s/summary.json\n",
                 terminated_ ? "stopped after" : "replayed", static_cast<unsigned long long>(st.samples),
                 replay_.path.c_str(), o_.out.c_str(), o_.out.c_str());
+  if (renderer_ && !o_.json && log::enabled(log::Level::info))
+    std::printf("foveald: rendered %llu frames -> %s/frames.csv, %zu PNG in %s\n",
+                static_cast<unsigned long long>(renderer_->frames()), o_.out.c_str(),
+                renderer_->stats_json()["saved"].size(), o_.out.c_str());
   return rc;
 }
 

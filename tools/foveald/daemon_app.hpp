@@ -14,6 +14,7 @@
 #include "foveal/runtime/profile.hpp"
 #include "options.hpp"
 #include "foveal/tools/fovea_trace.hpp"
+#include "frame_renderer.hpp"
 #include "render_settings.hpp"
 
 namespace foveal::daemon {
@@ -33,6 +34,8 @@ class DaemonApp {
   nlohmann::json status_json() const;
   nlohmann::json summary_json() const;
   void print_status_line();
+  Status setup_renderer();
+  void serve_control(int timeout_ms);
 
   Options o_;
   ProfileStore store_ = ProfileStore::user();
@@ -46,6 +49,7 @@ class DaemonApp {
   std::optional<cli::FoveaTrace> trace_;
   std::optional<ControlServer> control_;
   std::optional<FoveaShm> shm_;
+  std::unique_ptr<FrameRenderer> renderer_;  // main thread only
   LatencyHistogram pacing_;  // gaze thread only until the loop has stopped
   bool terminated_ = false;  // stopped by SIGINT/SIGTERM
   TimeNs started_ = 0;

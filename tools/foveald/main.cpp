@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
   app.add_option("--replay", o.replay, "Native gaze log to replay (default: the bundled Vive Pro Eye recording)");
   app.add_option("--display", o.display, "Display-model JSON (default: the profile's, else HTC Vive Pro Eye)");
   app.add_option("--profile", o.profile, "User profile (default: the active one, else built-in defaults)");
-  app.add_option("--out,-o", o.out, "Output directory for trace.csv and summary.json")->capture_default_str();
+  app.add_option("--out,-o", o.out, "Output directory: trace.csv, frames.csv, frame_*.png, summary.json")->capture_default_str();
   app.add_option("--speed", o.speed, "Replay speed: 1 real time, 0 as fast as possible")->capture_default_str();
   app.add_option("--start", o.start_s, "Replay from this time (s from the log's first sample)");
   app.add_option("--end", o.end_s, "Replay until this time (s from the log's first sample)");
@@ -26,7 +26,16 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-shm", o.shm, "Do not publish the fovea in shared memory");
   app.add_option("--realtime", o.rt_priority, "Run the gaze thread with SCHED_FIFO at this priority (1-99; needs CAP_SYS_NICE)")
       ->check(CLI::Range(1, 99));
-  app.add_flag("--headless", o.headless, "Run without a window (the default for now)");
+  app.add_flag("--headless", o.headless, "Render without a window through EGL (the default)");
+  app.add_flag("!--window", o.headless, "Show the frames in a window (fullscreen with --monitor)");
+  app.add_option("--monitor", o.monitor, "Window mode: fullscreen on the monitor whose name contains this");
+  app.add_flag("!--no-render", o.render, "Run the gaze side only, no compositor");
+  app.add_option("--frames", o.frames, "Stop after this many frames (default: when the replay ends)");
+  app.add_option("--fps", o.fps, "Headless frame rate (default: as fast as the renderer goes)")->check(CLI::Range(0.0, 1000.0));
+  app.add_option("--scene", o.scene, "glTF file or pattern:NAME (default: the bundled Dungeon)");
+  app.add_option("--method", o.method, "full or rmfr")->check(CLI::IsMember({"full", "rmfr"}))->capture_default_str();
+  app.add_option("--size", o.size, "Side-by-side output WxH (default: the display model's, 2880x1600)");
+  app.add_option("--save-every", o.save_every, "Also save every Nth frame as PNG (the first and last always)")->check(CLI::Range(0, 1000000));
   app.add_flag("--json", o.json, "Print the summary as JSON");
   app.add_flag("-v,--verbose", verbose, "More log output (repeatable); also $FOVEAL_LOG=debug|info|warn|error");
   app.add_flag("-q,--quiet", quiet, "Less log output, no live status line");

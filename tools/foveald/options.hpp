@@ -1,5 +1,6 @@
 #pragma once
 // foveald's command-line options.
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -17,6 +18,14 @@ struct Options {
   bool loop = false;
   std::optional<double> start_s, end_s;
   bool headless = true;
+  bool render = true;         ///< run the compositor (false: gaze only)
+  std::uint64_t frames = 0;   ///< stop after this many frames (0: when the replay ends)
+  double fps = 0;             ///< headless frame pacing (0: as fast as the renderer goes)
+  std::string scene;          ///< empty: the bundled Dungeon
+  std::string method = "rmfr";
+  std::string size;           ///< WxH; empty: the display model's
+  int save_every = 0;         ///< save every Nth frame as PNG (first and last always)
+  std::string monitor;        ///< window mode: fullscreen on this monitor
   bool json = false;
   int verbosity = 0;          ///< +1 per -v, -1 per -q
   int rt_priority = 0;        ///< > 0: SCHED_FIFO for the gaze thread

@@ -1,0 +1,100 @@
+#include "foveal/render/window.hpp"
+
+#include <GLFW/glfw3.h>
+
+namespace foveal::render {
+
+namespace {
+
+std::string glfw_error() {
+  const char* desc = nullptr;
+  glfwGetError(&desc);
+  return desc ? desc : "unknown GLFW error";
+}
+
+Status init_glfw() {
+  static bool ok = false;
+  if (!ok && !glfwInit()) return Error{ErrorKind::unsupported, "no display for a window: " + glfw_error()};
+  ok = true;
+  return {};
+}
+
+}  // namespace
+
+struct Window::Impl {
+  GLFWwindow* window = nullptr;
+  std::vector<int> keys;
+  ~Impl() {
+    if (window) glfwDestroyWindow(window);
+  }
+};
+
+Result<std::vector<std::string>> Window::monitors() {
+  if (Status s = init_glfw(); !s) return s.error();
+  int count = 0;
+  GLFWmonitor** list = glfwGetMonitors(&count);
+  std::vector<std::string> names;
+  for (int i = 0; i < count; ++i) names.emplace_back(glfwGetMonitorName(list[i]));
+  return names;
+}
+
+Result<Window> Window::open(const WindowOptions& o) {
+  if (Status s = init_glfw(); !s) return s.error();
+  GLFWmonitor* monitor = nullptr;
+  if (!o.monitor.empty()) {
+    int count = 0;
+    GLFWmonitor** list = glfwGetMonitors(&count);
+    std::string names;
+    for (int i = 0; i < count && !monitor; ++i) {
+      const std::string name = glfwGetMonitorName(list[i]);
+      if (name.find(o.monitor) != std::string::npos) monitor = list[i];
+      names += (names.empty() ? "" : ", ") + name;
+    }
+    if (!monitor) return bad_input("no monitor named '" + o.monitor + "' (connected: " + (names.empty() ? "none" : names) + ")");
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  int w = o.width, h = o.height;
+  if (monitor) {
+    const GLFWvidmode* mode = glfwGetVideoMode(monitor);
+    w = mode->width;
+    h = mode->height;
+    glfwWindowHint(GLFW_REFRESH_RATE, mode->refreshRate);
+  }
+  auto impl = std::make_unique<Impl>();
+  impl->window = glfwCreateWindow(w, h, o.title.c_str(), monitor, nullptr);
+  if (!impl->window) return Error{ErrorKind::unsupported, "cannot create an OpenGL 4.5 core window: " + glfw_error()};
+  glfwMakeContextCurrent(impl->window);
+  glfwSwapInterval(o.vsync ? 1 : 0);
+  glfwSetWindowUserPointer(impl->window, impl.get());
+  glfwSetKeyCallback(impl->window, [](GLFWwindow* win, int key, int, int action, int) {
+    if (action == GLFW_PRESS) static_cast<Impl*>(glfwGetWindowUserPointer(win))->keys.push_back(key);
+  });
+  return Window(std::move(impl));
+}
+
+Window::Window(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Window::Window(Window&&) noexcept = default;
+Window& Window::operator=(Window&&) noexcept = default;
+Window::~Window() = default;
+
+void Window::present(GLuint framebuffer, int width, int height) {
+  int fw = 0, fh = 0;
+  glfwGetFramebufferSize(impl_->window, &fw, &fh);
+  glDisable(GL_FRAMEBUFFER_SRGB);  // copy the sRGB-encoded bytes as they are
+  glBlitNamedFramebuffer(framebuffer, 0, 0, 0, width, height, 0, 0, fw, fh, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+  glfwSwapBuffers(impl_->window);
+  glfwPollEvents();
+}
+
+bool Window::should_close() const { return glfwWindowShouldClose(impl_->window) != 0; }
+
+std::vector<int> Window::take_keys() {
+  std::vector<int> k;
+  k.swap(impl_->keys);
+  return k;
+}
+
+}  // namespace foveal::render

@@ -1,0 +1,77 @@
+// foveal render / foveate / foveald from the command line: outputs, JSON, exit codes.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "foveal/image/image.hpp"
+#include "test_support.hpp"
+
+using namespace foveal;
+
+TEST(RenderCli, WritesAPngAndReportsPassesAsJson) {
+  test::TempDir d;
+  auto r = test::run(test::bin("foveal") + " render --scene pattern:checker --size 160x90 --frames 3 --fovea-left 0,0 "
+                     "--fovea-right 1,1 --json --out " + d.path("f.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["method"], "rmfr");
+  EXPECT_EQ(j["eyes"]["right"]["buffer"][0].get<int>(), 40);  // 80 / sigma_d 2
+  EXPECT_EQ(j["eyes"]["left"]["buffer"][0].get<int>(), 27);   // 80 / sigma_nd 3
+  for (const char* pass : {"gbuffer", "mapping", "lighting", "inverse", "gpu_total", "cpu_frame"})
+    EXPECT_GE(j["passes_ms"][pass].get<double>(), 0.0) << pass;
+  EXPECT_GT(j["targets_mb"]["total"].get<double>(), 0.0);
+  auto img = image::load(d.path("f.png"));
+  ASSERT_TRUE(img) << img.error().message;
+  EXPECT_EQ(img->width, 160);
+}
+
+TEST(RenderCli, BadInputsExitTwoWithAClearMessageAndNoOutput) {
+  test::TempDir d;
+  const std::string out = " --out " + d.path("x.png");
+  auto missing = test::run(test::bin("foveal") + " render --scene " + d.path("nope.gltf") + out);
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("nope.gltf"), std::string::npos) << missing.err;
+  auto sigma = test::run(test::bin("foveal") + " render --scene pattern:checker --sigma-d 3 --sigma-nd 2" + out);
+  EXPECT_EQ(sigma.exit_code, 2);
+  EXPECT_NE(sigma.err.find("--sigma-nd"), std::string::npos) << sigma.err;
+  auto fovea = test::run(test::bin("foveal") + " render --scene pattern:checker --fovea-left 1.5,0" + out);
+  EXPECT_EQ(fovea.exit_code, 2);
+  auto size = test::run(test::bin("foveal") + " render --scene pattern:checker --size 161x90" + out);
+  EXPECT_EQ(size.exit_code, 2);
+  // No shaders where the data directory says: the message names the missing file.
+  std::filesystem::create_directories(d.path("data"));
+  auto shaders = test::run("FOVEAL_DATA_DIR=" + d.path("data") + " " + test::bin("foveal") +
+                           " render --scene pattern:checker --size 160x90" + out);
+  EXPECT_NE(shaders.exit_code, 0);
+  EXPECT_NE(shaders.err.find("shaders/"), std::string::npos) << shaders.err;
+  EXPECT_FALSE(std::filesystem::exists(d.path("x.png")));
+}
+
+TEST(FoveateCli, ForwardAndInverseMapAPhoto) {
+  test::TempDir d;
+  auto photo = test::source_path("data/scenes/WaterBottle/WaterBottle_baseColor.png");
+  auto r = test::run(test::bin("foveal") + " foveate --in " + photo + " --sigma 2.6 --fovea 0.25,0.75 --json --out " +
+                     d.path("o.png") + " --reduced-out " + d.path("r.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["buffer"][0].get<int>(), 788);  // round(2048 / 2.6)
+  EXPECT_GT(j["psnr_db"].get<double>(), 20.0);
+  EXPECT_TRUE(image::load(d.path("r.png")));
+  auto bad = test::run(test::bin("foveal") + " foveate --in " + d.path("none.png") + " --out " + d.path("p.png"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("none.png"), std::string::npos);
+}
+
+TEST(FovealdRender, HeadlessReplayRendersFramesAndASummary) {
+  test::TempDir d;
+  auto r = test::run("XDG_CONFIG_HOME=" + d.path("cfg") + " " + test::bin("foveald") +
+                     " --headless --frames 4 --size 128x72 --scene pattern:noise --no-control --no-shm -q --json --out " +
+                     d.path("out"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(test::read_file(d.path("out/summary.json")));
+  EXPECT_EQ(j["render"]["frames"].get<int>(), 4);
+  EXPECT_DOUBLE_EQ(j["render"]["last_frame"]["right"]["sigma"].get<double>(), 2.0);
+  EXPECT_DOUBLE_EQ(j["render"]["last_frame"]["left"]["sigma"].get<double>(), 3.0);
+  EXPECT_TRUE(image::load(d.path("out/frame_000000.png")));
+  EXPECT_TRUE(image::load(d.path("out/frame_000003.png")));
+}
