@@ -1,0 +1,101 @@
+// The compositor at 2880x1600: full against RMFR + EFR in the same run, frames
+// interleaved so machine noise hits both alike. Counters give the per-pass medians
+// (the RMFR paper's Table 3), the speedups, the theoretical lighting speedup
+// 2 / (1/σ_d² + 1/σ_nd²), render-target memory and peak RSS.
+//
+//   build/bin/foveal_render_bench                      (Dungeon, σ_d 2, σ_nd 3, f 0.3)
+//   FOVEAL_BENCH_SCENE=pattern:noise build/bin/foveal_render_bench
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <optional>
+
+#include "foveal/render/compositor.hpp"
+#include "foveal/render/egl_context.hpp"
+#include "foveal/render/scene.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace foveal;
+
+struct Fixture {
+  std::optional<gl::EglContext> ctx;
+  std::optional<render::Scene> scene;
+  std::optional<render::Compositor> comp;
+  std::string error;
+
+  Fixture() {
+    auto c = gl::EglContext::create();
+    if (!c) { error = c.error().message; return; }
+    ctx.emplace(std::move(*c));
+    const char* env = std::getenv("FOVEAL_BENCH_SCENE");
+    auto s = render::load_scene(env ? env : test::source_path("data/scenes/Dungeon/dungeon_simplified.gltf"));
+    if (!s) { error = s.error().message; return; }
+    scene.emplace(std::move(*s));
+    auto k = render::Compositor::create({}, gl::ShaderLoader(test::source_path("shaders")));
+    if (!k) { error = k.error().message; return; }
+    comp.emplace(std::move(*k));
+  }
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+
+void BM_FullVsRmfrEfr(benchmark::State& state) {
+  static Fixture f;
+  if (!f.error.empty()) {
+    state.SkipWithError(f.error.c_str());
+    return;
+  }
+  const double sigma_d = 2.0, sigma_nd = 3.0;
+  const render::FrameParams full = render::efr_frame(render::Method::full, Eye::right, 1, 1, 0.3, 0.3);
+  const render::FrameParams rmfr = render::efr_frame(render::Method::rmfr, Eye::right, sigma_d, sigma_nd, 0.3, 0.3);
+  // One warm-up frame each: shader compilation, texture residency.
+  (void)f.comp->render(*f.scene, full);
+  (void)f.comp->render(*f.scene, rmfr);
+  std::vector<render::PassTimes> tf, tr;
+  for (auto _ : state) {
+    auto a = f.comp->render(*f.scene, full);
+    auto b = f.comp->render(*f.scene, rmfr);
+    if (!a || !b) {
+      state.SkipWithError((a ? b.error() : a.error()).message.c_str());
+      return;
+    }
+    tf.push_back(*a);
+    tr.push_back(*b);
+  }
+  auto med = [](const std::vector<render::PassTimes>& v, double render::PassTimes::*field) {
+    std::vector<double> x;
+    for (const auto& t : v) x.push_back(t.*field);
+    return median(x);
+  };
+  using PT = render::PassTimes;
+  const std::pair<const char*, double PT::*> passes[] = {{"shadow", &PT::shadow},     {"gbuffer", &PT::gbuffer},
+                                                         {"mapping", &PT::mapping},   {"lighting", &PT::lighting},
+                                                         {"inverse", &PT::inverse},   {"gpu_total", &PT::gpu_total},
+                                                         {"cpu_frame", &PT::cpu}};
+  for (const auto& [name, field] : passes) {
+    state.counters[std::string("full_") + name + "_ms"] = med(tf, field);
+    state.counters[std::string("rmfr_") + name + "_ms"] = med(tr, field);
+  }
+  state.counters["lighting_speedup"] = med(tf, &PT::lighting) / med(tr, &PT::lighting);
+  state.counters["lighting_theory"] = 2.0 / (1.0 / (sigma_d * sigma_d) + 1.0 / (sigma_nd * sigma_nd));
+  state.counters["gpu_total_speedup"] = med(tf, &PT::gpu_total) / med(tr, &PT::gpu_total);
+  state.counters["cpu_frame_speedup"] = med(tf, &PT::cpu) / med(tr, &PT::cpu);
+  state.counters["targets_MB"] = static_cast<double>(f.comp->memory().total()) / 1e6;
+  state.counters["textures_MB"] = static_cast<double>(f.scene->texture_bytes) / 1e6;
+  rusage ru{};
+  ::getrusage(RUSAGE_SELF, &ru);
+  state.counters["peak_rss_MB"] = static_cast<double>(ru.ru_maxrss) / 1024.0;
+  state.SetLabel(f.comp->renderer());
+}
+BENCHMARK(BM_FullVsRmfrEfr)->Unit(benchmark::kMillisecond)->Iterations(5);
+
+}  // namespace
+
+BENCHMARK_MAIN();
