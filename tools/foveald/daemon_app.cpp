@@ -113,6 +113,8 @@ Status DaemonApp::setup() {
   auto trace = cli::FoveaTrace::create(o_.out + "/trace.csv");
   if (!trace) return trace.error();
   trace_.emplace(std::move(trace.value()));
+  // The compositor before the socket: a client that sees the socket sees a daemon ready to render.
+  if (Status s = setup_renderer(); !s) return s;
 
   if (!o_.no_control) {
     auto c = ControlServer::listen(o_.control.empty() ? default_control_socket_path() : o_.control);
@@ -125,7 +127,7 @@ Status DaemonApp::setup() {
     if (s) shm_.emplace(std::move(s.value()));
     else log::warn(s.error().message + "; the fovea stream is off");
   }
-  return setup_renderer();
+  return {};
 }
 
 Status DaemonApp::setup_renderer() {
