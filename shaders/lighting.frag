@@ -1,8 +1,8 @@
 // Lighting: GGX metal-roughness shading with up to 64 point lights and one directional
-// light with a PCF shadow map, on a G-buffer (full method, identity mapping) or on the
-// transformed G-buffer (RMFR). Each texel knows its screen pixel through the mapping, so
-// positions are rebuilt from depth at the right place. Output: tone-mapped linear colour.
-#include "common/rmfr.glsl"
+// light with a PCF shadow map, on the G-buffer (full method, identity mapping) or on an
+// eye's reduced G-buffer (any foveation method). Each texel knows its screen pixel
+// through the method's mapping, so positions are rebuilt from depth at the right place. Output: tone-mapped linear colour.
+#include "common/mapping.glsl"
 #include "common/gbuffer_encoding.glsl"
 
 layout(binding = 0) uniform sampler2D g_albedo;
@@ -25,7 +25,6 @@ layout(std140, binding = 0) uniform Lights {
 };
 
 uniform ivec2 u_origin;  // where this eye's texel (0,0) lies in the render target
-uniform vec2 u_buffer_size, u_screen_size, u_fovea, u_f;
 uniform mat4 u_inv_view_proj;
 uniform vec3 u_camera_pos;
 
@@ -79,7 +78,7 @@ vec3 tone_map(vec3 x) {
 
 void main() {
   ivec2 texel = ivec2(gl_FragCoord.xy) - u_origin;
-  ivec2 pixel = rmfr_source_pixel(texel, u_buffer_size, u_screen_size, u_fovea, u_f);
+  ivec2 pixel = source_pixel(texel);
   vec4 albedo = texelFetch(g_albedo, texel, 0);
   float depth = texelFetch(g_depth, texel, 0).r;
   if (albedo.a > 0.5) {  // unlit

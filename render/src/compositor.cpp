@@ -15,14 +15,6 @@
 
 namespace foveal::render {
 
-const char* method_name(Method m) { return m == Method::full ? "full" : "rmfr"; }
-
-Result<Method> parse_method(const std::string& s) {
-  if (s == "full") return Method::full;
-  if (s == "rmfr") return Method::rmfr;
-  return bad_input("unknown method '" + s + "' (full, rmfr)");
-}
-
 FrameParams efr_frame(Method method, Eye dominant, double sigma_d, double sigma_nd, double fx, double fy) {
   FrameParams p;
   p.method = method;
@@ -92,6 +84,31 @@ class PassTimer {
 
 }  // namespace
 
+// The mapping uniforms of shaders/common/mapping.glsl for one eye's plan.
+void set_mapping(GLuint p, const EyePlan& plan, glm::vec2 texture_size) {
+  const bool layered = plan.method == Method::hyperbolic || plan.method == Method::linear;
+  set(p, "u_mapping", plan.method == Method::kfr ? 1 : layered ? 2 : 0);
+  const bool full = plan.method == Method::full;
+  set(p, "u_buffer_size", glm::vec2(plan.buffer_w, plan.buffer_h));
+  set(p, "u_texture_size", texture_size);
+  set(p, "u_screen_size", glm::vec2(plan.screen_w, plan.screen_h));
+  set(p, "u_fovea", glm::vec2(plan.fovea));
+  const float identity = static_cast<float>(image::kRmfrIdentityF);
+  set(p, "u_f", full ? glm::vec2(identity) : glm::vec2(plan.f));
+  set(p, "u_kfr", glm::vec2(static_cast<float>(plan.kfr_log_max), static_cast<float>(plan.kfr_alpha)));
+  set(p, "u_tan", glm::vec4(plan.frustum.tan_left, plan.frustum.tan_right, plan.frustum.tan_bottom, plan.frustum.tan_top));
+  const int n = std::min<int>(static_cast<int>(plan.layers.size()), 8);
+  set(p, "u_layer_count", n);
+  for (int i = 0; i < n; ++i) {
+    const Layer& l = plan.layers[static_cast<std::size_t>(i)];
+    const std::string k = "[" + std::to_string(i) + "]";
+    set(p, ("u_layer_rect" + k).c_str(), glm::vec4(l.x, l.y, l.w, l.h));
+    set(p, ("u_layer_atlas" + k).c_str(), glm::vec4(l.atlas_y, l.buffer_w, l.buffer_h, l.pixel_size));
+    set(p, ("u_layer_ecc" + k).c_str(), std::isfinite(l.ecc_max_deg) ? static_cast<float>(l.ecc_max_deg) : 1e9f);
+  }
+  set(p, "u_layer", 0);
+}
+
 struct Compositor::Impl {
   CompositorOptions opt;
   int eye_w = 0, eye_h = 0;
@@ -102,7 +119,7 @@ struct Compositor::Impl {
   std::array<std::optional<detail::SurfaceTargets>, 2> transformed;
   std::array<std::optional<detail::ColorTarget>, 2> reduced;
   detail::ColorTarget output, shadow;
-  std::array<std::array<int, 2>, 2> last_size{};
+  std::array<EyePlan, 2> plans{};
   bool shadow_used = false;
   PassTimer timer;
 
@@ -165,15 +182,12 @@ struct Compositor::Impl {
     }
   }
 
-  // Lighting from `src` (G-buffer or transformed buffer) into the bound framebuffer.
-  void lighting_pass(const detail::SurfaceTargets& src, glm::ivec2 origin, glm::vec2 fovea, glm::vec2 f, const EyeView& v) {
+  // Lighting from `src` (G-buffer or reduced buffer) into the bound framebuffer, with
+  // the mapping uniforms already set on the program.
+  void lighting_pass(const detail::SurfaceTargets& src, glm::ivec2 origin, const EyeView& v) {
     const GLuint p = lighting_prog.id();
     glUseProgram(p);
     set(p, "u_origin", origin);
-    set(p, "u_buffer_size", glm::vec2(src.width, src.height));
-    set(p, "u_screen_size", glm::vec2(eye_w, eye_h));
-    set(p, "u_fovea", fovea);
-    set(p, "u_f", f);
     set(p, "u_inv_view_proj", v.inv_view_proj);
     set(p, "u_camera_pos", v.position);
     src.bind_textures();
@@ -183,12 +197,15 @@ struct Compositor::Impl {
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
 
-  Status ensure_eye_buffers(std::size_t eye, int w, int h) {
-    if (!transformed[eye] || transformed[eye]->width != w || transformed[eye]->height != h) {
-      transformed[eye] = detail::SurfaceTargets::create(w, h, true);
-      reduced[eye] = detail::ColorTarget::create(w, h, reduced_format(), true);
-    }
-    return {};
+  // Exact size for single-buffer methods; the layered methods' atlas changes shape with
+  // the fovea every frame, so it only grows.
+  void ensure_eye_buffers(std::size_t eye, int w, int h, bool grow_only) {
+    const auto& t = transformed[eye];
+    const bool fits = t && (grow_only ? (t->width >= w && t->height >= h) : (t->width == w && t->height == h));
+    if (fits) return;
+    if (grow_only && t) w = std::max(w, t->width), h = std::max(h, t->height);
+    transformed[eye] = detail::SurfaceTargets::create(w, h, true);
+    reduced[eye] = detail::ColorTarget::create(w, h, reduced_format(), true);
   }
 };
 
@@ -210,9 +227,9 @@ Result<Compositor> Compositor::create(const CompositorOptions& o, const gl::Shad
       {&impl->gbuffer_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "gbuffer.frag"}}},
       {&impl->pattern_prog, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "pattern.frag"}}},
       {&impl->shadow_prog, {{GL_VERTEX_SHADER, "shadow.vert"}}},
-      {&impl->map_prog, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "rmfr_map.frag"}}},
+      {&impl->map_prog, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "map.frag"}}},
       {&impl->lighting_prog, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}}},
-      {&impl->inverse_prog, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "rmfr_inverse.frag"}}},
+      {&impl->inverse_prog, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "resolve.frag"}}},
   };
   for (const auto& [prog, stages] : programs)
     if (Status s = build(*prog, stages); !s) return s.error();
@@ -236,13 +253,6 @@ Compositor::~Compositor() = default;
 
 Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& params) {
   Impl& m = *impl_;
-  for (Eye e : kEyes) {
-    const EyeFoveation& f = params.eyes[static_cast<std::size_t>(e)];
-    if (!std::isfinite(f.sigma) || f.sigma < 1.0)
-      return bad_input(std::string(eye_name(e)) + " eye: sigma must be a number >= 1");
-    if (!std::isfinite(f.fx) || !std::isfinite(f.fy) || f.fx <= 0 || f.fy <= 0)
-      return bad_input(std::string(eye_name(e)) + " eye: fx and fy must be numbers > 0");
-  }
   const auto cpu_start = Clock::now();
   PassTimes times;
   m.timer.begin_frame();
@@ -261,12 +271,12 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
 
   for (Eye e : kEyes) {
     const std::size_t i = static_cast<std::size_t>(e);
-    const EyeFoveation& f = params.eyes[i];
+    auto planned = plan_eye(params.method, params.eyes[i], m.eye_w, m.eye_h, m.opt.model.eye(e));
+    if (!planned) return Error{planned.error().kind, std::string(eye_name(e)) + " eye: " + planned.error().message};
+    const EyePlan& plan = m.plans[i] = std::move(*planned);
+    times.shaded_samples += plan.shaded_samples();
     const EyeView view = eye_view(scene, m.opt.model, e);
     const glm::ivec2 eye_origin(static_cast<int>(i) * m.eye_w, 0);
-    // Fovea in GL's frame: origin bottom-left.
-    const glm::vec2 fovea(static_cast<float>(image::sanitize_fovea(f.fovea_x)),
-                          static_cast<float>(1.0 - image::sanitize_fovea(f.fovea_y)));
 
     // G-buffer.
     glBindFramebuffer(GL_FRAMEBUFFER, m.gbuffer.fbo.id());
@@ -281,54 +291,61 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     glDisable(GL_DEPTH_TEST);
     m.timer.mark(Pass::gbuffer);
 
-    if (params.method == Method::full) {
+    if (plan.method == Method::full) {
       glBindFramebuffer(GL_FRAMEBUFFER, m.output.fbo.id());
       glViewport(eye_origin.x, eye_origin.y, m.eye_w, m.eye_h);
-      const float identity = static_cast<float>(image::kRmfrIdentityF);
-      m.lighting_pass(m.gbuffer, eye_origin, fovea, glm::vec2(identity), view);
+      set_mapping(m.lighting_prog.id(), plan, glm::vec2(m.eye_w, m.eye_h));
+      m.lighting_pass(m.gbuffer, eye_origin, view);
       m.timer.mark(Pass::lighting);
-      m.last_size[i] = {m.eye_w, m.eye_h};
       continue;
     }
 
-    const int w = image::rmfr_buffer_size(m.eye_w, f.sigma), h = image::rmfr_buffer_size(m.eye_h, f.sigma);
-    const glm::vec2 fxy(static_cast<float>(image::rmfr_effective_f(f.fx, f.sigma)),
-                        static_cast<float>(image::rmfr_effective_f(f.fy, f.sigma)));
-    if (Status s = m.ensure_eye_buffers(i, w, h); !s) return s.error();
-    m.last_size[i] = {w, h};
+    const bool layered = !plan.layers.empty();
+    m.ensure_eye_buffers(i, plan.buffer_w, plan.buffer_h, layered);
     const detail::SurfaceTargets& tg = *m.transformed[i];
     const detail::ColorTarget& rs = *m.reduced[i];
+    const glm::vec2 texture_size(tg.width, tg.height);
+    // The regions each pass draws: the whole buffer, or one per layer of the atlas.
+    std::vector<glm::ivec4> regions;
+    if (layered)
+      for (const Layer& l : plan.layers) regions.emplace_back(0, l.atlas_y, l.buffer_w, l.buffer_h);
+    else
+      regions.emplace_back(0, 0, plan.buffer_w, plan.buffer_h);
 
-    // Mapping: G-buffer -> transformed G-buffer.
+    // Mapping: G-buffer -> reduced G-buffer.
     glBindFramebuffer(GL_FRAMEBUFFER, tg.fbo.id());
-    glViewport(0, 0, w, h);
     const GLuint mp = m.map_prog.id();
     glUseProgram(mp);
-    set(mp, "u_buffer_size", glm::vec2(w, h));
-    set(mp, "u_screen_size", glm::vec2(m.eye_w, m.eye_h));
-    set(mp, "u_fovea", fovea);
-    set(mp, "u_f", fxy);
+    set_mapping(mp, plan, texture_size);
     m.gbuffer.bind_textures();
     glBindVertexArray(m.empty_vao.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+      glViewport(regions[r].x, regions[r].y, regions[r].z, regions[r].w);
+      set(mp, "u_layer", static_cast<int>(r));
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
     m.timer.mark(Pass::mapping);
 
-    // Lighting at w×h.
+    // Lighting on the reduced buffer.
     glBindFramebuffer(GL_FRAMEBUFFER, rs.fbo.id());
-    glViewport(0, 0, w, h);
-    m.lighting_pass(tg, glm::ivec2(0), fovea, fxy, view);
+    set_mapping(m.lighting_prog.id(), plan, texture_size);
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+      glViewport(regions[r].x, regions[r].y, regions[r].z, regions[r].w);
+      set(m.lighting_prog.id(), "u_layer", static_cast<int>(r));
+      m.lighting_pass(tg, glm::ivec2(0), view);
+    }
     m.timer.mark(Pass::lighting);
 
-    // Inverse mapping into this eye's half of the output.
+    // Resolve into this eye's half of the output. KFR's angle axis wraps around.
     glBindFramebuffer(GL_FRAMEBUFFER, m.output.fbo.id());
     glViewport(eye_origin.x, eye_origin.y, m.eye_w, m.eye_h);
+    glTextureParameteri(rs.texture.id(), GL_TEXTURE_WRAP_T, plan.method == Method::kfr ? GL_REPEAT : GL_CLAMP_TO_EDGE);
     const GLuint ip = m.inverse_prog.id();
     glUseProgram(ip);
+    set_mapping(ip, plan, texture_size);
     set(ip, "u_origin", eye_origin);
-    set(ip, "u_screen_size", glm::vec2(m.eye_w, m.eye_h));
-    set(ip, "u_fovea", fovea);
-    set(ip, "u_f", fxy);
     glBindTextureUnit(0, rs.texture.id());
+    glBindVertexArray(m.empty_vao.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     m.timer.mark(Pass::inverse);
   }
@@ -374,7 +391,11 @@ GLuint Compositor::output_framebuffer() const { return impl_->output.fbo.id(); }
 int Compositor::width() const { return impl_->opt.width; }
 int Compositor::height() const { return impl_->opt.height; }
 int Compositor::eye_width() const { return impl_->eye_w; }
-std::array<int, 2> Compositor::buffer_size(Eye e) const { return impl_->last_size[static_cast<std::size_t>(e)]; }
+std::array<int, 2> Compositor::buffer_size(Eye e) const {
+  const EyePlan& p = impl_->plans[static_cast<std::size_t>(e)];
+  return {p.buffer_w, p.buffer_h};
+}
+const EyePlan& Compositor::plan(Eye e) const { return impl_->plans[static_cast<std::size_t>(e)]; }
 
 TargetMemory Compositor::memory() const {
   const Impl& m = *impl_;

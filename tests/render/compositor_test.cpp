@@ -55,6 +55,35 @@ TEST(Compositor, FoveaOnCornersBordersAndCentreIsFiniteAndAsSharpAsCentred) {
   }
 }
 
+TEST(Compositor, EveryMethodIsFiniteWithTheFoveaOnEveryBorderAndCorner) {
+  ASSERT_TRUE(test::gl_ready());
+  render::Compositor c = test::make_compositor(kW, kH, true);
+  render::Scene s = test::scene("pattern:noise");
+  for (Method m : {Method::kfr, Method::hyperbolic, Method::linear})
+    for (const auto& p : kPositions) {
+      ASSERT_TRUE(c.render(s, test::frame(m, 2.6, p[0], p[1])));
+      std::size_t bad = 0;
+      for (float v : c.read_float()) bad += std::isfinite(v) ? 0 : 1;
+      EXPECT_EQ(bad, 0u) << render::method_name(m) << " fovea " << p[0] << "," << p[1];
+    }
+}
+
+TEST(Compositor, MethodsAtEqualCostAreSharperAtTheFoveaThanAway) {
+  ASSERT_TRUE(test::gl_ready());
+  render::Compositor c = test::make_compositor(kW, kH);
+  render::Scene s = test::scene("pattern:noise");
+  const image::Image full = test::render_frame(c, s, test::frame(Method::full, 1.0));
+  for (Method m : {Method::rmfr, Method::kfr, Method::hyperbolic, Method::linear}) {
+    const image::Image img = test::render_frame(c, s, test::frame(m, 2.0, 0.5, 0.5));
+    const double fovea = image::psnr(full, img, test::fovea_patch(c, Eye::left, 0.5, 0.5, 32));
+    const double corner = image::psnr(full, img, image::Rect{0, 0, 32, 32});
+    EXPECT_GT(fovea, corner + 3.0) << render::method_name(m);
+    // Equal cost: both eyes' lighting passes shade about 2·W·H/σ² samples.
+    const double shaded = double(c.plan(Eye::left).shaded_samples() + c.plan(Eye::right).shaded_samples());
+    EXPECT_NEAR(shaded / (2.0 * (kW / 2) * kH / 4.0), 1.0, 0.03) << render::method_name(m);
+  }
+}
+
 TEST(Compositor, NonFiniteFoveaFallsBackToTheCentre) {
   ASSERT_TRUE(test::gl_ready());
   render::Compositor c = test::make_compositor(kW, kH);

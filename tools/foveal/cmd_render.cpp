@@ -3,6 +3,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include <CLI/CLI.hpp>
@@ -69,7 +70,16 @@ int run(const Args& a) {
   for (Eye e : kEyes) {
     const auto& f = setup->frame.eyes[static_cast<std::size_t>(e)];
     const auto b = comp->buffer_size(e);
-    eyes[eye_name(e)] = {{"sigma", f.sigma}, {"fx", f.fx}, {"fy", f.fy}, {"fovea", {f.fovea_x, f.fovea_y}}, {"buffer", {b[0], b[1]}}};
+    const render::EyePlan& plan = comp->plan(e);
+    eyes[eye_name(e)] = {{"sigma", plan.method == render::Method::full ? 1.0 : f.sigma}, {"fx", f.fx}, {"fy", f.fy},
+                         {"fovea", {f.fovea_x, f.fovea_y}}, {"buffer", {b[0], b[1]}},
+                         {"shaded_samples", plan.shaded_samples()}};
+    if (!plan.layers.empty()) {
+      eyes[eye_name(e)]["layer_scale"] = plan.layer_scale;
+      for (const render::Layer& l : plan.layers)
+        eyes[eye_name(e)]["layers"].push_back({{"ecc_max_deg", std::isfinite(l.ecc_max_deg) ? nlohmann::json(l.ecc_max_deg) : nlohmann::json("inf")},
+                                               {"pixel_size", l.pixel_size}, {"rect", {l.x, l.y, l.w, l.h}}});
+    }
   }
   const nlohmann::json j = {
       {"scene", setup->scene},

@@ -11,7 +11,9 @@ std::string default_scene() { return data_path("data/scenes/Dungeon/dungeon_simp
 
 void add_render_options(CLI::App& sub, RenderArgs& a) {
   sub.add_option("--scene", a.scene, "glTF file or pattern:NAME[@DEG] (checker, stripes-h, stripes-v, noise); default: the bundled Dungeon");
-  sub.add_option("--method", a.method, "full (the reference) or rmfr")->check(CLI::IsMember({"full", "rmfr"}))->capture_default_str();
+  sub.add_option("--method", a.method, "full (the reference), rmfr, kfr, hyperbolic or linear")
+      ->check(CLI::IsMember({"full", "rmfr", "kfr", "hyperbolic", "linear"}))
+      ->capture_default_str();
   sub.add_option("--sigma-d", a.sigma_d, "RMFR level of the dominant eye (>= 1)")->capture_default_str();
   sub.add_option("--sigma-nd", a.sigma_nd, "RMFR level of the other eye (>= sigma-d)")->capture_default_str();
   sub.add_option("--dominant", a.dominant, "Dominant eye")->check(CLI::IsMember({"left", "right"}))->capture_default_str();
@@ -19,6 +21,9 @@ void add_render_options(CLI::App& sub, RenderArgs& a) {
   sub.add_option("--fy", a.fy, "RMFR f along y, a fraction of the eye's height (> 0)")->capture_default_str();
   sub.add_option("--fovea-left", a.fovea_left, "Left-eye fovea X,Y in [0,1], origin top-left of the eye's viewport")->capture_default_str();
   sub.add_option("--fovea-right", a.fovea_right, "Right-eye fovea X,Y in [0,1]")->capture_default_str();
+  sub.add_option("--kfr-alpha", a.kfr_alpha, "KFR kernel exponent (> 0)")->capture_default_str();
+  sub.add_option("--layer-scale", a.layer_scale,
+                 "hyperbolic/linear: scale of the 10/20 degree thresholds (default: match the cost of sigma)");
   sub.add_option("--size", a.size, "Side-by-side output size WxH (even width)")->capture_default_str();
   sub.add_option("--display", a.display, "Display-model JSON (default: HTC Vive Pro Eye)");
 }
@@ -31,8 +36,11 @@ Result<RenderSetup> resolve(const RenderArgs& a) {
   if (!(a.sigma_d >= 1.0)) return bad_input("--sigma-d must be >= 1");
   if (!(a.sigma_nd >= a.sigma_d)) return bad_input("--sigma-nd must be >= --sigma-d (EFR: the non-dominant eye is foveated at least as much)");
   if (!(a.fx > 0) || !(a.fy > 0)) return bad_input("--fx and --fy must be > 0");
+  if (!(a.kfr_alpha > 0)) return bad_input("--kfr-alpha must be > 0");
+  if (!(a.layer_scale >= 0)) return bad_input("--layer-scale must be >= 0");
   const Eye dominant = a.dominant == "left" ? Eye::left : Eye::right;
   s.frame = render::efr_frame(*method, dominant, a.sigma_d, a.sigma_nd, a.fx, a.fy);
+  for (auto& e : s.frame.eyes) e.kfr_alpha = a.kfr_alpha, e.layer_scale = a.layer_scale;
   const std::pair<const std::string*, const char*> foveae[2] = {{&a.fovea_left, "--fovea-left"}, {&a.fovea_right, "--fovea-right"}};
   for (std::size_t i = 0; i < 2; ++i) {
     auto p = cli::parse_point(*foveae[i].first, foveae[i].second);

@@ -18,6 +18,7 @@ struct RenderArgs {
   double sigma_d = 2.0, sigma_nd = 3.0;
   std::string dominant = "right";
   double fx = 0.3, fy = 0.3;
+  double kfr_alpha = 4.0, layer_scale = 0.0;
   std::string fovea_left = "0.5,0.5", fovea_right = "0.5,0.5";
   std::string size = "2880x1600";
   std::string display;

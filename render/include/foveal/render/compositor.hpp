@@ -1,8 +1,9 @@
 #pragma once
-// The RMFR + EFR compositor (docs/rmfr.md): per eye, a full-resolution G-buffer, then
-// either the full method (lighting on the G-buffer, the reference) or RMFR (mapping into
-// a w×h transformed G-buffer, lighting there, inverse mapping with bilinear filtering into
-// the eye's half of the side-by-side output). Each eye has its own σ and f (EFR).
+// The compositor (docs/rmfr.md, docs/methods.md): per eye, a full-resolution G-buffer,
+// then either the full method (lighting on the G-buffer, the reference) or a foveation
+// method (RMFR, KFR, hyperbolic or linear fall-off): mapping into the eye's reduced
+// G-buffer, lighting there, and a resolve pass with bilinear filtering into the eye's
+// half of the side-by-side output. Each eye has its own level σ (EFR).
 //
 // Thread safety: none; use a Compositor on the thread whose GL context created it, and
 // destroy it while that context is current.
@@ -13,6 +14,7 @@
 
 #include "foveal/core/display_model.hpp"
 #include "foveal/core/error.hpp"
+#include "foveal/image/foveation_plan.hpp"
 #include "foveal/image/image.hpp"
 #include "foveal/render/gl.hpp"
 #include "foveal/render/shader_loader.hpp"
@@ -21,19 +23,7 @@ namespace foveal::render {
 
 struct Scene;
 
-enum class Method { full, rmfr };
-const char* method_name(Method m);
-/// "full" or "rmfr"; bad_input otherwise.
-Result<Method> parse_method(const std::string& s);
-
-/// One eye's foveation for one frame.
-struct EyeFoveation {
-  double sigma = 1.0;              ///< W/w = H/h, >= 1; 1 renders at full rate (no warp)
-  double fx = 0.3, fy = 0.3;       ///< RMFR's f per axis as fractions of W and H, > 0
-  double fovea_x = 0.5, fovea_y = 0.5;  ///< normalised, origin top-left of the eye's viewport;
-                                        ///< NaN/Inf -> centre, outside [0,1] -> clamped
-};
-
+// Method and EyeFoveation: foveal/image/foveation_plan.hpp.
 struct FrameParams {
   Method method = Method::rmfr;
   std::array<EyeFoveation, 2> eyes{};  ///< indexed by Eye
@@ -47,6 +37,7 @@ struct PassTimes {
   double shadow = 0, gbuffer = 0, mapping = 0, lighting = 0, inverse = 0;
   double gpu_total = 0;  ///< first to last GPU timestamp of the frame
   double cpu = 0;        ///< wall time of render() including the wait for the GPU
+  std::size_t shaded_samples = 0;  ///< lighting-pass samples, both eyes
 };
 
 struct CompositorOptions {
@@ -85,8 +76,10 @@ class Compositor {
   int width() const;
   int height() const;
   int eye_width() const;
-  /// The w×h of an eye's transformed buffer in the last frame (W×H for full).
+  /// The w×h of an eye's reduced buffer in the last frame (W×H for full).
   std::array<int, 2> buffer_size(Eye e) const;
+  /// The plan each eye was rendered with in the last frame.
+  const EyePlan& plan(Eye e) const;
   TargetMemory memory() const;
   /// "vendor / renderer / version".
   std::string renderer() const;

@@ -1,15 +1,14 @@
-// RMFR pass 1: fills the transformed G-buffer (w×h) with the full-resolution G-buffer
-// sample each texel maps to. G-buffer data is fetched, never interpolated: a blend of
-// two surfaces' normals or depths is not a surface.
-#include "common/rmfr.glsl"
+// Mapping pass: fills an eye's reduced G-buffer (RMFR's transformed buffer, KFR's
+// log-polar buffer, or one layer of the layered methods) with the full-resolution
+// G-buffer sample each texel stands for. G-buffer data is fetched, never interpolated:
+// a blend of two surfaces' normals or depths is not a surface.
+#include "common/mapping.glsl"
 
 layout(binding = 0) uniform sampler2D g_albedo;
 layout(binding = 1) uniform sampler2D g_normal;
 layout(binding = 2) uniform sampler2D g_material;
 layout(binding = 3) uniform sampler2D g_emissive;
 layout(binding = 4) uniform sampler2D g_depth;
-
-uniform vec2 u_buffer_size, u_screen_size, u_fovea, u_f;
 
 layout(location = 0) out vec4 o_albedo;
 layout(location = 1) out vec4 o_normal;
@@ -18,7 +17,7 @@ layout(location = 3) out vec4 o_emissive;
 layout(location = 4) out float o_depth;
 
 void main() {
-  ivec2 src = rmfr_source_pixel(ivec2(gl_FragCoord.xy), u_buffer_size, u_screen_size, u_fovea, u_f);
+  ivec2 src = source_pixel(ivec2(gl_FragCoord.xy));
   o_albedo = texelFetch(g_albedo, src, 0);
   o_normal = texelFetch(g_normal, src, 0);
   o_material = texelFetch(g_material, src, 0);

@@ -1,0 +1,68 @@
+#pragma once
+// What each foveation method shades for one eye, decided on the CPU once per frame:
+// buffer sizes, mapping parameters and (for the layered methods) the layers. The
+// compositor turns a plan into passes; the bench uses plans to compare methods at equal
+// shaded-sample counts. Formulas and sources: docs/methods.md.
+//
+// Every method takes the same level σ: it shades about W·H/σ² samples (KFR and RMFR:
+// a w×h buffer with w = round(W/σ); the layered methods scale their eccentricity
+// thresholds until they shade that many). σ = 1 renders at full rate.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "foveal/core/display_model.hpp"
+#include "foveal/core/error.hpp"
+
+namespace foveal::render {
+
+enum class Method { full, rmfr, kfr, hyperbolic, linear };
+const char* method_name(Method m);
+/// "full", "rmfr", "kfr", "hyperbolic" or "linear"; bad_input otherwise.
+Result<Method> parse_method(const std::string& s);
+/// Every method, full first.
+const std::vector<Method>& all_methods();
+
+/// One eye's foveation for one frame.
+struct EyeFoveation {
+  double sigma = 1.0;                   ///< level, >= 1 (see above)
+  double fx = 0.3, fy = 0.3;            ///< RMFR's f per axis, fractions of W and H, > 0
+  double fovea_x = 0.5, fovea_y = 0.5;  ///< normalised, origin top-left of the eye's viewport;
+                                        ///< NaN/Inf -> centre, outside [0,1] -> clamped
+  double kfr_alpha = 4.0;               ///< KFR kernel exponent (Meng et al. recommend 4)
+  double layer_scale = 0.0;             ///< layered methods: eccentricity scale; 0 = match σ's cost
+};
+
+/// One layer of the layered methods: a screen rectangle shaded at 1/pixel_size² rate.
+struct Layer {
+  double ecc_max_deg = 0;  ///< the layer serves pixels below this eccentricity (inf: the rest)
+  double pixel_size = 1;   ///< screen pixels per buffer texel along each axis
+  int x = 0, y = 0, w = 0, h = 0;           ///< screen rectangle, pixels, GL frame (origin bottom-left)
+  int atlas_y = 0, buffer_w = 0, buffer_h = 0;  ///< where its texels sit in the eye's buffer
+};
+
+struct EyePlan {
+  Method method = Method::full;
+  int screen_w = 0, screen_h = 0;
+  int buffer_w = 0, buffer_h = 0;  ///< the eye's reduced buffer (an atlas for layered methods)
+  glm::dvec2 fovea{0.5};           ///< normalised, GL frame (origin bottom-left)
+  glm::dvec2 f{0.3};               ///< RMFR: effective f per axis (1e30 at σ = 1: no warp)
+  double kfr_log_max = 1, kfr_alpha = 4;  ///< KFR: L = ln(largest fovea-corner distance, px)
+  double layer_scale = 1;          ///< layered: the eccentricity scale used
+  std::vector<Layer> layers;       ///< layered methods, innermost first
+  EyeFrustum frustum;              ///< for eccentricities
+
+  /// Samples the lighting pass shades for this eye.
+  std::size_t shaded_samples() const;
+};
+
+/// Plans one eye of W×H. Errors: σ < 1, f <= 0, alpha <= 0, negative layer scale.
+Result<EyePlan> plan_eye(Method m, const EyeFoveation& f, int width, int height, const EyeFrustum& frustum);
+
+/// Angle in degrees between the view rays through two points given in normalised GL
+/// viewport coordinates (origin bottom-left), through the eye's frustum.
+double eccentricity_deg(const EyeFrustum& frustum, glm::dvec2 p, glm::dvec2 q);
+
+}  // namespace foveal::render

@@ -1,0 +1,117 @@
+// Foveation plans: every method shades what its level says, layers nest around the
+// fovea wherever it is, σ = 1 is full rate.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "foveal/image/foveation_plan.hpp"
+
+using namespace foveal;
+using namespace foveal::render;
+
+namespace {
+const EyeFrustum kVive = DisplayModel::vive_pro_eye().eye(Eye::left);
+constexpr int kW = 1440, kH = 1600;
+const double kPositions[9][2] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {0.5, 0}, {0.5, 1}, {0, 0.5}, {1, 0.5}, {0.5, 0.5}};
+
+EyeFoveation at(double sigma, double x, double y) {
+  EyeFoveation f;
+  f.sigma = sigma;
+  f.fovea_x = x;
+  f.fovea_y = y;
+  return f;
+}
+}  // namespace
+
+TEST(FoveationPlan, EveryMethodShadesAboutWHOverSigmaSquared) {
+  for (Method m : {Method::rmfr, Method::kfr, Method::hyperbolic, Method::linear})
+    for (double sigma : {1.4, 2.0, 2.6, 3.0, 4.0})
+      for (const auto& p : kPositions) {
+        auto plan = plan_eye(m, at(sigma, p[0], p[1]), kW, kH, kVive);
+        ASSERT_TRUE(plan) << plan.error().message;
+        const double target = double(kW) * kH / (sigma * sigma);
+        const double shaded = static_cast<double>(plan->shaded_samples());
+        EXPECT_LE(shaded, target * 1.01) << method_name(m) << " sigma " << sigma;
+        EXPECT_GE(shaded, target * 0.97) << method_name(m) << " sigma " << sigma << " fovea " << p[0] << "," << p[1];
+      }
+}
+
+TEST(FoveationPlan, LayersNestAroundTheFoveaOnEveryBorder) {
+  for (Method m : {Method::hyperbolic, Method::linear})
+    for (const auto& p : kPositions) {
+      auto plan = plan_eye(m, at(2.6, p[0], p[1]), kW, kH, kVive);
+      ASSERT_TRUE(plan);
+      const double fx = plan->fovea.x * kW, fy = plan->fovea.y * kH;
+      const Layer* prev = nullptr;
+      for (const Layer& l : plan->layers) {
+        EXPECT_GE(l.x, 0);
+        EXPECT_GE(l.y, 0);
+        EXPECT_LE(l.x + l.w, kW);
+        EXPECT_LE(l.y + l.h, kH);
+        EXPECT_GE(fx, l.x - 1e-9);
+        EXPECT_LE(fx, l.x + l.w + 1e-9);
+        EXPECT_GE(fy, l.y - 1e-9);
+        EXPECT_LE(fy, l.y + l.h + 1e-9);
+        if (prev) {
+          EXPECT_GT(l.ecc_max_deg, prev->ecc_max_deg);
+          EXPECT_GE(l.pixel_size, prev->pixel_size);
+        }
+        prev = &l;
+      }
+      ASSERT_FALSE(plan->layers.empty());
+      EXPECT_TRUE(std::isinf(plan->layers.back().ecc_max_deg));
+      EXPECT_EQ(plan->layers.back().w, kW);  // the outermost layer covers the viewport
+    }
+}
+
+TEST(FoveationPlan, PaperParametersAtScaleOne) {
+  EyeFoveation f = at(2.0, 0.5, 0.5);
+  f.layer_scale = 1.0;
+  auto h = plan_eye(Method::hyperbolic, f, kW, kH, kVive);
+  ASSERT_TRUE(h);
+  ASSERT_EQ(h->layers.size(), 3u);
+  EXPECT_DOUBLE_EQ(h->layers[0].ecc_max_deg, 10.0);
+  EXPECT_DOUBLE_EQ(h->layers[1].ecc_max_deg, 20.0);
+  EXPECT_DOUBLE_EQ(h->layers[1].pixel_size, 2.0);
+  EXPECT_DOUBLE_EQ(h->layers[2].pixel_size, 12.35);
+  // 10° around the centre of a 753.6 px focal length: radius 753.6·tan 10° = 133 px.
+  EXPECT_NEAR(h->layers[0].w, 2 * 753.6 * std::tan(10 * M_PI / 180) + 2, 3);
+  auto l = plan_eye(Method::linear, f, kW, kH, kVive);
+  ASSERT_TRUE(l);
+  EXPECT_NEAR(l->layers.back().pixel_size, 1 / std::sqrt(0.047), 1e-9);
+  EXPECT_DOUBLE_EQ(l->layers[0].ecc_max_deg, 12.0);
+}
+
+TEST(FoveationPlan, SigmaOneIsFullRateForEveryMethod) {
+  for (Method m : all_methods()) {
+    auto p = plan_eye(m, at(1.0, 0.1, 0.9), kW, kH, kVive);
+    ASSERT_TRUE(p);
+    EXPECT_EQ(p->shaded_samples(), std::size_t(kW) * kH) << method_name(m);
+    EXPECT_TRUE(p->method == Method::full || p->method == Method::rmfr);
+  }
+}
+
+TEST(FoveationPlan, KfrUsesTheFarthestCorner) {
+  auto p = plan_eye(Method::kfr, at(2.0, 0.0, 1.0), kW, kH, kVive);
+  ASSERT_TRUE(p);
+  EXPECT_NEAR(p->kfr_log_max, std::log(std::hypot(kW, kH)), 1e-9);
+  EXPECT_EQ(p->kfr_alpha, 4.0);
+}
+
+TEST(FoveationPlan, EccentricityThroughTheFrustum) {
+  EXPECT_NEAR(eccentricity_deg(kVive, {0.5, 0.5}, {0.5, 0.5}), 0.0, 1e-6);
+  EXPECT_NEAR(eccentricity_deg(kVive, {0.5, 0.5}, {1.0, 0.5}), std::atan(kVive.tan_right) * 180 / M_PI, 1e-5);
+}
+
+TEST(FoveationPlan, RejectsBadLevels) {
+  EXPECT_FALSE(plan_eye(Method::rmfr, at(0.5, 0.5, 0.5), kW, kH, kVive));
+  EXPECT_FALSE(plan_eye(Method::kfr, at(NAN, 0.5, 0.5), kW, kH, kVive));
+  EyeFoveation f = at(2, 0.5, 0.5);
+  f.kfr_alpha = 0;
+  EXPECT_FALSE(plan_eye(Method::kfr, f, kW, kH, kVive));
+  f = at(2, 0.5, 0.5);
+  f.layer_scale = -1;
+  EXPECT_FALSE(plan_eye(Method::linear, f, kW, kH, kVive));
+  EXPECT_FALSE(parse_method("foo"));
+  EXPECT_EQ(*parse_method("hyperbolic"), Method::hyperbolic);
+}
