@@ -1,0 +1,142 @@
+#!/usr/bin/python3
+"""Charts and the Table-1-style summary of a `foveal bench` run (docs/bench.md).
+
+Reads DIR/bench.csv (and fgrid.csv, rotation.csv, bench.json when present); writes
+pareto.png, fgrid.png, rotation.png and table.md into DIR.
+"""
+import csv
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+COLORS = {"full": "black", "rmfr": "tab:red", "kfr": "tab:blue", "hyperbolic": "tab:green", "linear": "tab:orange"}
+
+
+def num(v):
+    return math.inf if v == "inf" else float(v)
+
+
+def read(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def pareto(rows, out):
+    scenes = sorted({r["scene"] for r in rows})
+    fig, axes = plt.subplots(1, len(scenes), figsize=(5.5 * len(scenes), 4.5), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        srows = [r for r in rows if r["scene"] == scene]
+        for method in COLORS:
+            m = sorted((r for r in srows if r["method"] == method), key=lambda r: num(r["gpu_ms"]))
+            if not m:
+                continue
+            xs = [num(r["gpu_ms"]) for r in m]
+            ys = [min(num(r["fpsnr_db"]), 60.0) for r in m]
+            if method == "full":
+                ax.scatter(xs, ys, marker="*", s=120, color=COLORS[method], label="full (reference, ∞ dB shown at 60)")
+            else:
+                ax.plot(xs, ys, "o-", color=COLORS[method], label=method, markersize=4)
+        ax.set_title(f"{scene}: quality against frame time")
+        ax.set_xlabel("GPU frame time (ms, median)")
+        ax.set_ylabel("FPSNR (dB)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
+def fgrid(rows, autos, out):
+    scenes = sorted({r["scene"] for r in rows})
+    fig, axes = plt.subplots(1, len(scenes), figsize=(5 * len(scenes), 4.3), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        s = [r for r in rows if r["scene"] == scene]
+        fxs = sorted({num(r["fx"]) for r in s})
+        fys = sorted({num(r["fy"]) for r in s})
+        grid = [[math.nan] * len(fxs) for _ in fys]
+        for r in s:
+            grid[fys.index(num(r["fy"]))][fxs.index(num(r["fx"]))] = num(r["fpsnr_db"])
+        im = ax.imshow(grid, origin="lower", cmap="viridis", aspect="auto",
+                       extent=[fxs[0], fxs[-1], fys[0], fys[-1]])
+        fig.colorbar(im, ax=ax, label="FPSNR (dB)")
+        for a in autos:
+            if a["scene"] == scene:
+                ax.scatter([a["grid_best_fx"]], [a["grid_best_fy"]], marker="s", facecolors="none", edgecolors="white", s=90, label="grid optimum")
+                ax.scatter([a["auto_fx"]], [a["auto_fy"]], marker="x", color="red", s=90, label="automatic f")
+        ax.set_title(f"{scene}: RMFR FPSNR over f (σ = {s[0]['sigma']})")
+        ax.set_xlabel("f_x (fraction of W)")
+        ax.set_ylabel("f_y (fraction of H)")
+        ax.legend(fontsize=8, loc="lower right")
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
+def rotation(rows, out):
+    fig, ax = plt.subplots(figsize=(7, 4.3))
+    for method in COLORS:
+        m = sorted((r for r in rows if r["method"] == method), key=lambda r: num(r["angle_deg"]))
+        if m:
+            ax.plot([num(r["angle_deg"]) for r in m], [num(r["fpsnr_db"]) for r in m], "o-", color=COLORS[method], label=method, markersize=4)
+    ax.set_title(f"Rotated stripes (σ = {rows[0]['sigma']}): FPSNR per method")
+    ax.set_xlabel("pattern rotation (degrees)")
+    ax.set_ylabel("FPSNR (dB)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
+def table(rows, out):
+    """Per scene, each method at the level closest to σ = 2.6 (equal shaded samples)."""
+    methods = [m for m in ("rmfr", "hyperbolic", "kfr", "linear") if any(r["method"] == m for r in rows)]
+    sigmas = sorted({num(r["sigma"]) for r in rows if r["method"] != "full"})
+    if not sigmas or not methods:
+        return
+    sigma = min(sigmas, key=lambda s: abs(s - 2.6))
+    scenes = sorted({r["scene"] for r in rows})
+    lines = [f"Each method at σ = {sigma:g} (the same number of shaded samples, W·H/σ²), against full.", "",
+             "| scene | " + " | ".join(f"{m} FPSNR / SSIM" for m in methods) + " |",
+             "|---|" + "---|" * len(methods)]
+    sums = {m: [0.0, 0.0, 0] for m in methods}
+    for scene in scenes:
+        cells = []
+        for m in methods:
+            r = [x for x in rows if x["scene"] == scene and x["method"] == m and abs(num(x["sigma"]) - sigma) < 1e-9]
+            if not r:
+                cells.append("—")
+                continue
+            f, s = num(r[0]["fpsnr_db"]), num(r[0]["ssim"])
+            sums[m][0] += f
+            sums[m][1] += s
+            sums[m][2] += 1
+            cells.append(f"{f:.2f} / {s:.3f}")
+        lines.append(f"| {scene} | " + " | ".join(cells) + " |")
+    lines.append("| **mean** | " + " | ".join(
+        f"**{sums[m][0] / sums[m][2]:.2f} / {sums[m][1] / sums[m][2]:.3f}**" if sums[m][2] else "—" for m in methods) + " |")
+    with open(out + ".tmp", "w") as f:
+        f.write("\n".join(lines) + "\n")
+    os.replace(out + ".tmp", out)
+
+
+def main():
+    d = sys.argv[1]
+    rows = read(os.path.join(d, "bench.csv"))
+    pareto(rows, os.path.join(d, "pareto.png"))
+    table(rows, os.path.join(d, "table.md"))
+    autos = []
+    if os.path.exists(os.path.join(d, "bench.json")):
+        with open(os.path.join(d, "bench.json")) as f:
+            autos = json.load(f).get("auto_f", [])
+    if os.path.exists(os.path.join(d, "fgrid.csv")):
+        fgrid(read(os.path.join(d, "fgrid.csv")), autos, os.path.join(d, "fgrid.png"))
+    if os.path.exists(os.path.join(d, "rotation.csv")):
+        rotation(read(os.path.join(d, "rotation.csv")), os.path.join(d, "rotation.png"))
+
+
+if __name__ == "__main__":
+    main()

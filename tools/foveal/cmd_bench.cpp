@@ -1,0 +1,315 @@
+// foveal bench: every method at every level against the full reference, on one or more
+// scenes: per-pass times, shaded samples, PSNR/SSIM/FPSNR; optional experiments (RMFR f
+// grid with the automatic f, rotated patterns); CSV + JSON + charts (docs/bench.md).
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "foveal/core/atomic_file.hpp"
+#include "foveal/core/data_paths.hpp"
+#include "foveal/image/auto_f.hpp"
+#include "foveal/image/metrics.hpp"
+#include "foveal/render/egl_context.hpp"
+#include "foveal/render/scene.hpp"
+#include "foveal/tools/args.hpp"
+#include "foveal/tools/cli.hpp"
+#include "render_args.hpp"
+
+namespace foveal::cmd {
+
+namespace {
+
+using render::Method;
+
+struct Args {
+  std::vector<std::string> scenes;
+  std::string methods = "full,rmfr,kfr,hyperbolic,linear";
+  std::string sigmas = "1.4:2.8:0.2";
+  std::string fovea = "0.5,0.5";
+  std::string size = "2880x1600";
+  std::string out;
+  int frames = 3, warmup = 1;
+  double fx = 0.3, fy = 0.3;
+  bool auto_f = false;
+  bool f_grid = false, rotation = false, no_png = false, json = false;
+  double grid_sigma = 2.0;
+  std::string grid_values = "0.1:0.5:0.05";
+};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+std::string num(double v) {
+  if (std::isinf(v)) return "inf";
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+nlohmann::json jnum(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json("inf"); }
+
+Result<std::vector<double>> parse_range(const std::string& s, const std::string& what) {
+  std::vector<double> out;
+  if (s.find(':') != std::string::npos) {
+    double a = 0, b = 0, step = 0;
+    char c1 = 0, c2 = 0;
+    std::istringstream in(s);
+    if (!(in >> a >> c1 >> b >> c2 >> step) || c1 != ':' || c2 != ':' || !(step > 0) || b < a || !std::isfinite(a) || !std::isfinite(b))
+      return bad_input(what + ": expected FROM:TO:STEP or a comma list, got '" + s + "'");
+    for (int i = 0; a + i * step <= b + 1e-9 && i < 1000; ++i) out.push_back(std::round((a + i * step) * 1e6) / 1e6);
+  } else {
+    std::istringstream in(s);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+      char* end = nullptr;
+      const double v = std::strtod(item.c_str(), &end);
+      if (item.empty() || *end || !std::isfinite(v)) return bad_input(what + ": '" + item + "' is not a number");
+      out.push_back(v);
+    }
+  }
+  if (out.empty()) return bad_input(what + ": no values");
+  return out;
+}
+
+struct Measured {
+  render::PassTimes median;
+  image::Image image;
+  std::size_t shaded = 0;
+};
+
+class Bench {
+ public:
+  Bench(const Args& a, render::Compositor& c, cli::Progress& p) : a_(a), comp_(c), progress_(p) {}
+
+  Result<Measured> measure(const render::Scene& s, const render::FrameParams& f, int frames) {
+    std::vector<render::PassTimes> t;
+    for (int i = 0; i < a_.warmup + frames; ++i) {
+      auto r = comp_.render(s, f);
+      if (!r) return r.error();
+      if (i >= a_.warmup) t.push_back(*r);
+    }
+    progress_.update(++done_);
+    Measured m;
+    auto med = [&](double render::PassTimes::*field) {
+      std::vector<double> v;
+      for (const auto& x : t) v.push_back(x.*field);
+      return median(v);
+    };
+    using PT = render::PassTimes;
+    m.median = {med(&PT::shadow), med(&PT::gbuffer), med(&PT::mapping), med(&PT::lighting), med(&PT::inverse),
+                med(&PT::gpu_total), med(&PT::cpu), t.back().shaded_samples};
+    m.shaded = t.back().shaded_samples;
+    m.image = comp_.read_image();
+    return m;
+  }
+
+ private:
+  const Args& a_;
+  render::Compositor& comp_;
+  cli::Progress& progress_;
+  std::uint64_t done_ = 0;
+};
+
+render::FrameParams uniform_frame(Method m, double sigma, double fx, double fy, std::pair<double, double> fovea) {
+  render::FrameParams p = render::efr_frame(m, Eye::right, sigma, sigma, fx, fy);
+  for (auto& e : p.eyes) e.fovea_x = fovea.first, e.fovea_y = fovea.second;
+  return p;
+}
+
+image::MetricsOptions metric_options(const render::Compositor& c, std::pair<double, double> fovea) {
+  image::MetricsOptions o;
+  // Pixels per degree at the centre of this output's eye viewport.
+  const double focal = static_cast<double>(c.plan(Eye::left).screen_w) /
+                       (c.plan(Eye::left).frustum.tan_right - c.plan(Eye::left).frustum.tan_left);
+  o.ppd = focal * M_PI / 180.0;
+  o.fovea = {fovea.first, fovea.second};
+  o.fovea_right = o.fovea;
+  return o;
+}
+
+int run(const Args& a) {
+  auto fail = [](const Error& e) { return cli::report(e); };
+  std::vector<Method> methods;
+  {
+    std::istringstream in(a.methods);
+    std::string m;
+    while (std::getline(in, m, ',')) {
+      auto parsed = render::parse_method(m);
+      if (!parsed) return fail(parsed.error());
+      if (*parsed != Method::full) methods.push_back(*parsed);
+    }
+  }
+  auto sigmas = parse_range(a.sigmas, "--sigmas");
+  if (!sigmas) return fail(sigmas.error());
+  for (double s : *sigmas)
+    if (s < 1) return fail(bad_input("--sigmas: every level must be >= 1"));
+  auto fovea = cli::parse_point(a.fovea, "--fovea");
+  if (!fovea) return fail(fovea.error());
+  if (fovea->first < 0 || fovea->first > 1 || fovea->second < 0 || fovea->second > 1)
+    return fail(bad_input("--fovea: X and Y must lie in [0,1]"));
+  auto size = cli::parse_size(a.size, "--size");
+  if (!size) return fail(size.error());
+  if (size->first % 2) return fail(bad_input("--size: the width must be even"));
+  if (a.frames < 1) return fail(bad_input("--frames must be >= 1"));
+  auto grid = parse_range(a.grid_values, "--grid-values");
+  if (!grid) return fail(grid.error());
+  const std::vector<std::string> scenes = a.scenes.empty() ? std::vector<std::string>{default_scene()} : a.scenes;
+
+  std::error_code ec;
+  std::filesystem::create_directories(a.out, ec);
+  if (ec) return fail(io_error(a.out + ": cannot create directory: " + ec.message()));
+  auto ctx = gl::EglContext::create();
+  if (!ctx) return fail(ctx.error());
+  render::CompositorOptions co;
+  co.width = size->first;
+  co.height = size->second;
+  auto comp = render::Compositor::create(co);
+  if (!comp) return fail(comp.error());
+
+  const std::uint64_t per_scene = 1 + methods.size() * sigmas->size() + (a.f_grid ? grid->size() * grid->size() + 1 : 0);
+  const std::uint64_t total = per_scene * scenes.size() + (a.rotation ? 19 * (1 + methods.size()) : 0);
+  cli::Progress progress("bench", total, !a.json);
+  Bench bench(a, *comp, progress);
+
+  std::string csv = "scene,method,sigma,shaded_samples,cost,gpu_ms,cpu_ms,shadow_ms,gbuffer_ms,mapping_ms,lighting_ms,inverse_ms,psnr_db,ssim,fpsnr_db\n";
+  std::string grid_csv = "scene,sigma,fx,fy,fpsnr_db,psnr_db,ssim\n";
+  nlohmann::json rows = nlohmann::json::array(), autos = nlohmann::json::array();
+  const double full_samples = static_cast<double>(co.width) * co.height;
+  for (const std::string& spec : scenes) {
+    auto scene = render::load_scene(spec);
+    if (!scene) return fail(scene.error());
+    const std::string name = std::filesystem::path(spec).stem().string();
+    auto full = bench.measure(*scene, uniform_frame(Method::full, 1, a.fx, a.fy, *fovea), a.frames);
+    if (!full) return fail(full.error());
+    const image::MetricsOptions mo = metric_options(*comp, *fovea);
+    auto add_row = [&](Method m, double sigma, const Measured& r) -> Status {
+      auto q = image::compute_stereo_metrics(full->image, r.image, mo);
+      if (!q) return q.error();
+      const auto& c = q->combined;
+      const render::PassTimes& t = r.median;
+      csv += name + "," + render::method_name(m) + "," + num(sigma) + "," + std::to_string(r.shaded) + "," +
+             num(static_cast<double>(r.shaded) / full_samples) + "," + num(t.gpu_total) + "," + num(t.cpu) + "," +
+             num(t.shadow) + "," + num(t.gbuffer) + "," + num(t.mapping) + "," + num(t.lighting) + "," + num(t.inverse) +
+             "," + num(c.psnr_db) + "," + num(c.ssim) + "," + num(c.fpsnr_db) + "\n";
+      rows.push_back({{"scene", name}, {"method", render::method_name(m)}, {"sigma", sigma}, {"shaded_samples", r.shaded},
+                      {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu},
+                      {"passes_ms", {{"shadow", t.shadow}, {"gbuffer", t.gbuffer}, {"mapping", t.mapping},
+                                     {"lighting", t.lighting}, {"inverse", t.inverse}}},
+                      {"psnr_db", jnum(c.psnr_db)}, {"ssim", c.ssim}, {"fpsnr_db", jnum(c.fpsnr_db)}});
+      return {};
+    };
+    if (Status s = add_row(Method::full, 1.0, *full); !s) return fail(s.error());
+    for (Method m : methods)
+      for (double sigma : *sigmas) {
+        auto r = bench.measure(*scene, uniform_frame(m, sigma, a.fx, a.fy, *fovea), a.frames);
+        if (!r) return fail(r.error());
+        if (Status s = add_row(m, sigma, *r); !s) return fail(s.error());
+      }
+    if (a.f_grid) {
+      // The seed's Figure 6: RMFR's FPSNR over f_x × f_y at one level, and where the
+      // automatic estimate lands.
+      double best = -INFINITY, best_fx = 0, best_fy = 0, grid_ms = 0;
+      for (double fx : *grid)
+        for (double fy : *grid) {
+          auto r = bench.measure(*scene, uniform_frame(Method::rmfr, a.grid_sigma, fx, fy, *fovea), 0 + 1);
+          if (!r) return fail(r.error());
+          grid_ms += r->median.cpu;
+          auto q = image::compute_stereo_metrics(full->image, r->image, mo);
+          if (!q) return fail(q.error());
+          grid_csv += name + "," + num(a.grid_sigma) + "," + num(fx) + "," + num(fy) + "," + num(q->combined.fpsnr_db) +
+                      "," + num(q->combined.psnr_db) + "," + num(q->combined.ssim) + "\n";
+          if (q->combined.fpsnr_db > best) best = q->combined.fpsnr_db, best_fx = fx, best_fy = fy;
+        }
+      auto est = image::estimate_rmfr_f(full->image, a.grid_sigma, mo);
+      if (!est) return fail(est.error());
+      auto r = bench.measure(*scene, uniform_frame(Method::rmfr, a.grid_sigma, est->fx, est->fy, *fovea), 1);
+      if (!r) return fail(r.error());
+      auto q = image::compute_stereo_metrics(full->image, r->image, mo);
+      if (!q) return fail(q.error());
+      autos.push_back({{"scene", name}, {"sigma", a.grid_sigma}, {"auto_fx", est->fx}, {"auto_fy", est->fy},
+                       {"auto_fpsnr_db", jnum(q->combined.fpsnr_db)}, {"grid_best_fx", best_fx}, {"grid_best_fy", best_fy},
+                       {"grid_best_fpsnr_db", jnum(best)}, {"auto_ms", est->ms}, {"auto_evaluations", est->evaluations},
+                       {"grid_ms", grid_ms}, {"cost_ratio", est->ms / grid_ms}});
+    }
+  }
+
+  std::string rot_csv = "angle_deg,method,sigma,fpsnr_db,psnr_db,ssim\n";
+  if (a.rotation) {
+    // The seed's Figure 12: vertical stripes rotated 0-180°, one level for every method.
+    const double sigma = a.grid_sigma;
+    for (int angle = 0; angle <= 180; angle += 10) {
+      auto scene = render::load_scene("pattern:stripes-v@" + std::to_string(angle));
+      if (!scene) return fail(scene.error());
+      auto full = bench.measure(*scene, uniform_frame(Method::full, 1, a.fx, a.fy, *fovea), 1);
+      if (!full) return fail(full.error());
+      const image::MetricsOptions mo = metric_options(*comp, *fovea);
+      for (Method m : methods) {
+        auto r = bench.measure(*scene, uniform_frame(m, sigma, a.fx, a.fy, *fovea), 1);
+        if (!r) return fail(r.error());
+        auto q = image::compute_stereo_metrics(full->image, r->image, mo);
+        if (!q) return fail(q.error());
+        rot_csv += std::to_string(angle) + "," + render::method_name(m) + "," + num(sigma) + "," + num(q->combined.fpsnr_db) +
+                   "," + num(q->combined.psnr_db) + "," + num(q->combined.ssim) + "\n";
+      }
+    }
+  }
+  progress.finish();
+
+  rusage ru{};
+  ::getrusage(RUSAGE_SELF, &ru);
+  const nlohmann::json summary = {{"renderer", comp->renderer()}, {"size", {co.width, co.height}}, {"frames", a.frames},
+                                  {"fovea", {fovea->first, fovea->second}}, {"rows", rows}, {"auto_f", autos},
+                                  {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
+  if (Status s = write_file_atomically(a.out + "/bench.csv", csv); !s) return fail(s.error());
+  if (Status s = write_file_atomically(a.out + "/bench.json", summary.dump(2) + "\n"); !s) return fail(s.error());
+  if (a.f_grid)
+    if (Status s = write_file_atomically(a.out + "/fgrid.csv", grid_csv); !s) return fail(s.error());
+  if (a.rotation)
+    if (Status s = write_file_atomically(a.out + "/rotation.csv", rot_csv); !s) return fail(s.error());
+  if (!a.no_png) {
+    const std::string cmd = "/usr/bin/python3 '" + data_path("tools/charts/bench_charts.py") + "' '" + a.out + "'";
+    if (std::system(cmd.c_str()) != 0)
+      return fail(io_error("charts: '" + cmd + "' failed (is python3-matplotlib installed?); the CSV and JSON files are written"));
+  }
+  if (a.json) cli::print_json(summary);
+  else std::printf("bench: %zu rows -> %s/bench.{csv,json}%s\n", rows.size(), a.out.c_str(), a.no_png ? "" : " and charts");
+  return cli::kExitOk;
+}
+
+}  // namespace
+
+void add_bench(CLI::App& app, int& exit_code) {
+  auto a = std::make_shared<Args>();
+  CLI::App* sub = app.add_subcommand("bench", "Every method at every level against full: time, shaded samples, PSNR/SSIM/FPSNR, charts");
+  sub->add_option("--scene", a->scenes, "Scenes (repeatable): glTF files or pattern:NAME; default: the bundled Dungeon");
+  sub->add_option("--methods", a->methods, "Comma list of methods")->capture_default_str();
+  sub->add_option("--sigmas", a->sigmas, "Levels: FROM:TO:STEP or a comma list")->capture_default_str();
+  sub->add_option("--fovea", a->fovea, "Fovea X,Y of both eyes in [0,1]")->capture_default_str();
+  sub->add_option("--size", a->size, "Side-by-side output WxH")->capture_default_str();
+  sub->add_option("--frames", a->frames, "Timed frames per point (median)")->capture_default_str();
+  sub->add_option("--warmup", a->warmup, "Untimed frames first")->capture_default_str()->check(CLI::Range(0, 100));
+  sub->add_option("--fx", a->fx, "RMFR f_x")->capture_default_str();
+  sub->add_option("--fy", a->fy, "RMFR f_y")->capture_default_str();
+  sub->add_flag("--f-grid", a->f_grid, "Also: RMFR FPSNR over an f_x × f_y grid and the automatic f against it");
+  sub->add_option("--grid-values", a->grid_values, "f values of the grid")->capture_default_str();
+  sub->add_option("--grid-sigma", a->grid_sigma, "Level of the grid and rotation experiments")->capture_default_str();
+  sub->add_flag("--rotation", a->rotation, "Also: rotated stripes 0-180 degrees, FPSNR per method");
+  sub->add_option("--out,-o", a->out, "Output directory")->required();
+  sub->add_flag("--no-png", a->no_png, "CSV and JSON only");
+  sub->add_flag("--json", a->json, "Print the results as JSON");
+  sub->callback([a, &exit_code] { exit_code = run(*a); });
+}
+
+}  // namespace foveal::cmd
