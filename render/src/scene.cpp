@@ -1,5 +1,6 @@
 #include "foveal/render/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -79,9 +80,14 @@ Result<Scene> load_scene(const std::string& spec) {
   const std::filesystem::path view = std::filesystem::path(spec).replace_extension(".view.json");
   if (std::filesystem::exists(view)) {
     if (Status s = apply_view_file(view.string(), *scene); !s) return s.error();
-  } else if (scene->view.source == "framing") {
-    scene->view = framing_view(scene->bounds);
+    return scene;
   }
+  if (scene->view.source == "framing") scene->view = framing_view(scene->bounds);
+  // A small model seen from close by (ToyCar is 5 cm) would get a 63 mm stereo baseline
+  // larger than the view itself: scale the viewer so the baseline stays within 1/20 of the
+  // viewing distance, as if the object were larger.
+  const float distance = glm::length(glm::vec3(scene->view.head_to_world[3]) - scene->bounds.center());
+  scene->view.units_per_meter = std::min(1.0f, distance / (20.0f * 0.063f));
   return scene;
 }
 

@@ -19,5 +19,6 @@ void add_filter_chart(CLI::App& app, int& exit_code);
 void add_render(CLI::App& app, int& exit_code);
 void add_foveate(CLI::App& app, int& exit_code);
 void add_metrics(CLI::App& app, int& exit_code);
+void add_bench(CLI::App& app, int& exit_code);
 
 }  // namespace foveal::cmd
