@@ -91,6 +91,30 @@ def rotation(rows, out):
     fig.savefig(out, dpi=110)
 
 
+def stability(rows, out):
+    fig, axes = plt.subplots(2, 2, figsize=(11, 7.5), sharex=True)
+    for col, path in enumerate(("diagonal", "vertical")):
+        for method in COLORS:
+            m = sorted((r for r in rows if r["method"] == method and r["path"] == path), key=lambda r: num(r["t"]))
+            if not m:
+                continue
+            t = [num(r["t"]) for r in m]
+            axes[0][col].plot(t, [min(num(r["patch_psnr_db"]), 60) for r in m], "o-", color=COLORS[method], label=method, markersize=4)
+            axes[1][col].plot(t, [num(r["fpsnr_db"]) for r in m], "o-", color=COLORS[method], label=method, markersize=4)
+        where = "centre -> top-left corner" if path == "diagonal" else "centre -> bottom border"
+        axes[0][col].set_title(f"fovea {where}: 64-px patch around the fovea")
+        axes[1][col].set_title(f"fovea {where}: whole frame")
+        axes[1][col].set_xlabel("position along the path (0 = centre, 1 = border)")
+        axes[0][col].set_ylabel("patch PSNR (dB, ∞ shown at 60)")
+        axes[1][col].set_ylabel("FPSNR (dB)")
+        for ax in (axes[0][col], axes[1][col]):
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=7)
+    fig.suptitle(f"Stability: quality against fovea position (pattern:checker, σ = {rows[0]['sigma']})")
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
 def table(rows, out):
     """Per scene, each method at the level closest to σ = 2.6 (equal shaded samples)."""
     methods = [m for m in ("rmfr", "hyperbolic", "kfr", "linear") if any(r["method"] == m for r in rows)]
@@ -134,6 +158,8 @@ def main():
             autos = json.load(f).get("auto_f", [])
     if os.path.exists(os.path.join(d, "fgrid.csv")):
         fgrid(read(os.path.join(d, "fgrid.csv")), autos, os.path.join(d, "fgrid.png"))
+    if os.path.exists(os.path.join(d, "stability.csv")):
+        stability(read(os.path.join(d, "stability.csv")), os.path.join(d, "stability.png"))
     if os.path.exists(os.path.join(d, "rotation.csv")):
         rotation(read(os.path.join(d, "rotation.csv")), os.path.join(d, "rotation.png"))
 

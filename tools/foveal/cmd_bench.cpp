@@ -40,7 +40,7 @@ struct Args {
   int frames = 3, warmup = 1;
   double fx = 0.3, fy = 0.3;
   bool auto_f = false;
-  bool f_grid = false, rotation = false, no_png = false, json = false;
+  bool f_grid = false, rotation = false, stability = false, no_png = false, json = false;
   double grid_sigma = 2.0;
   std::string grid_values = "0.1:0.5:0.05";
 };
@@ -131,10 +131,7 @@ render::FrameParams uniform_frame(Method m, double sigma, double fx, double fy, 
 
 image::MetricsOptions metric_options(const render::Compositor& c, std::pair<double, double> fovea) {
   image::MetricsOptions o;
-  // Pixels per degree at the centre of this output's eye viewport.
-  const double focal = static_cast<double>(c.plan(Eye::left).screen_w) /
-                       (c.plan(Eye::left).frustum.tan_right - c.plan(Eye::left).frustum.tan_left);
-  o.ppd = focal * M_PI / 180.0;
+  o.ppd = c.plan(Eye::left).pixels_per_degree();
   o.fovea = {fovea.first, fovea.second};
   o.fovea_right = o.fovea;
   return o;
@@ -180,7 +177,8 @@ int run(const Args& a) {
   if (!comp) return fail(comp.error());
 
   const std::uint64_t per_scene = 1 + methods.size() * sigmas->size() + (a.f_grid ? grid->size() * grid->size() + 1 : 0);
-  const std::uint64_t total = per_scene * scenes.size() + (a.rotation ? 19 * (1 + methods.size()) : 0);
+  const std::uint64_t total = per_scene * scenes.size() + (a.rotation ? 19 * (1 + methods.size()) : 0) +
+                              (a.stability ? 1 + 22 * methods.size() : 0);
   cli::Progress progress("bench", total, !a.json);
   Bench bench(a, *comp, progress);
 
@@ -268,6 +266,34 @@ int run(const Args& a) {
       }
     }
   }
+  std::string stab_csv = "scene,path,t,fovea_x,fovea_y,method,sigma,patch_psnr_db,fpsnr_db\n";
+  if (a.stability) {
+    // Where methods break: the fovea walks from the centre to a corner and from the
+    // centre to the bottom border; the 64-pixel patch around it and the whole frame.
+    auto scene = render::load_scene("pattern:checker");
+    if (!scene) return fail(scene.error());
+    auto full = bench.measure(*scene, uniform_frame(Method::full, 1, a.fx, a.fy, {0.5, 0.5}), 1);
+    if (!full) return fail(full.error());
+    const int eye_w = co.width / 2, eye_h = co.height;
+    for (const char* path : {"diagonal", "vertical"})
+      for (int i = 0; i <= 10; ++i) {
+        const double t = i / 10.0;
+        const std::pair<double, double> fv = std::string(path) == "diagonal" ? std::make_pair(0.5 - 0.5 * t, 0.5 - 0.5 * t)
+                                                                             : std::make_pair(0.5, 0.5 + 0.5 * t);
+        const image::MetricsOptions mo = metric_options(*comp, fv);
+        const int cx = static_cast<int>(fv.first * eye_w), cy = static_cast<int>(fv.second * eye_h);
+        const image::Rect patch{std::clamp(cx - 32, 0, eye_w - 64), std::clamp(cy - 32, 0, eye_h - 64), 64, 64};
+        for (Method m : methods) {
+          auto r = bench.measure(*scene, uniform_frame(m, a.grid_sigma, a.fx, a.fy, fv), 1);
+          if (!r) return fail(r.error());
+          auto q = image::compute_stereo_metrics(full->image, r->image, mo);
+          if (!q) return fail(q.error());
+          stab_csv += std::string("pattern:checker,") + path + "," + num(t) + "," + num(fv.first) + "," + num(fv.second) + "," +
+                      render::method_name(m) + "," + num(a.grid_sigma) + "," + num(image::psnr(full->image, r->image, patch)) +
+                      "," + num(q->combined.fpsnr_db) + "\n";
+        }
+      }
+  }
   progress.finish();
 
   rusage ru{};
@@ -281,6 +307,8 @@ int run(const Args& a) {
     if (Status s = write_file_atomically(a.out + "/fgrid.csv", grid_csv); !s) return fail(s.error());
   if (a.rotation)
     if (Status s = write_file_atomically(a.out + "/rotation.csv", rot_csv); !s) return fail(s.error());
+  if (a.stability)
+    if (Status s = write_file_atomically(a.out + "/stability.csv", stab_csv); !s) return fail(s.error());
   if (!a.no_png) {
     const std::string cmd = "/usr/bin/python3 '" + data_path("tools/charts/bench_charts.py") + "' '" + a.out + "'";
     if (std::system(cmd.c_str()) != 0)
@@ -309,6 +337,7 @@ void add_bench(CLI::App& app, int& exit_code) {
   sub->add_option("--grid-values", a->grid_values, "f values of the grid")->capture_default_str();
   sub->add_option("--grid-sigma", a->grid_sigma, "Level of the grid and rotation experiments")->capture_default_str();
   sub->add_flag("--rotation", a->rotation, "Also: rotated stripes 0-180 degrees, FPSNR per method");
+  sub->add_flag("--stability", a->stability, "Also: fovea from the centre to a corner and to a border, patch PSNR and FPSNR per method");
   sub->add_option("--out,-o", a->out, "Output directory")->required();
   sub->add_flag("--no-png", a->no_png, "CSV and JSON only");
   sub->add_flag("--json", a->json, "Print the results as JSON");

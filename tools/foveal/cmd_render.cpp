@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "foveal/image/auto_f.hpp"
 #include "foveal/render/egl_context.hpp"
 #include "foveal/render/scene.hpp"
 #include "foveal/tools/cli.hpp"
@@ -45,6 +46,22 @@ int run(const Args& a) {
   auto comp = render::Compositor::create(setup->compositor);
   if (!comp) return cli::report(comp.error());
 
+  nlohmann::json auto_f = nullptr;
+  if (setup->auto_f) {
+    // One full frame with the same foveae, then the CPU search (docs/methods.md).
+    render::FrameParams full = setup->frame;
+    full.method = render::Method::full;
+    if (auto t = comp->render(*scene, full); !t) return cli::report(t.error());
+    image::MetricsOptions mo;
+    mo.ppd = comp->plan(Eye::left).pixels_per_degree();
+    mo.fovea = {setup->frame.eyes[0].fovea_x, setup->frame.eyes[0].fovea_y};
+    mo.fovea_right = {setup->frame.eyes[1].fovea_x, setup->frame.eyes[1].fovea_y};
+    auto est = image::estimate_rmfr_f(comp->read_image(), {setup->frame.eyes[0].sigma, setup->frame.eyes[1].sigma}, mo);
+    if (!est) return cli::report(est.error());
+    for (auto& e : setup->frame.eyes) e.fx = est->fx, e.fy = est->fy;
+    auto_f = {{"fx", est->fx}, {"fy", est->fy}, {"predicted_fpsnr_db", est->predicted_fpsnr_db}, {"ms", est->ms},
+              {"evaluations", est->evaluations}};
+  }
   cli::Progress progress("render", static_cast<std::uint64_t>(a.warmup + a.frames), !a.json);
   std::vector<render::PassTimes> times;
   for (int i = 0; i < a.warmup + a.frames; ++i) {
@@ -97,6 +114,7 @@ int run(const Args& a) {
                       {"output", mb(mem.output)}, {"shadow", mb(mem.shadow)}, {"total", mb(mem.total())}}},
       {"textures_mb", mb(scene->texture_bytes)},
       {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0},
+      {"auto_f", auto_f},
       {"out", a.out}};
   if (a.json) {
     cli::print_json(j);

@@ -21,6 +21,8 @@ void add_render_options(CLI::App& sub, RenderArgs& a) {
   sub.add_option("--fy", a.fy, "RMFR f along y, a fraction of the eye's height (> 0)")->capture_default_str();
   sub.add_option("--fovea-left", a.fovea_left, "Left-eye fovea X,Y in [0,1], origin top-left of the eye's viewport")->capture_default_str();
   sub.add_option("--fovea-right", a.fovea_right, "Right-eye fovea X,Y in [0,1]")->capture_default_str();
+  sub.add_option("--f", a.f, "auto: pick f_x, f_y from the content (overrides --fx/--fy; docs/methods.md)")
+      ->check(CLI::IsMember({"auto"}));
   sub.add_option("--kfr-alpha", a.kfr_alpha, "KFR kernel exponent (> 0)")->capture_default_str();
   sub.add_option("--layer-scale", a.layer_scale,
                  "hyperbolic/linear: scale of the 10/20 degree thresholds (default: match the cost of sigma)");
@@ -41,6 +43,7 @@ Result<RenderSetup> resolve(const RenderArgs& a) {
   const Eye dominant = a.dominant == "left" ? Eye::left : Eye::right;
   s.frame = render::efr_frame(*method, dominant, a.sigma_d, a.sigma_nd, a.fx, a.fy);
   for (auto& e : s.frame.eyes) e.kfr_alpha = a.kfr_alpha, e.layer_scale = a.layer_scale;
+  s.auto_f = a.f == "auto";
   const std::pair<const std::string*, const char*> foveae[2] = {{&a.fovea_left, "--fovea-left"}, {&a.fovea_right, "--fovea-right"}};
   for (std::size_t i = 0; i < 2; ++i) {
     auto p = cli::parse_point(*foveae[i].first, foveae[i].second);

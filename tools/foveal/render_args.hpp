@@ -19,6 +19,7 @@ struct RenderArgs {
   std::string dominant = "right";
   double fx = 0.3, fy = 0.3;
   double kfr_alpha = 4.0, layer_scale = 0.0;
+  std::string f;  ///< "auto": estimate f_x, f_y from a full frame (RMFR)
   std::string fovea_left = "0.5,0.5", fovea_right = "0.5,0.5";
   std::string size = "2880x1600";
   std::string display;
@@ -31,6 +32,7 @@ struct RenderSetup {
   std::string scene;
   render::CompositorOptions compositor;
   render::FrameParams frame;
+  bool auto_f = false;
 };
 Result<RenderSetup> resolve(const RenderArgs& a);
 

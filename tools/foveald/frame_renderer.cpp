@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "foveal/core/data_paths.hpp"
+#include "foveal/image/auto_f.hpp"
 #include "foveal/image/image.hpp"
 
 namespace foveal::daemon {
@@ -65,9 +66,7 @@ FrameRenderer::~FrameRenderer() = default;
 
 Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, const DisplayModel& model) {
   const Eye dominant = s.dominant_eye == 0 ? Eye::left : Eye::right;
-  // f < 0 means automatic (not estimated yet): the seeds' 0.3.
-  const double fx = s.f_x > 0 ? s.f_x : 0.3, fy = s.f_y > 0 ? s.f_y : 0.3;
-  render::FrameParams p = render::efr_frame(method_, dominant, s.sigma_d, s.sigma_nd, fx, fy);
+  render::FrameParams p = render::efr_frame(method_, dominant, s.sigma_d, s.sigma_nd, s.f_x, s.f_y);
   for (Eye e : kEyes) {
     const std::size_t i = static_cast<std::size_t>(e);
     const FoveaPoint& fp = fovea.eye(e);
@@ -76,6 +75,16 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
     p.eyes[i].fovea_x = last_fovea_[i].x;
     p.eyes[i].fovea_y = last_fovea_[i].y;
   }
+  // f < 0 means automatic: estimated once per settings change (docs/methods.md).
+  if ((s.f_x <= 0 || s.f_y <= 0) && auto_f_generation_ != s.generation) {
+    if (Status st = estimate_f(p); !st) return st;
+    auto_f_generation_ = s.generation;
+  }
+  for (auto& e : p.eyes) {
+    if (s.f_x <= 0) e.fx = auto_fx_;
+    if (s.f_y <= 0) e.fy = auto_fy_;
+  }
+  const double fx = p.eyes[0].fx, fy = p.eyes[0].fy;
   auto t = comp_->render(*scene_, p);
   if (!t) return t.error();
   if (frames_ > 0 && s.generation != last_generation_) ++settings_changes_;
@@ -96,6 +105,22 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
   const bool save = frames_ == 0 || (o_.save_every > 0 && frames_ % static_cast<std::uint64_t>(o_.save_every) == 0);
   ++frames_;
   if (save) return save_frame();
+  return {};
+}
+
+Status FrameRenderer::estimate_f(const render::FrameParams& p) {
+  render::FrameParams full = p;
+  full.method = render::Method::full;
+  for (auto& e : full.eyes) e.fx = e.fy = 0.3;  // unused by full; keeps the plan valid
+  if (auto t = comp_->render(*scene_, full); !t) return t.error();
+  image::MetricsOptions mo;
+  mo.ppd = comp_->plan(Eye::left).pixels_per_degree();
+  mo.fovea = {p.eyes[0].fovea_x, p.eyes[0].fovea_y};
+  mo.fovea_right = {p.eyes[1].fovea_x, p.eyes[1].fovea_y};
+  auto est = image::estimate_rmfr_f(comp_->read_image(), {p.eyes[0].sigma, p.eyes[1].sigma}, mo);
+  if (!est) return est.error();
+  auto_fx_ = est->fx;
+  auto_fy_ = est->fy;
   return {};
 }
 
@@ -136,6 +161,7 @@ nlohmann::json FrameRenderer::stats_json() const {
           {"renderer", comp_->renderer()},
           {"settings_generation", last_generation_},
           {"settings_changes_seen", settings_changes_},
+          {"auto_f", auto_f_generation_ ? nlohmann::json({{"fx", auto_fx_}, {"fy", auto_fy_}}) : nlohmann::json(nullptr)},
           {"last_frame", eyes},
           {"passes_ms_median", {{"shadow", med(&PT::shadow)}, {"gbuffer", med(&PT::gbuffer)}, {"mapping", med(&PT::mapping)},
                                 {"lighting", med(&PT::lighting)}, {"inverse", med(&PT::inverse)},

@@ -50,6 +50,7 @@ class FrameRenderer {
  private:
   FrameRenderer() = default;
   Status save_frame();
+  Status estimate_f(const render::FrameParams& p);
 
   RenderOptions o_;
   std::string out_dir_;
@@ -65,6 +66,9 @@ class FrameRenderer {
   std::uint64_t frames_ = 0, saved_frame_ = ~0ull;
   std::vector<std::string> saved_;
   std::uint32_t last_generation_ = 0;
+  // Automatic f: estimated from a full frame when the settings ask for it and change.
+  std::optional<std::uint32_t> auto_f_generation_;
+  double auto_fx_ = 0.3, auto_fy_ = 0.3;
   std::uint64_t settings_changes_ = 0;
 };
 

@@ -132,6 +132,10 @@ std::size_t EyePlan::shaded_samples() const {
   return n;
 }
 
+double EyePlan::pixels_per_degree() const {
+  return static_cast<double>(screen_w) / (frustum.tan_right - frustum.tan_left) * kPi / 180.0;
+}
+
 double eccentricity_deg(const EyeFrustum& f, glm::dvec2 p, glm::dvec2 q) {
   const double c = std::clamp(glm::dot(ray(f, p), ray(f, q)), -1.0, 1.0);
   return std::acos(c) * 180.0 / kPi;

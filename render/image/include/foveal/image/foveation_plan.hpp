@@ -56,6 +56,8 @@ struct EyePlan {
 
   /// Samples the lighting pass shades for this eye.
   std::size_t shaded_samples() const;
+  /// Pixels per degree along x at the projection centre (for the FPSNR weights).
+  double pixels_per_degree() const;
 };
 
 /// Plans one eye of W×H. Errors: σ < 1, f <= 0, alpha <= 0, negative layer scale.
