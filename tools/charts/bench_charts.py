@@ -115,6 +115,24 @@ def stability(rows, out):
     fig.savefig(out, dpi=110)
 
 
+def flicker(rows, out):
+    methods = [m for m in COLORS if any(r["method"] == m for r in rows)]
+    fig, ax = plt.subplots(figsize=(7.5, 4.3))
+    width = 0.38
+    for k, gaze in enumerate(("raw", "filtered")):
+        vals = [next((num(r["periphery_change"]) for r in rows if r["method"] == m and r["gaze"] == gaze), 0) for m in methods]
+        ax.bar([i + (k - 0.5) * width for i in range(len(methods))], vals, width, label=f"{gaze} gaze",
+               color="tab:gray" if gaze == "raw" else "tab:purple")
+    ax.set_xticks(range(len(methods)))
+    ax.set_xticklabels(methods)
+    ax.set_ylabel("mean |frame-to-frame change| in the periphery (8-bit)")
+    ax.set_title(f"Flicker under real gaze jitter ({rows[0]['scene']}, σ = {rows[-1]['sigma']}, {rows[0]['frames']} frames)")
+    ax.legend()
+    ax.grid(alpha=0.3, axis="y")
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
 def table(rows, out):
     """Per scene, each method at the level closest to σ = 2.6 (equal shaded samples)."""
     methods = [m for m in ("rmfr", "hyperbolic", "kfr", "linear") if any(r["method"] == m for r in rows)]
@@ -158,6 +176,8 @@ def main():
             autos = json.load(f).get("auto_f", [])
     if os.path.exists(os.path.join(d, "fgrid.csv")):
         fgrid(read(os.path.join(d, "fgrid.csv")), autos, os.path.join(d, "fgrid.png"))
+    if os.path.exists(os.path.join(d, "flicker.csv")):
+        flicker(read(os.path.join(d, "flicker.csv")), os.path.join(d, "flicker.png"))
     if os.path.exists(os.path.join(d, "stability.csv")):
         stability(read(os.path.join(d, "stability.csv")), os.path.join(d, "stability.png"))
     if os.path.exists(os.path.join(d, "rotation.csv")):

@@ -16,6 +16,8 @@
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/data_paths.hpp"
+#include "foveal/core/gaze_log.hpp"
+#include "foveal/runtime/gaze_pipeline.hpp"
 #include "foveal/image/auto_f.hpp"
 #include "foveal/image/metrics.hpp"
 #include "foveal/render/egl_context.hpp"
@@ -40,7 +42,9 @@ struct Args {
   int frames = 3, warmup = 1;
   double fx = 0.3, fy = 0.3;
   bool auto_f = false;
-  bool f_grid = false, rotation = false, stability = false, no_png = false, json = false;
+  bool f_grid = false, rotation = false, stability = false, flicker = false, no_png = false, json = false;
+  std::string flicker_log;  ///< empty: the bundled recording
+  int flicker_frames = 48;
   double grid_sigma = 2.0;
   std::string grid_values = "0.1:0.5:0.05";
 };
@@ -94,6 +98,8 @@ class Bench {
  public:
   Bench(const Args& a, render::Compositor& c, cli::Progress& p) : a_(a), comp_(c), progress_(p) {}
 
+  void tick() { progress_.update(++done_); }
+
   Result<Measured> measure(const render::Scene& s, const render::FrameParams& f, int frames) {
     std::vector<render::PassTimes> t;
     for (int i = 0; i < a_.warmup + frames; ++i) {
@@ -137,6 +143,84 @@ image::MetricsOptions metric_options(const render::Compositor& c, std::pair<doub
   return o;
 }
 
+// Temporal stability: a static scene, the fovea following a real recording sample by
+// sample (raw gaze, or through the gaze filter), one frame per sample. Flicker is the
+// mean absolute frame-to-frame change of R, G, B (8-bit units) over the periphery:
+// pixels more than 15° from both frames' foveae (docs/stability.md).
+Result<std::string> flicker(const Args& a, render::Compositor& comp, Bench& bench, const std::vector<Method>& methods,
+                            const std::string& spec) {
+  auto scene = render::load_scene(spec);
+  if (!scene) return scene.error();
+  auto samples = read_gaze_log(a.flicker_log.empty() ? data_path("data/gaze/vive_pro_eye_TESTNA01.csv") : a.flicker_log);
+  if (!samples) return samples.error();
+  const DisplayModel model = DisplayModel::vive_pro_eye();
+  // Fovea sequences in normalised coordinates: raw (each sample's own direction) and filtered.
+  std::vector<std::array<glm::dvec2, 2>> raw, filtered;
+  GazePipeline pipe(model, FilterConfig{});
+  std::array<glm::dvec2, 2> last_raw{glm::dvec2(0.5), glm::dvec2(0.5)};
+  const glm::dvec2 eye_size(model.eye_width, model.eye_height);
+  for (const GazeSample& g : *samples) {
+    const FoveaFrame f = pipe.update(g);
+    std::array<glm::dvec2, 2> r = last_raw, q{};
+    for (Eye e : kEyes) {
+      const std::size_t i = static_cast<std::size_t>(e);
+      if (g.eyes[i].has(kValidDirection)) {
+        const glm::vec2 px = model.direction_to_pixel(e, g.eyes[i].direction);
+        if (std::isfinite(px.x) && std::isfinite(px.y))
+          r[i] = glm::clamp(glm::dvec2(px) / eye_size, 0.0, 1.0);
+      }
+      q[i] = glm::dvec2(f.eyes[i].px) / eye_size;
+    }
+    last_raw = r;
+    raw.push_back(r);
+    filtered.push_back(q);
+  }
+  // A window a second in, after the filter has settled.
+  const std::size_t start = std::min<std::size_t>(120, raw.size() > 2 ? raw.size() - 2 : 0);
+  const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(a.flicker_frames), raw.size() - start);
+  if (n < 2) return bad_input("--flicker: the gaze log is too short");
+  const int eye_w = comp.width() / 2, eye_h = comp.height();
+  const double ppd = comp.plan(Eye::left).screen_w > 0 ? comp.plan(Eye::left).pixels_per_degree() : 13.15 * eye_w / 1440.0;
+  const double f_px = image::focal_length_px(ppd);
+  std::string csv;
+  std::vector<Method> all = {Method::full};
+  all.insert(all.end(), methods.begin(), methods.end());
+  for (Method m : all)
+    for (const auto* seq : {&raw, &filtered}) {
+      image::Image prev;
+      std::array<glm::dvec2, 2> prev_f{};
+      double change = 0, step = 0;
+      std::size_t count = 0;
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto& fv = (*seq)[start + k];
+        render::FrameParams p = uniform_frame(m, a.grid_sigma, a.fx, a.fy, {0.5, 0.5});
+        for (std::size_t i = 0; i < 2; ++i) p.eyes[i].fovea_x = fv[i].x, p.eyes[i].fovea_y = fv[i].y;
+        auto r = comp.render(*scene, p);
+        if (!r) return r.error();
+        image::Image img = comp.read_image();
+        if (k > 0) {
+          for (std::size_t i = 0; i < 2; ++i) step += glm::length((fv[i] - prev_f[i]) * glm::dvec2(eye_w, eye_h)) / 2;
+          for (int y = 0; y < eye_h; y += 2)
+            for (int x = 0; x < 2 * eye_w; x += 2) {
+              const std::size_t e = x < eye_w ? 0 : 1;
+              const double px = (x % eye_w) + 0.5 - eye_w / 2.0, py = y + 0.5 - eye_h / 2.0;
+              auto ecc = [&](glm::dvec2 g) { return image::eccentricity_deg(px, py, g.x * eye_w - eye_w / 2.0, g.y * eye_h - eye_h / 2.0, f_px); };
+              if (ecc(fv[e]) < 15 || ecc(prev_f[e]) < 15) continue;
+              for (int c = 0; c < 3; ++c) change += std::abs(int(img.at(x, y)[c]) - int(prev.at(x, y)[c]));
+              count += 3;
+            }
+        }
+        prev = std::move(img);
+        prev_f = fv;
+      }
+      bench.tick();
+      csv += std::filesystem::path(spec).stem().string() + "," + render::method_name(m) + "," + num(m == Method::full ? 1.0 : a.grid_sigma) +
+             "," + (seq == &raw ? "raw" : "filtered") + "," + std::to_string(n) + "," + num(step / double(n - 1)) + "," +
+             num(count ? change / double(count) : 0.0) + "\n";
+    }
+  return csv;
+}
+
 int run(const Args& a) {
   auto fail = [](const Error& e) { return cli::report(e); };
   std::vector<Method> methods;
@@ -178,7 +262,7 @@ int run(const Args& a) {
 
   const std::uint64_t per_scene = 1 + methods.size() * sigmas->size() + (a.f_grid ? grid->size() * grid->size() + 1 : 0);
   const std::uint64_t total = per_scene * scenes.size() + (a.rotation ? 19 * (1 + methods.size()) : 0) +
-                              (a.stability ? 1 + 22 * methods.size() : 0);
+                              (a.stability ? 1 + 22 * methods.size() : 0) + (a.flicker ? 2 * (1 + methods.size()) : 0);
   cli::Progress progress("bench", total, !a.json);
   Bench bench(a, *comp, progress);
 
@@ -294,6 +378,12 @@ int run(const Args& a) {
         }
       }
   }
+  std::string flicker_csv = "scene,method,sigma,gaze,frames,fovea_step_px,periphery_change\n";
+  if (a.flicker) {
+    auto r = flicker(a, *comp, bench, methods, scenes.front());
+    if (!r) return fail(r.error());
+    flicker_csv += *r;
+  }
   progress.finish();
 
   rusage ru{};
@@ -309,6 +399,8 @@ int run(const Args& a) {
     if (Status s = write_file_atomically(a.out + "/rotation.csv", rot_csv); !s) return fail(s.error());
   if (a.stability)
     if (Status s = write_file_atomically(a.out + "/stability.csv", stab_csv); !s) return fail(s.error());
+  if (a.flicker)
+    if (Status s = write_file_atomically(a.out + "/flicker.csv", flicker_csv); !s) return fail(s.error());
   if (!a.no_png) {
     const std::string cmd = "/usr/bin/python3 '" + data_path("tools/charts/bench_charts.py") + "' '" + a.out + "'";
     if (std::system(cmd.c_str()) != 0)
@@ -337,6 +429,9 @@ void add_bench(CLI::App& app, int& exit_code) {
   sub->add_option("--grid-values", a->grid_values, "f values of the grid")->capture_default_str();
   sub->add_option("--grid-sigma", a->grid_sigma, "Level of the grid and rotation experiments")->capture_default_str();
   sub->add_flag("--rotation", a->rotation, "Also: rotated stripes 0-180 degrees, FPSNR per method");
+  sub->add_flag("--flicker", a->flicker, "Also: periphery flicker under real gaze jitter, raw and filtered gaze, per method");
+  sub->add_option("--flicker-log", a->flicker_log, "Gaze log for --flicker (default: the bundled recording)");
+  sub->add_option("--flicker-frames", a->flicker_frames, "Frames per flicker run")->capture_default_str()->check(CLI::Range(2, 10000));
   sub->add_flag("--stability", a->stability, "Also: fovea from the centre to a corner and to a border, patch PSNR and FPSNR per method");
   sub->add_option("--out,-o", a->out, "Output directory")->required();
   sub->add_flag("--no-png", a->no_png, "CSV and JSON only");
