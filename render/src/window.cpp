@@ -1,5 +1,6 @@
 #include "foveal/render/window.hpp"
 
+#define GLFW_INCLUDE_NONE  // GL comes from foveal/render/gl.hpp (core profile)
 #include <GLFW/glfw3.h>
 
 namespace foveal::render {

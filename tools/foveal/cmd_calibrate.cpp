@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "calibration_window.hpp"
 #include "commands.hpp"
 #include "foveal/runtime/calibration.hpp"
 #include "foveal/runtime/profile.hpp"
@@ -42,7 +43,7 @@ Result<std::vector<ScriptedAnswer>> read_answers(const std::string& path) {
 
 void add_calibrate(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string profile, answers;
+    std::string profile, answers, monitor, scene;
     bool json = false, dry_run = false;
   };
   auto a = std::make_shared<Args>();
@@ -50,19 +51,34 @@ void add_calibrate(CLI::App& app, int& exit_code) {
       "calibrate", "Find the dominant eye and the EFR pair (sigma_d, sigma_nd) and save them into a profile");
   sub->add_option("--profile", a->profile, "Profile to update (created if missing; default: the active one)");
   sub->add_option("--answers", a->answers,
-                  "Scripted mode: answers (left/right/same/different, one per prompt) from a file, headless");
+                  "Scripted mode: answers (left/right/same/different, one per prompt) from a file, headless; "
+                  "without it: the in-headset window (keys L/R, S/D, Esc; gamepad LB/RB, A/B)");
+  sub->add_option("--monitor", a->monitor, "In-headset mode: fullscreen on the monitor whose name contains this");
+  sub->add_option("--scene", a->scene, "In-headset mode: the scene of the comparisons (default: the bundled Dungeon)");
   sub->add_flag("--dry-run", a->dry_run, "Report the result without saving it");
   sub->add_flag("--json", a->json, "Print the result as JSON");
   sub->callback([a, &exit_code] {
     auto fail = [&exit_code](const Error& e) { exit_code = cli::report(e); };
-    if (a->answers.empty())
-      return fail(bad_input("calibrate: the in-headset window mode needs the compositor window, which this build "
-                            "does not have yet; use --answers FILE (docs/calibration.md)"));
-    auto answers = read_answers(a->answers);
-    if (!answers) return fail(answers.error());
     Calibration cal;
     std::vector<nlohmann::json> steps;
-    for (const ScriptedAnswer& s : *answers) {
+    if (a->answers.empty()) {
+      // In-headset mode: the same state machine, answered from the keyboard or a gamepad.
+      CalibrationWindowOptions wo;
+      wo.monitor = a->monitor;
+      wo.scene = a->scene;
+      if (Status st = run_calibration_window(cal, wo); !st) {
+        Error e = st.error();
+        if (e.kind == ErrorKind::unsupported) e.message += " (no display? the scripted mode works headless: --answers FILE)";
+        return fail(e);
+      }
+    }
+    std::vector<ScriptedAnswer> scripted;
+    if (!a->answers.empty()) {
+      auto answers = read_answers(a->answers);
+      if (!answers) return fail(answers.error());
+      scripted = std::move(*answers);
+    }
+    for (const ScriptedAnswer& s : scripted) {
       if (cal.done()) return fail(bad_input(a->answers + ":" + std::to_string(s.line) + ": more answers than prompts"));
       const CalibrationPrompt p = cal.prompt();
       if (Status st = cal.answer(s.answer); !st)
@@ -71,7 +87,7 @@ void add_calibrate(CLI::App& app, int& exit_code) {
       steps.push_back({{"stage", calibration_stage_name(p.stage)}, {"trial", p.trial}, {"sigma_left", p.sigma_left},
                        {"sigma_right", p.sigma_right}, {"answer", answer_name(s.answer)}});
     }
-    if (!cal.done())
+    if (!cal.done())  // only the scripted mode can end early
       return fail(bad_input(a->answers + ": answers ended during " + calibration_stage_name(cal.prompt().stage) +
                             " (trial " + std::to_string(cal.prompt().trial + 1) + ")"));
     const CalibrationResult& r = cal.result();
