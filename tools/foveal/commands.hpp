@@ -16,5 +16,7 @@ void add_ctl(CLI::App& app, int& exit_code);
 void add_calibrate(CLI::App& app, int& exit_code);
 void add_replay(CLI::App& app, int& exit_code);
 void add_filter_chart(CLI::App& app, int& exit_code);
+void add_devices(CLI::App& app, int& exit_code);  // with FOVEAL_HAVE_HID
+void add_record(CLI::App& app, int& exit_code);   // with FOVEAL_HAVE_HID
 
 }  // namespace foveal::cmd
