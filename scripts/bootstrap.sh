@@ -12,6 +12,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
   googletest libgtest-dev libbenchmark-dev
   python3 python3-matplotlib
+  qemu-system-x86 linux-image-amd64 busybox-static cpio kmod  # tests/vm (docs/vm-tests.md)
 )
 
 missing=()

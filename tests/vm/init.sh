@@ -1,0 +1,64 @@
+#!/bin/busybox sh
+# /init of the VM test guest (built by run_vm_tests.sh): loads the USB/HID modules,
+# runs the checks, prints "VMTEST ..." lines on the serial console and powers off.
+/bin/busybox --install -s /bin
+export PATH=/bin:/usr/bin LD_LIBRARY_PATH=/lib/foveal
+mount -t proc proc /proc
+mount -t sysfs sys /sys
+mount -t devtmpfs dev /dev
+mount -t tmpfs tmp /tmp
+echo "VMTEST-BEGIN kernel $(uname -r)"
+
+for m in $(cat /modules/order); do
+  insmod "/modules/$m" || echo "VMTEST modules FAIL insmod $m"
+done
+mount -t configfs none /sys/kernel/config
+
+# (d) uhid: malformed descriptors and reports.
+foveal_vm_guest uhid
+
+# (a) a USB HID gadget with the real HUTRR74 descriptor, on dummy_hcd.
+G=/sys/kernel/config/usb_gadget/tracker
+mkdir -p $G/strings/0x409 $G/functions/hid.usb0 $G/configs/c.1
+echo 0x1209 > $G/idVendor
+echo 0xf0ee > $G/idProduct
+echo foveal > $G/strings/0x409/manufacturer
+echo "Emulated HUTRR74 tracker" > $G/strings/0x409/product
+echo VM0001 > $G/strings/0x409/serialnumber
+echo 0 > $G/functions/hid.usb0/protocol
+echo 0 > $G/functions/hid.usb0/subclass
+echo 65 > $G/functions/hid.usb0/report_length
+# Feature SET_REPORTs (the Mode Request) then reach /dev/hidg0 instead of stalling.
+echo 1 > $G/functions/hid.usb0/no_out_endpoint
+cat /data/tracker.desc > $G/functions/hid.usb0/report_desc
+ln -s $G/functions/hid.usb0 $G/configs/c.1/
+echo dummy_udc.0 > $G/UDC
+n=0
+while [ ! -e /dev/hidg0 ] || ! ls /dev/hidraw* >/dev/null 2>&1; do
+  n=$((n + 1)); [ $n -gt 100 ] && break; sleep 0.1
+done
+ls -l /dev/hidg0 /dev/hidraw* 2>&1
+
+foveal_vm_guest feed /dev/hidg0 > /tmp/feed.log 2>&1 &
+FEED=$!
+foveal_vm_guest probe 1000 60
+
+# foveal devices / foveal record, then the log replayed.
+foveal devices --json > /tmp/devices.json 2>&1
+cat /tmp/devices.json
+if grep -q '"vid_pid": "1209:f0ee"' /tmp/devices.json && grep -q '"sample_rate_hz": 120' /tmp/devices.json; then
+  echo "VMTEST devices PASS $(tr -d '\n ' < /tmp/devices.json | head -c 300)"
+else
+  echo "VMTEST devices FAIL $(tr -d '\n' < /tmp/devices.json | head -c 300)"
+fi
+foveal record --device auto --out /tmp/rec.csv --duration 4 --json > /tmp/record.json 2>&1
+echo "record: rc=$? $(tr -d '\n ' < /tmp/record.json)"
+foveal_vm_guest verify-log /tmp/rec.csv 300
+
+# (c) 20 unplug/replug cycles.
+foveal_vm_guest replug $G/UDC dummy_udc.0 20
+
+kill $FEED; wait $FEED
+cat /tmp/feed.log
+echo "VMTEST-END"
+poweroff -f
