@@ -60,5 +60,33 @@ foveal_vm_guest replug $G/UDC dummy_udc.0 20
 
 kill $FEED; wait $FEED
 cat /tmp/feed.log
+
+# (b) an emulated PS VR2 gaze interface through FunctionFS, read by the libusb driver.
+echo "" > $G/UDC
+P=/sys/kernel/config/usb_gadget/psvr2
+mkdir -p $P/strings/0x409 $P/functions/ffs.gaze $P/configs/c.1
+echo 0x054c > $P/idVendor
+echo 0x0cde > $P/idProduct
+echo "Emulated PS VR2 gaze" > $P/strings/0x409/product
+ln -s $P/functions/ffs.gaze $P/configs/c.1/
+mkdir -p /dev/ffs-gaze
+mount -t functionfs gaze /dev/ffs-gaze
+foveal_vm_guest psvr2-gadget /dev/ffs-gaze > /tmp/psvr2.log 2>&1 &
+PSVR2=$!
+n=0
+while [ ! -e /dev/ffs-gaze/ep1 ]; do n=$((n + 1)); [ $n -gt 50 ] && break; sleep 0.1; done
+echo dummy_udc.0 > $P/UDC || echo "psvr2: bind failed"
+n=0
+until grep -qs 0cde /sys/bus/usb/devices/*/idProduct; do n=$((n + 1)); [ $n -gt 50 ] && break; sleep 0.1; done
+ls /dev/bus/usb/*/ 2>&1 | tr '\n' ' '; echo
+dmesg | tail -5
+foveal_vm_guest psvr2-probe 500 30
+kill $PSVR2; wait $PSVR2
+cat /tmp/psvr2.log
+if grep -q "value=030c index=5 data=0c 01" /tmp/psvr2.log; then
+  echo "VMTEST psvr2_enable PASS the gadget received the gaze-stream enable request"
+else
+  echo "VMTEST psvr2_enable FAIL no enable request (report 0x0c, 0x01) reached the gadget"
+fi
 echo "VMTEST-END"
 poweroff -f

@@ -8,11 +8,12 @@ set -euo pipefail
 while (($#)); do
   case $1 in
     --guest) guest=$2 ;; --foveal) foveal=$2 ;; --descriptor) descriptor=$2 ;;
-    --init) init=$2 ;; --work) work=$2 ;; *) echo "run_vm_tests: unknown option $1" >&2; exit 2 ;;
+    --init) init=$2 ;; --work) work=$2 ;; --checks) checks=$2 ;; *) echo "run_vm_tests: unknown option $1" >&2; exit 2 ;;
   esac
   shift 2
 done
 
+checks=${checks:-uhid_malformed_descriptors uhid_bad_reports uhid_no_fd_leak gadget_read devices record_replay gadget_replug}
 skip() { echo "SKIPPED: $*"; exit 77; }
 qemu=$(command -v qemu-system-x86_64 || true)
 [[ -n $qemu ]] || skip "qemu-system-x86_64 is not installed (apt-get install qemu-system-x86; scripts/bootstrap.sh does it)"
@@ -40,7 +41,7 @@ cp "$guest" "$foveal" "$root/bin/"
 
 # Modules in load order (each after what it needs), from the host's view of the kernel.
 : > "$root/modules/order"
-for m in configfs dummy_hcd libcomposite usb_f_hid uhid hid usbhid hid_generic; do
+for m in configfs dummy_hcd libcomposite usb_f_hid usb_f_fs uhid hid usbhid hid_generic; do
   modprobe -S "$kver" --show-depends "$m" | awk '$1 == "insmod" {print $2}'
 done | awk '!seen[$0]++' | while read -r ko; do
   cp "$ko" "$root/modules/"
@@ -67,7 +68,7 @@ tr -d '\r' < "$log" | grep -v '^$' || true
 echo "run_vm_tests: qemu exit $qrc after $(($(date +%s) - start)) s"
 
 fail=0
-for name in uhid_malformed_descriptors uhid_bad_reports uhid_no_fd_leak gadget_read devices record_replay gadget_replug; do
+for name in $checks; do
   if grep -q "^VMTEST $name PASS" <(tr -d '\r' < "$log"); then
     echo "run_vm_tests: $name passed"
   else

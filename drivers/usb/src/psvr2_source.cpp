@@ -16,6 +16,30 @@ Error usb_error(const std::string& where, int rc) {
   return Error{ErrorKind::device, "psvr2: " + where + ": " + libusb_strerror(rc)};
 }
 
+/// The first bulk IN endpoint of the gaze interface as the device describes it; the
+/// headset says 0x85, an emulated one may differ.
+std::uint8_t find_gaze_endpoint(libusb_device* dev) {
+  libusb_config_descriptor* config = nullptr;
+  if (libusb_get_active_config_descriptor(dev, &config) != 0 || config == nullptr) return kPsvr2GazeEndpoint;
+  std::uint8_t found = kPsvr2GazeEndpoint;
+  for (int i = 0; i < config->bNumInterfaces; ++i) {
+    const libusb_interface& itf = config->interface[i];
+    for (int a = 0; a < itf.num_altsetting && a < 1; ++a) {
+      const libusb_interface_descriptor& d = itf.altsetting[a];
+      if (d.bInterfaceNumber != kPsvr2GazeInterface) continue;
+      for (int e = 0; e < d.bNumEndpoints; ++e) {
+        const libusb_endpoint_descriptor& ep = d.endpoint[e];
+        if ((ep.bEndpointAddress & LIBUSB_ENDPOINT_IN) && (ep.bmAttributes & 3) == LIBUSB_TRANSFER_TYPE_BULK) {
+          found = ep.bEndpointAddress;
+          e = d.bNumEndpoints;
+        }
+      }
+    }
+  }
+  libusb_free_config_descriptor(config);
+  return found;
+}
+
 }  // namespace
 
 Psvr2Source::Psvr2Source(Psvr2Options opts) : opts_(std::move(opts)), buffer_(kTransferBytes) {
@@ -44,6 +68,7 @@ Status Psvr2Source::open() {
   if (!handle_) return Error{ErrorKind::device, "psvr2: no PlayStation VR2 (054c:0cde) found, or no permission (udev/70-foveal.rules)"};
   libusb_device* dev = libusb_get_device(handle_);
   path_ = "usb:" + std::to_string(libusb_get_bus_number(dev)) + ":" + std::to_string(libusb_get_device_address(dev));
+  endpoint_ = find_gaze_endpoint(dev);
   libusb_set_auto_detach_kernel_driver(handle_, 1);
   if (int rc = libusb_claim_interface(handle_, kPsvr2GazeInterface); rc != 0) {
     close();
@@ -103,7 +128,7 @@ ReadResult Psvr2Source::next(std::chrono::nanoseconds timeout) {
     const TimeNs left = deadline - monotonic_now_ns();
     const auto wait_ms = static_cast<unsigned>(std::max<TimeNs>(1, (left + kNsPerMs - 1) / kNsPerMs));
     int got = 0;
-    const int rc = libusb_bulk_transfer(handle_, kPsvr2GazeEndpoint, buffer_.data(), static_cast<int>(buffer_.size()),
+    const int rc = libusb_bulk_transfer(handle_, endpoint_, buffer_.data(), static_cast<int>(buffer_.size()),
                                         &got, wait_ms);
     if (rc == LIBUSB_ERROR_NO_DEVICE || rc == LIBUSB_ERROR_IO || rc == LIBUSB_ERROR_PIPE) {
       ++counters_.disconnects;

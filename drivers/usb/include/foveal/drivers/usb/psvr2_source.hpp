@@ -40,6 +40,8 @@ class Psvr2Source final : public GazeSource {
   ReadResult next(std::chrono::nanoseconds timeout) override;
   SourceInfo info() const override;
   const Psvr2Counters& counters() const { return counters_; }
+  /// The bulk IN endpoint in use (0x85 on the headset; read from its descriptors).
+  std::uint8_t endpoint() const { return endpoint_; }
 
  private:
   Status send_gaze_stream(bool enable);
@@ -49,6 +51,7 @@ class Psvr2Source final : public GazeSource {
   libusb_context* ctx_ = nullptr;
   libusb_device_handle* handle_ = nullptr;
   bool claimed_ = false, started_ = false;
+  std::uint8_t endpoint_ = kPsvr2GazeEndpoint;
   std::string path_;
   std::vector<std::uint8_t> buffer_;
   WrapCounter clock_;
