@@ -81,6 +81,19 @@ until grep -qs 0cde /sys/bus/usb/devices/*/idProduct; do n=$((n + 1)); [ $n -gt 
 ls /dev/bus/usb/*/ 2>&1 | tr '\n' ' '; echo
 dmesg | tail -5
 foveal_vm_guest psvr2-probe 500 30
+foveal devices --json > /tmp/devices2.json 2>&1
+if grep -q '"vid_pid": "054c:0cde"' /tmp/devices2.json && grep -q '"driver": "usb"' /tmp/devices2.json; then
+  echo "VMTEST devices_usb PASS $(tr -d '\n ' < /tmp/devices2.json | head -c 300)"
+else
+  echo "VMTEST devices_usb FAIL $(tr -d '\n' < /tmp/devices2.json | head -c 300)"
+fi
+foveal record --device psvr2 --out /tmp/psvr2.csv --duration 2 --json > /tmp/record2.json 2>&1
+n=$(grep -o '"samples": [0-9]*' /tmp/record2.json | grep -o '[0-9]*$')
+if [ "${n:-0}" -ge 100 ] && [ -s /tmp/psvr2.csv ]; then
+  echo "VMTEST record_usb PASS samples=$n $(head -c 120 /tmp/psvr2.csv | tr '\n' ' ')"
+else
+  echo "VMTEST record_usb FAIL $(tr -d '\n' < /tmp/record2.json)"
+fi
 kill $PSVR2; wait $PSVR2
 cat /tmp/psvr2.log
 if grep -q "value=030c index=5 data=0c 01" /tmp/psvr2.log; then

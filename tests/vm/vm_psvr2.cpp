@@ -138,7 +138,10 @@ int run_psvr2_gadget(const std::string& dir) {
     for (std::uint64_t k = 0; ep1 >= 0 && !g_stop.load(); ++k) {
       next += 8'333'000;
       sleep_until_ns(next);
-      if (!enabled.load()) continue;
+      if (!enabled.load()) {
+        next = monotonic_now_ns();  // no backlog to catch up on once enabled
+        continue;
+      }
       const auto rec = psvr2_record(k);
       if (::write(ep1, rec.data(), rec.size()) == static_cast<ssize_t>(rec.size())) written.fetch_add(1);
     }

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "device_catalog.hpp"
 #include "foveal/core/gaze_log.hpp"
-#include "foveal/drivers/hid/hid_tracker_source.hpp"
 #include "foveal/tools/cli.hpp"
 
 namespace foveal::cmd {
@@ -21,22 +21,6 @@ namespace {
 
 std::atomic<bool> g_interrupted{false};
 void on_signal(int) { g_interrupted.store(true); }
-
-/// "" or "auto": the first tracker; digits: the id `foveal devices` lists; else a path.
-Result<std::string> resolve_device(const std::string& id) {
-  if (id.empty() || id == "auto") return std::string();
-  if (std::all_of(id.begin(), id.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-    auto backend = hid::make_hidapi_backend();
-    auto trackers = hid::find_eye_trackers(*backend);
-    if (!trackers) return trackers.error();
-    const auto index = std::stoull(id);
-    if (index >= trackers->size())
-      return bad_input("record: --device " + id + ": no such tracker (" + std::to_string(trackers->size()) +
-                       " found; see foveal devices)");
-    return (*trackers)[index].device.path;
-  }
-  return id;
-}
 
 /// The median sample interval's rate, for devices that do not say theirs.
 double estimate_rate(const std::vector<GazeSample>& s) {
@@ -58,7 +42,7 @@ void add_record(CLI::App& app, int& exit_code) {
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand("record", "Record a tracker's gaze into a native gaze log");
-  sub->add_option("--device,-d", args->device, "Tracker: an id from `foveal devices`, a hidraw path, or auto")
+  sub->add_option("--device,-d", args->device, "Tracker: an id from `foveal devices`, a hidraw path, psvr2, or auto (the first)")
       ->capture_default_str();
   sub->add_option("--out,-o", args->out, "Output native gaze log (written atomically)")->required();
   sub->add_option("--duration", args->duration_s, "Seconds to record (Ctrl-C stops early)")->capture_default_str();
@@ -68,14 +52,12 @@ void add_record(CLI::App& app, int& exit_code) {
       exit_code = cli::report(bad_input("record: --duration must be > 0"));
       return;
     }
-    auto path = resolve_device(args->device);
-    if (!path) {
-      exit_code = cli::report(path.error());
+    auto device = make_device_source(args->device);
+    if (!device) {
+      exit_code = cli::report(device.error());
       return;
     }
-    hid::HidTrackerOptions opts;
-    opts.device = *path;
-    hid::HidTrackerSource src(opts);
+    GazeSource& src = *device->source;
     if (Status s = src.open(); !s) {
       exit_code = cli::report(s.error());
       return;
@@ -98,7 +80,8 @@ void add_record(CLI::App& app, int& exit_code) {
       GazeLogHeader h;
       h.rate_hz = src.info().nominal_rate_hz > 0 ? src.info().nominal_rate_hz : estimate_rate(head);
       if (!(h.rate_hz > 0)) h.rate_hz = 120;  // nothing to go on: the common tracker rate
-      h.meta["source"] = "hid:" + info.path;
+      h.meta["driver"] = info.driver;
+      h.meta["source"] = info.path;
       h.meta["device"] = info.name;
       auto w = GazeLogWriter::create(args->out, h);
       if (!w) return w.error();
@@ -155,17 +138,14 @@ void add_record(CLI::App& app, int& exit_code) {
       exit_code = cli::report(st.error());
       return;
     }
-    const hid::HidTrackerCounters& c = src.counters();
-    nlohmann::json j = {{"output", args->out},           {"device", info.path},
-                        {"samples", writer->samples_written()}, {"reports", c.reports},
-                        {"malformed", c.malformed},        {"unknown_reports", c.unknown_reports},
-                        {"disconnects", c.disconnects},    {"reconnects", reconnects},
-                        {"sample_rate_hz", src.status().sampling_frequency_hz}};
+    nlohmann::json j = {{"output", args->out},  {"driver", info.driver},     {"device", info.path},
+                        {"samples", writer->samples_written()}, {"reconnects", reconnects},
+                        {"driver_counters", device->counters()}};
     if (args->json) cli::print_json(j);
     else
-      std::printf("recorded %llu samples from %s -> %s (%llu malformed reports, %llu disconnects)\n",
-                  static_cast<unsigned long long>(writer->samples_written()), info.path.c_str(), args->out.c_str(),
-                  static_cast<unsigned long long>(c.malformed), static_cast<unsigned long long>(c.disconnects));
+      std::printf("recorded %llu samples from %s %s -> %s (%llu reconnects)\n",
+                  static_cast<unsigned long long>(writer->samples_written()), info.driver.c_str(), info.path.c_str(),
+                  args->out.c_str(), static_cast<unsigned long long>(reconnects));
   });
 }
 
