@@ -144,6 +144,9 @@ int run_psvr2_gadget(const std::string& dir) {
       }
       const auto rec = psvr2_record(k);
       if (::write(ep1, rec.data(), rec.size()) == static_cast<ssize_t>(rec.size())) written.fetch_add(1);
+      // A write blocks while the host does not read: go on from now, as a sensor would,
+      // instead of bursting through the missed periods.
+      if (monotonic_now_ns() - next > 50 * kNsPerMs) next = monotonic_now_ns();
     }
   });
   while (!g_stop.load()) {
