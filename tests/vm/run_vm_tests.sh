@@ -30,6 +30,10 @@ if [[ ! -x $busybox ]] || ldd "$busybox" >/dev/null 2>&1; then
 fi
 command -v cpio >/dev/null || { echo "run_vm_tests: cpio is not installed"; exit 1; }
 
+# kmod's modprobe lives in /usr/sbin, which a non-root PATH may lack.
+modprobe=$(command -v modprobe || echo /usr/sbin/modprobe)
+[[ -x $modprobe ]] || { echo "run_vm_tests: modprobe (kmod) is not installed"; exit 1; }
+
 start=$(date +%s)
 rm -rf "$work" && mkdir -p "$work/root"
 root=$work/root
@@ -42,7 +46,7 @@ cp "$guest" "$foveal" "$root/bin/"
 # Modules in load order (each after what it needs), from the host's view of the kernel.
 : > "$root/modules/order"
 for m in configfs dummy_hcd libcomposite usb_f_hid usb_f_fs uhid hid usbhid hid_generic; do
-  modprobe -S "$kver" --show-depends "$m" | awk '$1 == "insmod" {print $2}'
+  "$modprobe" -S "$kver" --show-depends "$m" | awk '$1 == "insmod" {print $2}'
 done | awk '!seen[$0]++' | while read -r ko; do
   cp "$ko" "$root/modules/"
   basename "$ko" >> "$root/modules/order"
