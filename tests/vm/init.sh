@@ -55,6 +55,18 @@ foveal record --device auto --out /tmp/rec.csv --duration 4 --json > /tmp/record
 echo "record: rc=$? $(tr -d '\n ' < /tmp/record.json)"
 foveal_vm_guest verify-log /tmp/rec.csv 300
 
+# foveal record rides out an unplug: 1 s without the device in a 5 s recording.
+foveal record --device auto --out /tmp/rec2.csv --duration 5 --json > /tmp/record2.json 2>/tmp/record2.err &
+REC=$!
+sleep 1.5; echo "" > $G/UDC; sleep 1; echo dummy_udc.0 > $G/UDC
+wait $REC
+echo "record across an unplug: rc=$? $(tr -d '\n ' < /tmp/record2.json)"
+if grep -q '"reconnects": 1' /tmp/record2.json; then
+  foveal_vm_guest verify-log /tmp/rec2.csv 250 record_unplug
+else
+  echo "VMTEST record_unplug FAIL no reconnect: $(tr -d '\n' < /tmp/record2.json) $(head -c 200 /tmp/record2.err)"
+fi
+
 # (c) 20 unplug/replug cycles.
 foveal_vm_guest replug $G/UDC dummy_udc.0 20
 

@@ -13,7 +13,7 @@ while (($#)); do
   shift 2
 done
 
-checks=${checks:-uhid_malformed_descriptors uhid_bad_reports uhid_no_fd_leak gadget_read devices record_replay gadget_replug}
+checks=${checks:-uhid_malformed_descriptors uhid_bad_reports uhid_no_fd_leak gadget_read devices record_replay record_unplug gadget_replug}
 skip() { echo "SKIPPED: $*"; exit 77; }
 qemu=$(command -v qemu-system-x86_64 || true)
 [[ -n $qemu ]] || skip "qemu-system-x86_64 is not installed (apt-get install qemu-system-x86; scripts/bootstrap.sh does it)"

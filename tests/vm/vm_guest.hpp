@@ -20,7 +20,7 @@ int run_feed(const std::string& node);
 int run_probe(int min_reports, double timeout_s);
 int run_replug(const std::string& udc_file, const std::string& udc_name, int cycles);
 int run_uhid();
-int run_verify_log(const std::string& path, int min_samples);
+int run_verify_log(const std::string& path, int min_samples, const std::string& name);
 int run_psvr2_gadget(const std::string& ffs_dir);
 int run_psvr2_probe(int min_samples, double timeout_s);
 int run_hex2bin(const std::string& in, const std::string& out);

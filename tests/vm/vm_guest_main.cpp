@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   if (cmd == "probe") return run_probe(std::atoi(arg(2, "1000").c_str()), std::atof(arg(3, "60").c_str()));
   if (cmd == "replug") return run_replug(arg(2, ""), arg(3, "dummy_udc.0"), std::atoi(arg(4, "20").c_str()));
   if (cmd == "uhid") return run_uhid();
-  if (cmd == "verify-log") return run_verify_log(arg(2, ""), std::atoi(arg(3, "100").c_str()));
+  if (cmd == "verify-log") return run_verify_log(arg(2, ""), std::atoi(arg(3, "100").c_str()), arg(4, "record_replay"));
 #ifdef FOVEAL_VM_HAVE_USB
   if (cmd == "psvr2-gadget") return run_psvr2_gadget(arg(2, "/dev/ffs-gaze"));
   if (cmd == "psvr2-probe") return run_psvr2_probe(std::atoi(arg(2, "500").c_str()), std::atof(arg(3, "30").c_str()));
@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
   if (cmd == "hex2bin") return run_hex2bin(arg(2, ""), arg(3, ""));
   std::fprintf(stderr,
                "usage: foveal_vm_guest feed NODE | probe MIN_REPORTS TIMEOUT_S | replug UDC_FILE UDC_NAME CYCLES |\n"
-               "       uhid | verify-log LOG MIN_SAMPLES | psvr2-gadget FFS_DIR | psvr2-probe MIN_SAMPLES TIMEOUT_S |\n"
+               "       uhid | verify-log LOG MIN_SAMPLES [NAME] | psvr2-gadget FFS_DIR | psvr2-probe MIN_SAMPLES TIMEOUT_S |\n"
                "       hex2bin IN OUT\n");
   return 2;
 }
