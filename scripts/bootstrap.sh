@@ -12,6 +12,8 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
   googletest libgtest-dev libbenchmark-dev
   python3 python3-matplotlib
+  qemu-system-x86 linux-image-amd64 busybox-static cpio kmod  # tests/vm (docs/vm-tests.md)
+  xvfb xauth  # the GLFW window path, tested on a virtual X server
 )
 
 missing=()
