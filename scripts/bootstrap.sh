@@ -13,7 +13,7 @@ packages=(
   googletest libgtest-dev libbenchmark-dev
   python3 python3-matplotlib
   qemu-system-x86 linux-image-amd64 busybox-static cpio kmod  # tests/vm (docs/vm-tests.md)
-  xvfb xauth  # the GLFW window path, tested on a virtual X server
+  xvfb xauth xdotool  # the GLFW window paths, tested on a virtual X server
 )
 
 missing=()

@@ -98,13 +98,13 @@ Status run_calibration_window(Calibration& cal, const CalibrationWindowOptions& 
       if (auto r = comp->render(*scene, f); !r) return r.error();
     }
     window->present(comp->output_framebuffer(), comp->width(), comp->height());
-    std::optional<Answer> answer;
+    // Every answer given since the last frame, in order; one that does not fit the
+    // prompt (left/right to a comparison) is ignored.
     for (int key : window->take_keys()) {
       if (key == GLFW_KEY_ESCAPE) return bad_input("calibration quit (Esc); nothing was saved");
-      if (auto a = key_answer(key)) answer = a;
+      if (auto a = key_answer(key); a && !cal.done()) (void)cal.answer(*a);
     }
-    if (!answer) answer = gamepad_answer(pad);
-    if (answer) (void)cal.answer(*answer);  // an answer that does not fit the prompt is ignored
+    if (auto a = gamepad_answer(pad); a && !cal.done()) (void)cal.answer(*a);
   }
   return {};
 }

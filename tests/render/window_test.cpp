@@ -1,0 +1,59 @@
+// The GLFW window paths on a real (virtual) X server: foveald --window renders frames,
+// and `foveal calibrate`'s in-headset mode takes its answers from real key presses.
+// Xvfb, xauth and xdotool come from scripts/bootstrap.sh; without them these tests fail.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.hpp"
+
+using namespace foveal;
+
+namespace {
+bool have_x_tools() {
+  for (const char* tool : {"/usr/bin/xvfb-run", "/usr/bin/xdotool"})
+    if (!std::filesystem::exists(tool)) {
+      ADD_FAILURE() << tool << " is missing: install xvfb, xauth and xdotool (scripts/bootstrap.sh does)";
+      return false;
+    }
+  return true;
+}
+}  // namespace
+
+TEST(Window, FovealdRendersIntoAWindow) {
+  ASSERT_TRUE(have_x_tools());
+  test::TempDir d;
+  auto r = test::run("XDG_CONFIG_HOME=" + d.path() + " xvfb-run -a -s '-screen 0 1280x720x24' " + test::bin("foveald") +
+                     " --window --frames 3 --size 480x270 --scene pattern:checker --no-control --no-shm -q --out " + d.path("out"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(test::read_file(d.path("out/summary.json")));
+  EXPECT_EQ(j["render"]["frames"].get<int>(), 3);
+}
+
+TEST(Window, CalibrationTakesAnswersFromTheKeyboard) {
+  ASSERT_TRUE(have_x_tools());
+  test::TempDir d;
+  // Left-dominant Miles answers, then the slider and validation: the same answers as the
+  // scripted test "l l l same different s s s".
+  const std::string script =
+      test::bin("foveal") + " calibrate --profile w --scene pattern:checker --json > " + d.path("out.json") + " 2> " +
+      d.path("err.txt") + " & P=$!; " +
+      "W=$(xdotool search --sync --name 'foveal calibrate' | head -1); sleep 0.5; xdotool windowfocus --sync $W; "
+      "xdotool key --delay 150 l l l s d s s s; wait $P";
+  auto r = test::run("XDG_CONFIG_HOME=" + d.path() + " timeout 120 xvfb-run -a -s '-screen 0 1280x720x24' sh -c \"" + script + "\"");
+  ASSERT_EQ(r.exit_code, 0) << r.err << test::read_file(d.path("err.txt"));
+  const auto out = nlohmann::json::parse(test::read_file(d.path("out.json")));
+  EXPECT_EQ(out["dominant_eye"], "left");
+  EXPECT_EQ(out["saved"], true);
+  const auto profile = nlohmann::json::parse(test::read_file(d.path("foveal/profiles/w.json")));
+  EXPECT_EQ(profile["dominant_eye"], "left");
+}
+
+TEST(Window, NoDisplayIsAClearError) {
+  test::TempDir d;
+  auto r = test::run("env -u DISPLAY -u WAYLAND_DISPLAY XDG_CONFIG_HOME=" + d.path() + " " + test::bin("foveal") + " calibrate --dry-run");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("--answers"), std::string::npos) << r.err;
+}
