@@ -1,7 +1,12 @@
 #pragma once
 // The fuzz targets' bodies: called by the libFuzzer entry points (fuzz_*.cpp) and by
 // the regression test, which replays every saved crash input in the normal build.
+#include <sys/socket.h>
+#include <sys/un.h>
+
 #include <cmath>
+#include <cstdio>
+#include <memory>
 #include <cstdlib>
 #include <unistd.h>
 
@@ -10,7 +15,11 @@
 #ifdef FOVEAL_HAVE_HID
 #include "foveal/drivers/hid/report_decoder.hpp"
 #endif
+#ifdef FOVEAL_HAVE_USB
+#include "foveal/drivers/usb/psvr2_gaze_packet.hpp"
+#endif
 #include "foveal/import/importers.hpp"
+#include "foveal/runtime/control_server.hpp"
 #include "foveal/runtime/profile.hpp"
 #include "fuzz_file.hpp"
 
@@ -64,6 +73,62 @@ inline int profile(const std::uint8_t* data, std::size_t size) {
   MemFile f(data, size);
   auto p = foveal::ProfileStore::load_file(f.path(), "fuzz");
   if (p && !p->validate("fuzz")) std::abort();  // loaded means valid
+  return 0;
+}
+
+#ifdef FOVEAL_HAVE_USB
+// PS VR2 gaze records: a clean error or a sample whose valid directions are finite.
+inline int psvr2(const std::uint8_t* data, std::size_t size) {
+  auto r = foveal::usb::parse_psvr2_gaze(std::span<const std::uint8_t>(data, size));
+  if (!r) return 0;
+  const foveal::GazeSample s = foveal::usb::psvr2_to_sample(*r);
+  for (const auto& e : s.eyes)
+    if (e.has(foveal::kValidDirection) && !(std::isfinite(e.direction.x) && std::isfinite(e.direction.y) && std::isfinite(e.direction.z)))
+      std::abort();
+  return 0;
+}
+#endif
+
+// Control-socket messages through a real server on a Unix socket: the bytes go in as a
+// client would send them (split into lines, over-long lines, bad JSON), requests are
+// validated like foveald's `set` (a profile built from the request), and every request
+// line gets a reply.
+inline int control(const std::uint8_t* data, std::size_t size) {
+  static auto server = [] {
+    const std::string path = scratch_output() + ".sock";
+    auto s = foveal::ControlServer::listen(path);
+    if (!s) std::abort();
+    return std::make_unique<foveal::ControlServer>(std::move(*s));
+  }();
+  const auto handler = [](const nlohmann::json& req) -> nlohmann::json {
+    nlohmann::json j = foveal::Profile{}.to_json();
+    for (auto it = req.begin(); it != req.end(); ++it)
+      if (it.key() != "cmd") j[it.key()] = it.value();
+    auto p = foveal::Profile::from_json(j, "fuzz", "set");
+    if (p && !p->validate("fuzz")) std::abort();  // accepted means valid
+    return {{"ok", p.ok()}};
+  };
+  std::string msg(reinterpret_cast<const char*>(data), size);
+  msg += '\n';
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  std::snprintf(addr.sun_path, sizeof addr.sun_path, "%s", server->path().c_str());
+  if (fd < 0 || ::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0) std::abort();
+  std::size_t sent = 0;
+  for (int i = 0; i < 50; ++i) {  // interleave sending and serving: the server reads as we write
+    if (sent < msg.size()) {
+      const ssize_t n = ::send(fd, msg.data() + sent, msg.size() - sent, MSG_NOSIGNAL | MSG_DONTWAIT);
+      if (n > 0) sent += static_cast<std::size_t>(n);
+    }
+    server->poll(sent < msg.size() ? 1 : 0, handler);
+    char buf[4096];
+    while (::recv(fd, buf, sizeof buf, MSG_DONTWAIT) > 0) {
+    }
+    if (sent == msg.size() && i > 2) break;
+  }
+  ::close(fd);
+  server->poll(0, handler);  // sees the hang-up
   return 0;
 }
 

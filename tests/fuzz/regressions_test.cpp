@@ -35,8 +35,12 @@ void replay(const std::string& name, Target target) {
 TEST(FuzzRegressions, GazeLog) { replay("gaze_log", fuzz::gaze_log); }
 TEST(FuzzRegressions, Import) { replay("import", fuzz::import); }
 TEST(FuzzRegressions, Profile) { replay("profile", fuzz::profile); }
+TEST(FuzzRegressions, Control) { replay("control", fuzz::control); }
 #ifdef FOVEAL_HAVE_HID
 TEST(FuzzRegressions, Hid) { replay("hid", fuzz::hid); }
+#endif
+#ifdef FOVEAL_HAVE_USB
+TEST(FuzzRegressions, Psvr2) { replay("psvr2", fuzz::psvr2); }
 #endif
 
 }  // namespace
