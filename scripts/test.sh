@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The whole test suite, after scripts/bootstrap.sh has built ./build:
+#   1. every test of the normal build (CPU, GL on llvmpipe, VM device tests): ctest
+#   2. the CPU unit tests under ASan + UBSan (build-asan/)
+#   3. the threaded runtime tests under TSan (build-tsan/)
+#   4. every libFuzzer target for a short fixed time on its seed corpus (build-fuzz/)
+# Usage: scripts/test.sh [--quick]   (--quick: step 1 only)
+# FOVEAL_FUZZ_SECONDS (default 15) sets the time per fuzz target. docs/testing.md.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=$(nproc)
+
+ctest --test-dir build --output-on-failure -j"$jobs"
+[[ "${1:-}" == "--quick" ]] && exit 0
+
+step() { printf '\n== %s\n' "$*"; }
+
+step "ASan + UBSan: CPU unit tests"
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFOVEAL_SANITIZE=address,undefined \
+  -DFOVEAL_BUILD_BENCHMARKS=OFF > /dev/null
+ninja -C build-asan -j"$jobs" foveal_core_tests foveal_profile_tests foveal_control_tests foveal_exchange_tests \
+  foveal_daemon_tests foveal_calibration_tests foveal_filter_tests foveal_hid_tests foveal_usb_tests \
+  foveal_image_tests foveal_fuzz_regressions foveal foveald
+# foveald's integration tests render through Mesa, whose allocations outlive the process
+# by design: they run in the normal build; every other CPU test runs with leak checks.
+ctest --test-dir build-asan -L cpu -E 'Foveald' --output-on-failure -j"$jobs"
+
+step "TSan: threaded runtime tests"
+cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFOVEAL_SANITIZE=thread \
+  -DFOVEAL_BUILD_BENCHMARKS=OFF > /dev/null
+ninja -C build-tsan -j"$jobs" foveal_exchange_tests foveal_daemon_tests foveal_control_tests
+ctest --test-dir build-tsan -R 'SeqLock|FoveaShm|GazeLoop|LatencyHistogram|ControlSocket' --output-on-failure -j"$jobs"
+
+step "libFuzzer: each target ${FOVEAL_FUZZ_SECONDS:-15} s"
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DFOVEAL_FUZZ=ON -DFOVEAL_BUILD_TESTS=ON \
+  -DFOVEAL_BUILD_BENCHMARKS=OFF > /dev/null
+targets=(fuzz_gaze_log fuzz_import fuzz_profile fuzz_control fuzz_hid fuzz_psvr2)
+ninja -C build-fuzz -j"$jobs" "${targets[@]}"
+for t in "${targets[@]}"; do
+  corpus=$(mktemp -d)
+  cp -r "tests/fuzz/corpus/${t#fuzz_}/." "$corpus/"
+  if ! build-fuzz/bin/"$t" "$corpus" -max_total_time="${FOVEAL_FUZZ_SECONDS:-15}" -print_final_stats=1 \
+       > "$corpus.log" 2>&1; then
+    tail -40 "$corpus.log"
+    echo "fuzz: $t found a crash (crash-* in $PWD): keep it in tests/fuzz/regressions/${t#fuzz_}/ once fixed"
+    exit 1
+  fi
+  echo "$t: $(grep -o 'stat::number_of_executed_units: [0-9]*' "$corpus.log" | cut -d' ' -f2) executions"
+  rm -rf "$corpus" "$corpus.log"
+done
+step "all passed"
