@@ -1,10 +1,33 @@
 // Resolve pass: each screen pixel of the eye reads the lit reduced buffer where the
-// method's mapping sends it (bilinear).
+// method's mapping sends it (bilinear). With lens distortion, each colour channel reads
+// where the lens model says (docs/display-model.md): the correction is folded into this
+// pass, so the corrected image costs no extra full-resolution pass.
 #include "common/mapping.glsl"
 
 layout(binding = 0) uniform sampler2D u_reduced;
 uniform ivec2 u_origin;  // the eye's viewport origin in the output
+uniform bool u_distortion;
+uniform vec2 u_lens_center;  // GL frame, normalised
+uniform vec3 u_lens_k;       // k1, k2, k3
+uniform vec3 u_lens_scale;   // per channel
 
 layout(location = 0) out vec4 o_color;
 
-void main() { o_color = resolve(u_reduced, gl_FragCoord.xy - vec2(u_origin)); }
+void main() {
+  vec2 p = gl_FragCoord.xy - vec2(u_origin);
+  if (!u_distortion) {
+    o_color = resolve(u_reduced, p);
+    return;
+  }
+  vec2 span = vec2(u_tan.y - u_tan.x, u_tan.w - u_tan.z);
+  vec2 x = (p / u_screen_size - u_lens_center) * span;
+  float r2 = dot(x, x);
+  float radial = 1.0 + r2 * (u_lens_k.x + r2 * (u_lens_k.y + r2 * u_lens_k.z));
+  vec3 rgb;
+  for (int c = 0; c < 3; ++c) {
+    vec2 src = u_lens_center + x * (u_lens_scale[c] * radial) / span;
+    bool inside = all(greaterThanEqual(src, vec2(0.0))) && all(lessThanEqual(src, vec2(1.0)));
+    rgb[c] = inside ? resolve(u_reduced, src * u_screen_size)[c] : 0.0;
+  }
+  o_color = vec4(rgb, 1.0);
+}

@@ -271,7 +271,14 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
 
   for (Eye e : kEyes) {
     const std::size_t i = static_cast<std::size_t>(e);
-    auto planned = plan_eye(params.method, params.eyes[i], m.eye_w, m.eye_h, m.opt.model.eye(e));
+    const LensDistortion& lens = m.opt.model.distortion[i];
+    const bool distort = m.opt.distortion && lens.enabled;
+    // The full method has no resolve pass to fold the lens into: it runs as RMFR at σ = 1
+    // (the identity map), which is the same image.
+    EyeFoveation eye_params = params.eyes[i];
+    Method method = params.method;
+    if (distort && method == Method::full) method = Method::rmfr, eye_params.sigma = 1.0;
+    auto planned = plan_eye(method, eye_params, m.eye_w, m.eye_h, m.opt.model.eye(e));
     if (!planned) return Error{planned.error().kind, std::string(eye_name(e)) + " eye: " + planned.error().message};
     const EyePlan& plan = m.plans[i] = std::move(*planned);
     times.shaded_samples += plan.shaded_samples();
@@ -344,6 +351,10 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     glUseProgram(ip);
     set_mapping(ip, plan, texture_size);
     set(ip, "u_origin", eye_origin);
+    set(ip, "u_distortion", distort ? 1 : 0);
+    set(ip, "u_lens_center", glm::vec2(lens.center.x, 1.0f - lens.center.y));
+    set(ip, "u_lens_k", glm::vec3(lens.k1, lens.k2, lens.k3));
+    set(ip, "u_lens_scale", lens.channel_scale);
     glBindTextureUnit(0, rs.texture.id());
     glBindVertexArray(m.empty_vao.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);

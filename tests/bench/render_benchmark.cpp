@@ -1,7 +1,8 @@
 // The compositor at 2880x1600: full against RMFR + EFR in the same run, frames
 // interleaved so machine noise hits both alike. Counters give the per-pass medians
 // (the RMFR paper's Table 3), the speedups, the theoretical lighting speedup
-// 2 / (1/σ_d² + 1/σ_nd²), render-target memory and peak RSS.
+// 2 / (1/σ_d² + 1/σ_nd²), render-target memory and peak RSS, and the cost of folding
+// lens distortion into the inverse pass (the example lens model).
 //
 //   build/bin/foveal_render_bench                      (Dungeon, σ_d 2, σ_nd 3, f 0.3)
 //   FOVEAL_BENCH_SCENE=pattern:noise build/bin/foveal_render_bench
@@ -25,6 +26,7 @@ struct Fixture {
   std::optional<gl::EglContext> ctx;
   std::optional<render::Scene> scene;
   std::optional<render::Compositor> comp;
+  std::optional<render::Compositor> lens;  ///< same, with the example lens model (distortion folded)
   std::string error;
 
   Fixture() {
@@ -38,6 +40,13 @@ struct Fixture {
     auto k = render::Compositor::create({}, gl::ShaderLoader(test::source_path("shaders")));
     if (!k) { error = k.error().message; return; }
     comp.emplace(std::move(*k));
+    auto model = DisplayModel::load(test::source_path("data/display/htc_vive_pro_eye_lens.json"));
+    if (!model) { error = model.error().message; return; }
+    render::CompositorOptions lo;
+    lo.model = *model;
+    auto l = render::Compositor::create(lo, gl::ShaderLoader(test::source_path("shaders")));
+    if (!l) { error = l.error().message; return; }
+    lens.emplace(std::move(*l));
   }
 };
 
@@ -58,16 +67,19 @@ void BM_FullVsRmfrEfr(benchmark::State& state) {
   // One warm-up frame each: shader compilation, texture residency.
   (void)f.comp->render(*f.scene, full);
   (void)f.comp->render(*f.scene, rmfr);
-  std::vector<render::PassTimes> tf, tr;
+  (void)f.lens->render(*f.scene, rmfr);
+  std::vector<render::PassTimes> tf, tr, tl;
   for (auto _ : state) {
     auto a = f.comp->render(*f.scene, full);
     auto b = f.comp->render(*f.scene, rmfr);
-    if (!a || !b) {
-      state.SkipWithError((a ? b.error() : a.error()).message.c_str());
+    auto c = f.lens->render(*f.scene, rmfr);
+    if (!a || !b || !c) {
+      state.SkipWithError((!a ? a.error() : !b ? b.error() : c.error()).message.c_str());
       return;
     }
     tf.push_back(*a);
     tr.push_back(*b);
+    tl.push_back(*c);
   }
   auto med = [](const std::vector<render::PassTimes>& v, double render::PassTimes::*field) {
     std::vector<double> x;
@@ -83,6 +95,9 @@ void BM_FullVsRmfrEfr(benchmark::State& state) {
     state.counters[std::string("full_") + name + "_ms"] = med(tf, field);
     state.counters[std::string("rmfr_") + name + "_ms"] = med(tr, field);
   }
+  // Lens correction folded into the inverse pass: its extra cost, no extra pass.
+  state.counters["rmfr_lens_inverse_ms"] = med(tl, &PT::inverse);
+  state.counters["rmfr_lens_gpu_total_ms"] = med(tl, &PT::gpu_total);
   state.counters["lighting_speedup"] = med(tf, &PT::lighting) / med(tr, &PT::lighting);
   state.counters["lighting_theory"] = 2.0 / (1.0 / (sigma_d * sigma_d) + 1.0 / (sigma_nd * sigma_nd));
   state.counters["gpu_total_speedup"] = med(tf, &PT::gpu_total) / med(tr, &PT::gpu_total);

@@ -181,3 +181,45 @@ TEST(Cli, EveryCommandHasHelp) {
 
 }  // namespace
 }  // namespace foveal
+
+namespace foveal {
+namespace {
+
+TEST(LensDistortion, LoadsAndRoundTripsEveryChannel) {
+  auto m = DisplayModel::load(test::source_path("data/display/htc_vive_pro_eye_lens.json"));
+  ASSERT_TRUE(m) << m.error().message;
+  const LensDistortion& d = m->distortion[0];
+  ASSERT_TRUE(d.enabled);
+  EXPECT_FLOAT_EQ(d.k1, 0.22f);
+  const EyeFrustum& f = m->eye(Eye::left);
+  for (int c = 0; c < 3; ++c)
+    for (float x = 0.05f; x < 1.0f; x += 0.1f)
+      for (float y = 0.05f; y < 1.0f; y += 0.1f) {
+        const glm::vec2 src = d.source({x, y}, c, f);
+        const glm::vec2 back = d.panel(src, c, f);
+        EXPECT_NEAR(back.x, x, 1e-4) << c;
+        EXPECT_NEAR(back.y, y, 1e-4) << c;
+      }
+  // Barrel correction: a panel point off-centre samples farther out, red less than blue.
+  EXPECT_GT(d.source({0.9f, 0.5f}, 1, f).x, 0.9f);
+  EXPECT_LT(d.source({0.9f, 0.5f}, 0, f).x, d.source({0.9f, 0.5f}, 2, f).x);
+  EXPECT_EQ(d.source(d.center, 1, f), d.center);
+}
+
+TEST(LensDistortion, BadValuesNameTheFile) {
+  test::TempDir dir;
+  const std::string good = test::read_file(test::source_path("data/display/htc_vive_pro_eye_lens.json"));
+  std::string bad = good;
+  bad.replace(bad.find("[0.994"), 6, "[-1.00");
+  test::write_file(dir.path("bad.json"), bad);
+  auto m = DisplayModel::load(dir.path("bad.json"));
+  ASSERT_FALSE(m);
+  EXPECT_NE(m.error().message.find("channel_scale"), std::string::npos) << m.error().message;
+  std::string missing = good;
+  missing.replace(missing.find("\"k\""), 3, "\"q\"");
+  test::write_file(dir.path("missing.json"), missing);
+  EXPECT_FALSE(DisplayModel::load(dir.path("missing.json")));
+}
+
+}  // namespace
+}  // namespace foveal

@@ -28,6 +28,7 @@ void add_render_options(CLI::App& sub, RenderArgs& a) {
                  "hyperbolic/linear: scale of the 10/20 degree thresholds (default: match the cost of sigma)");
   sub.add_option("--size", a.size, "Side-by-side output size WxH (even width)")->capture_default_str();
   sub.add_option("--display", a.display, "Display-model JSON (default: HTC Vive Pro Eye)");
+  sub.add_flag("--no-distortion", a.no_distortion, "Ignore the display model's lens distortion (frames comparable with metrics)");
 }
 
 Result<RenderSetup> resolve(const RenderArgs& a) {
@@ -58,6 +59,7 @@ Result<RenderSetup> resolve(const RenderArgs& a) {
   if (size->first % 2 != 0) return bad_input("--size: the width must be even (two eyes side by side)");
   s.compositor.width = size->first;
   s.compositor.height = size->second;
+  s.compositor.distortion = !a.no_distortion;
   if (!a.display.empty()) {
     auto m = DisplayModel::load(a.display);
     if (!m) return m.error();

@@ -23,6 +23,7 @@ struct RenderArgs {
   std::string fovea_left = "0.5,0.5", fovea_right = "0.5,0.5";
   std::string size = "2880x1600";
   std::string display;
+  bool no_distortion = false;
 };
 
 void add_render_options(CLI::App& sub, RenderArgs& a);

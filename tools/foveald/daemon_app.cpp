@@ -138,6 +138,7 @@ Status DaemonApp::setup_renderer() {
   ro.save_every = o_.save_every;
   ro.window = !o_.headless;
   ro.monitor = o_.monitor;
+  ro.distortion = o_.distortion;
   if (!o_.size.empty()) {
     auto size = cli::parse_size(o_.size, "--size");
     if (!size) return size.error();

@@ -49,6 +49,7 @@ Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions
   co.width = o.width > 0 ? o.width : model.output_width();
   co.height = o.height > 0 ? o.height : model.output_height();
   co.model = model;
+  co.distortion = o.distortion;
   auto comp = render::Compositor::create(co);
   if (!comp) return comp.error();
   r->comp_.emplace(std::move(*comp));

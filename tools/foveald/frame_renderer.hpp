@@ -26,6 +26,7 @@ struct RenderOptions {
   int width = 0, height = 0;      ///< 0: the display model's side-by-side size
   int save_every = 0;             ///< also save every Nth frame (0: first and last only)
   bool window = false;
+  bool distortion = true;         ///< the display model's lens distortion, if any
   std::string monitor;            ///< fullscreen on this monitor (window mode)
 };
 

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   app.add_flag("!--window", o.headless, "Show the frames in a window (fullscreen with --monitor)");
   app.add_option("--monitor", o.monitor, "Window mode: fullscreen on the monitor whose name contains this");
   app.add_flag("!--no-render", o.render, "Run the gaze side only, no compositor");
+  app.add_flag("!--no-distortion", o.distortion, "Ignore the display model's lens distortion");
   app.add_option("--frames", o.frames, "Stop after this many frames (default: when the replay ends)");
   app.add_option("--fps", o.fps, "Headless frame rate (default: as fast as the renderer goes)")->check(CLI::Range(0.0, 1000.0));
   app.add_option("--scene", o.scene, "glTF file or pattern:NAME (default: the bundled Dungeon)");

@@ -26,6 +26,7 @@ struct Options {
   std::string size;           ///< WxH; empty: the display model's
   int save_every = 0;         ///< save every Nth frame as PNG (first and last always)
   std::string monitor;        ///< window mode: fullscreen on this monitor
+  bool distortion = true;     ///< apply the display model's lens distortion
   bool json = false;
   int verbosity = 0;          ///< +1 per -v, -1 per -q
   int rt_priority = 0;        ///< > 0: SCHED_FIFO for the gaze thread

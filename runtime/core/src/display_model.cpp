@@ -69,8 +69,25 @@ Status DisplayModel::validate(const std::string& where) const {
         return bad_input(where + ": " + eye_name(e) + " frustum tangents must be finite");
     if (!(f.tan_left < f.tan_right) || !(f.tan_bottom < f.tan_top))
       return bad_input(where + ": " + eye_name(e) + " frustum needs left < right and bottom < top");
+    const LensDistortion& d = distortion[static_cast<std::size_t>(e)];
+    const float dv[8] = {d.center.x, d.center.y, d.k1, d.k2, d.k3, d.channel_scale.x, d.channel_scale.y, d.channel_scale.z};
+    for (float x : dv)
+      if (!std::isfinite(x) || std::fabs(x) > 100.0f)
+        return bad_input(where + ": " + eye_name(e) + " distortion values must be finite");
+    if (d.center.x < 0 || d.center.x > 1 || d.center.y < 0 || d.center.y > 1)
+      return bad_input(where + ": " + eye_name(e) + " distortion center must lie in [0,1]");
+    if (!(d.channel_scale.x > 0 && d.channel_scale.y > 0 && d.channel_scale.z > 0))
+      return bad_input(where + ": " + eye_name(e) + " distortion channel_scale must be > 0");
   }
   return {};
+}
+
+glm::vec2 LensDistortion::source(glm::vec2 p, int c, const EyeFrustum& f) const {
+  const glm::vec2 span(f.tan_right - f.tan_left, f.tan_top - f.tan_bottom);
+  const glm::vec2 x = (p - center) * span;
+  const float r2 = x.x * x.x + x.y * x.y;
+  const float s = channel_scale[c] * (1.0f + r2 * (k1 + r2 * (k2 + r2 * k3)));
+  return center + x * s / span;
 }
 
 Result<DisplayModel> DisplayModel::load(const std::string& path) {
@@ -85,7 +102,20 @@ Result<DisplayModel> DisplayModel::load(const std::string& path) {
       else if (k == "eye_width") m.eye_width = it->get<int>();
       else if (k == "eye_height") m.eye_height = it->get<int>();
       else if (k == "ipd_mm") m.ipd_mm = it->get<float>();
-      else if (k == "format" || k == "source" || k == "distortion") continue;
+      else if (k == "format" || k == "source") continue;
+      else if (k == "distortion") {
+        for (Eye e : kEyes) {
+          const auto& d = it->at(eye_name(e));
+          LensDistortion& l = m.distortion[static_cast<std::size_t>(e)];
+          l.enabled = true;
+          l.center = {d.at("center").at(0).get<float>(), d.at("center").at(1).get<float>()};
+          const auto& k3 = d.at("k");
+          l.k1 = k3.at(0).get<float>(), l.k2 = k3.at(1).get<float>(), l.k3 = k3.at(2).get<float>();
+          if (d.contains("channel_scale"))
+            l.channel_scale = {d["channel_scale"].at(0).get<float>(), d["channel_scale"].at(1).get<float>(),
+                               d["channel_scale"].at(2).get<float>()};
+        }
+      }
       else if (k == "left" || k == "right") {
         EyeFrustum& f = m.frustum[k == "left" ? 0 : 1];
         const auto& t = it->at("tangents");
@@ -102,6 +132,26 @@ Result<DisplayModel> DisplayModel::load(const std::string& path) {
     return bad_input(path + ": field 'format' must be \"foveal-display-model v1\"");
   if (Status s = m.validate(path); !s) return s.error();
   return m;
+}
+
+glm::vec2 LensDistortion::panel(glm::vec2 src, int c, const EyeFrustum& f) const {
+  const glm::vec2 span(f.tan_right - f.tan_left, f.tan_top - f.tan_bottom);
+  const glm::vec2 y = (src - center) * span;
+  const float target = std::sqrt(y.x * y.x + y.y * y.y);
+  if (target == 0.0f) return center;
+  // Solve g(r) = scale·r·(1 + k1 r² + k2 r⁴ + k3 r⁶) = target for r >= 0.
+  const float sc = channel_scale[c];
+  float r = target / sc;
+  for (int i = 0; i < 30; ++i) {
+    const float r2 = r * r;
+    const float g = sc * r * (1 + r2 * (k1 + r2 * (k2 + r2 * k3))) - target;
+    const float dg = sc * (1 + r2 * (3 * k1 + r2 * (5 * k2 + r2 * 7 * k3)));
+    if (!(dg > 0)) return {kNaN, kNaN};
+    r -= g / dg;
+    if (std::fabs(g) < 1e-7f * target) break;
+  }
+  if (!(r >= 0) || !std::isfinite(r)) return {kNaN, kNaN};
+  return center + y * (r / target) / span;
 }
 
 }  // namespace foveal

@@ -46,6 +46,7 @@ struct CompositorOptions {
   bool float_output = false;  ///< RGBA32F reduced buffers and output (for NaN/Inf tests)
   int shadow_map_size = 2048;
   int point_lights = 64;
+  bool distortion = true;  ///< apply the display model's lens distortion, if it has one
 };
 
 /// Bytes held by the render targets right now.

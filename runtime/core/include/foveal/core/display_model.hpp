@@ -16,6 +16,23 @@ struct EyeFrustum {
   float tan_left = -1.0f, tan_right = 1.0f, tan_bottom = -1.0f, tan_top = 1.0f;
 };
 
+/// Radial lens distortion with per-channel scale (chromatic aberration), docs/display-model.md.
+/// For a panel pixel at normalised position p (origin top-left), with x = (p - center)
+/// in tangent units of the eye's frustum and r² = |x|², channel c shows the rendered
+/// (undistorted) image at center + x·scale[c]·(1 + k1 r² + k2 r⁴ + k3 r⁶).
+struct LensDistortion {
+  bool enabled = false;
+  glm::vec2 center{0.5f, 0.5f};  ///< lens centre, normalised viewport coordinates
+  float k1 = 0, k2 = 0, k3 = 0;
+  glm::vec3 channel_scale{1.0f};  ///< R, G, B
+
+  /// Where channel `c` of panel point `p` samples the rendered image (normalised).
+  glm::vec2 source(glm::vec2 p, int c, const EyeFrustum& f) const;
+  /// The inverse: the panel point whose channel `c` shows rendered point `src` (Newton
+  /// on the radius); NaN when the polynomial does not reach it.
+  glm::vec2 panel(glm::vec2 src, int c, const EyeFrustum& f) const;
+};
+
 /// Per-eye viewport size and projection. Pixel coordinates are those of the eye's
 /// viewport: origin at the top-left corner, x right, y down, pixel i covers [i, i+1).
 struct DisplayModel {
@@ -24,6 +41,7 @@ struct DisplayModel {
   int eye_height = 1600;
   float ipd_mm = 63.0f;
   std::array<EyeFrustum, 2> frustum{};
+  std::array<LensDistortion, 2> distortion{};  ///< disabled unless the model file has one
 
   const EyeFrustum& eye(Eye e) const { return frustum[static_cast<std::size_t>(e)]; }
   int output_width() const { return 2 * eye_width; }  ///< side by side, left eye left
