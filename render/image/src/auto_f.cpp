@@ -39,17 +39,22 @@ AxisMap axis_map(int screen, double sigma, double c, double f) {
   return m;
 }
 
+// The search sums the error over every second row and column (each of those pixels
+// predicted exactly): plenty to rank candidate f, 4× cheaper. The reported prediction
+// uses every pixel.
+constexpr int kSearchStride = 2;
+
 // Σ w²·err² over one eye of the predicted image (err² the mean over R, G, B), without
 // building the image.
 double weighted_error(const Image& eye, const std::vector<double>& w2, double sigma, double fx, double fy, double cx,
-                      double cy) {
+                      double cy, int stride) {
   const AxisMap mx = axis_map(eye.width, sigma, cx, fx), my = axis_map(eye.height, sigma, cy, fy);
   double sum = 0;
-  for (int y = 0; y < eye.height; ++y) {
+  for (int y = 0; y < eye.height; y += stride) {
     const std::size_t yy = static_cast<std::size_t>(y);
     const int r0 = my.source[static_cast<std::size_t>(my.lo[yy])], r1 = my.source[static_cast<std::size_t>(my.hi[yy])];
     const float ty = my.t[yy];
-    for (int x = 0; x < eye.width; ++x) {
+    for (int x = 0; x < eye.width; x += stride) {
       const std::size_t xx = static_cast<std::size_t>(x);
       const int c0 = mx.source[static_cast<std::size_t>(mx.lo[xx])], c1 = mx.source[static_cast<std::size_t>(mx.hi[xx])];
       const float tx = mx.t[xx];
@@ -111,17 +116,23 @@ Result<AutoF> estimate_rmfr_f(const Image& full, std::array<double, 2> sigma, co
   const Image eyes[2] = {crop(full, Rect{0, 0, w, full.height}), crop(full, Rect{w, 0, w, full.height})};
   const NormPoint foveae[2] = {mo.fovea, mo.fovea_right};
   std::vector<double> w2[2];
-  double weight_total = 0;
+  double weight_total[2] = {0, 0};  // over the search's pixels, over every pixel
   for (int e = 0; e < 2; ++e) {
     w2[e] = weights_squared(w, full.height, foveae[e].x, foveae[e].y, mo.ppd);
-    for (double v : w2[e]) weight_total += v;
+    for (int y = 0; y < full.height; ++y)
+      for (int x = 0; x < w; ++x) {
+        const double v = w2[e][static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
+        weight_total[1] += v;
+        if (y % kSearchStride == 0 && x % kSearchStride == 0) weight_total[0] += v;
+      }
   }
   AutoF r;
-  auto fmse = [&](double fx, double fy) {
+  auto fmse = [&](double fx, double fy, int stride = kSearchStride) {
     ++r.evaluations;
     double s = 0;
-    for (int e = 0; e < 2; ++e) s += weighted_error(eyes[e], w2[e], sigma[static_cast<std::size_t>(e)], fx, fy, foveae[e].x, foveae[e].y);
-    return s / weight_total;
+    for (int e = 0; e < 2; ++e)
+      s += weighted_error(eyes[e], w2[e], sigma[static_cast<std::size_t>(e)], fx, fy, foveae[e].x, foveae[e].y, stride);
+    return s / weight_total[stride == 1 ? 1 : 0];
   };
   // Coordinate search on log f: golden-section along x, then y, twice.
   const double lo = std::log(0.05), hi = std::log(1.0), g = (std::sqrt(5.0) - 1) / 2;
@@ -131,7 +142,7 @@ Result<AutoF> estimate_rmfr_f(const Image& full, std::array<double, 2> sigma, co
       double a = lo, b = hi;
       auto eval = [&](double v) { return axis == 0 ? fmse(std::exp(v), std::exp(ly)) : fmse(std::exp(lx), std::exp(v)); };
       double c = b - g * (b - a), d = a + g * (b - a), fc = eval(c), fd = eval(d);
-      for (int i = 0; i < 10; ++i) {
+      for (int i = 0; i < 7; ++i) {  // the bracket shrinks to 3% of ln(20): f within ±5%
         if (fc < fd) {  // the minimum lies in [a, d]
           b = d, d = c, fd = fc;
           c = b - g * (b - a), fc = eval(c);
@@ -144,7 +155,7 @@ Result<AutoF> estimate_rmfr_f(const Image& full, std::array<double, 2> sigma, co
     }
   r.fx = std::exp(lx);
   r.fy = std::exp(ly);
-  const double m = fmse(r.fx, r.fy);
+  const double m = fmse(r.fx, r.fy, 1);
   r.predicted_fpsnr_db = m > 0 ? 10 * std::log10(255.0 * 255.0 / m) : INFINITY;
   r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return r;
