@@ -27,23 +27,35 @@ def read(path):
         return list(csv.DictReader(f))
 
 
-def pareto(rows, out):
+def scene_axes(n, width, height):
+    """One panel per scene, three to a row; unused panels hidden."""
+    cols = min(3, n)
+    nrows = (n + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(width * cols, height * nrows), squeeze=False)
+    flat = [ax for row in axes for ax in row]
+    for ax in flat[n:]:
+        ax.axis("off")
+    return fig, flat
+
+
+def pareto(rows, out, x_key="gpu_ms", x_label="GPU frame time (ms, median)", title="quality against frame time"):
     scenes = sorted({r["scene"] for r in rows})
-    fig, axes = plt.subplots(1, len(scenes), figsize=(5.5 * len(scenes), 4.5), squeeze=False)
-    for ax, scene in zip(axes[0], scenes):
+    fig, flat = scene_axes(len(scenes), 5.5, 4.5)
+    for ax, scene in zip(flat, scenes):
         srows = [r for r in rows if r["scene"] == scene]
         for method in COLORS:
-            m = sorted((r for r in srows if r["method"] == method), key=lambda r: num(r["gpu_ms"]))
+            # Levels in order of σ: timings are noisy, the level order is not.
+            m = sorted((r for r in srows if r["method"] == method), key=lambda r: -num(r["sigma"]))
             if not m:
                 continue
-            xs = [num(r["gpu_ms"]) for r in m]
+            xs = [num(r[x_key]) for r in m]
             ys = [min(num(r["fpsnr_db"]), 60.0) for r in m]
             if method == "full":
                 ax.scatter(xs, ys, marker="*", s=120, color=COLORS[method], label="full (reference, ∞ dB shown at 60)")
             else:
                 ax.plot(xs, ys, "o-", color=COLORS[method], label=method, markersize=4)
-        ax.set_title(f"{scene}: quality against frame time")
-        ax.set_xlabel("GPU frame time (ms, median)")
+        ax.set_title(f"{scene}: {title}")
+        ax.set_xlabel(x_label)
         ax.set_ylabel("FPSNR (dB)")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
@@ -53,8 +65,8 @@ def pareto(rows, out):
 
 def fgrid(rows, autos, out):
     scenes = sorted({r["scene"] for r in rows})
-    fig, axes = plt.subplots(1, len(scenes), figsize=(5 * len(scenes), 4.3), squeeze=False)
-    for ax, scene in zip(axes[0], scenes):
+    fig, flat = scene_axes(len(scenes), 5.0, 4.3)
+    for ax, scene in zip(flat, scenes):
         s = [r for r in rows if r["scene"] == scene]
         fxs = sorted({num(r["fx"]) for r in s})
         fys = sorted({num(r["fy"]) for r in s})
@@ -169,6 +181,7 @@ def main():
     d = sys.argv[1]
     rows = read(os.path.join(d, "bench.csv"))
     pareto(rows, os.path.join(d, "pareto.png"))
+    pareto(rows, os.path.join(d, "quality_cost.png"), "cost", "shaded samples / full (theoretical cost)", "quality against shading cost")
     table(rows, os.path.join(d, "table.md"))
     autos = []
     if os.path.exists(os.path.join(d, "bench.json")):
