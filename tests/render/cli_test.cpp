@@ -93,3 +93,19 @@ TEST(BenchCli, FlickerOfRmfrIsLowerWithTheGazeFilter) {
   EXPECT_EQ(value("full,1,raw"), 0.0);  // a static scene at full rate does not flicker
   EXPECT_NE(test::read_file(d.path("b/bench.csv")).find("rmfr,2,"), std::string::npos);
 }
+
+TEST(FovealdSoak, FiveMinutesOfGazeAtSpeed100KeepMemoryAndDescriptorsFlat) {
+  // The short version of the soak (docs/stability.md has the one-hour command).
+  test::TempDir d;
+  ASSERT_EQ(test::run(test::bin("foveal") + " synth --seed 5 --duration 300 --out " + d.path("g.csv")).exit_code, 0);
+  auto r = test::run("XDG_CONFIG_HOME=" + d.path("cfg") + " " + test::bin("foveald") + " --replay " + d.path("g.csv") +
+                     " --speed 100 --size 64x36 --scene pattern:checker --no-control --no-shm -q --json --out " + d.path("out"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // nothing logged at warning level or above
+  const auto j = nlohmann::json::parse(test::read_file(d.path("out/summary.json")));
+  ASSERT_TRUE(j.contains("resources")) << "fewer than 100 frames rendered";
+  EXPECT_EQ(j["samples"].get<int>(), 36000);
+  EXPECT_GT(j["render"]["frames"].get<int>(), 200);
+  EXPECT_LT(j["resources"]["rss_growth_mb"].get<double>(), 2.0);
+  EXPECT_LE(j["resources"]["end"]["fds"].get<int>(), j["resources"]["warm"]["fds"].get<int>());
+}

@@ -20,6 +20,7 @@ namespace foveal::daemon {
 namespace {
 
 constexpr const char* kDefaultLog = "data/gaze/vive_pro_eye_TESTNA01.csv";
+constexpr std::uint64_t kWarmupFrames = 100;  // caches, driver pools and histograms are full by then
 
 double peak_rss_mb() {
   rusage ru{};
@@ -34,6 +35,15 @@ double current_rss_mb() {
     std::fclose(f);
   }
   return static_cast<double>(resident) * static_cast<double>(::sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+}
+
+int open_fds() {
+  std::error_code ec;
+  int n = 0;
+  for (auto it = std::filesystem::directory_iterator("/proc/self/fd", ec); !ec && it != std::filesystem::directory_iterator();
+       it.increment(ec))
+    ++n;
+  return n;
 }
 
 nlohmann::json fovea_json(const FoveaFrame& f) {
@@ -247,6 +257,11 @@ nlohmann::json DaemonApp::summary_json() const {
   j["display_model"] = model_.name;
   j["trace"] = o_.out + "/trace.csv";
   j["peak_rss_mb"] = peak_rss_mb();
+  // Soak figures: resident memory and open descriptors after warm-up and at the end.
+  if (warm_rss_mb_ >= 0)
+    j["resources"] = {{"warm", {{"rss_mb", warm_rss_mb_}, {"fds", warm_fds_}}},
+                      {"end", {{"rss_mb", current_rss_mb()}, {"fds", open_fds()}}},
+                      {"rss_growth_mb", current_rss_mb() - warm_rss_mb_}};
   if (pacing_.count() > 0)
     j["pacing_error_ms"] = {{"p50", ms(pacing_.percentile(0.5))}, {"p99", ms(pacing_.percentile(0.99))},
                             {"max", ms(pacing_.max())}};
@@ -291,6 +306,7 @@ int DaemonApp::run() {
         rc = cli::report(s.error(), "foveald");
         break;
       }
+      if (renderer_->frames() == kWarmupFrames) warm_rss_mb_ = current_rss_mb(), warm_fds_ = open_fds();
       if ((o_.frames > 0 && renderer_->frames() >= o_.frames) || renderer_->window_closed()) break;
       if (o_.fps > 0) {
         next_frame += static_cast<TimeNs>(1e9 / o_.fps);

@@ -52,6 +52,8 @@ class DaemonApp {
   std::unique_ptr<FrameRenderer> renderer_;  // main thread only
   LatencyHistogram pacing_;  // gaze thread only until the loop has stopped
   bool terminated_ = false;  // stopped by SIGINT/SIGTERM
+  double warm_rss_mb_ = -1;  // resident memory and fds after the warm-up frames
+  int warm_fds_ = 0;
   TimeNs started_ = 0;
   TimeNs last_status_ = 0;
 };
