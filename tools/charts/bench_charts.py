@@ -73,8 +73,11 @@ def fgrid(rows, autos, out):
         grid = [[math.nan] * len(fxs) for _ in fys]
         for r in s:
             grid[fys.index(num(r["fy"]))][fxs.index(num(r["fx"]))] = num(r["fpsnr_db"])
+        # Cells centred on the grid values.
+        dx = (fxs[-1] - fxs[0]) / max(len(fxs) - 1, 1) / 2
+        dy = (fys[-1] - fys[0]) / max(len(fys) - 1, 1) / 2
         im = ax.imshow(grid, origin="lower", cmap="viridis", aspect="auto",
-                       extent=[fxs[0], fxs[-1], fys[0], fys[-1]])
+                       extent=[fxs[0] - dx, fxs[-1] + dx, fys[0] - dy, fys[-1] + dy])
         fig.colorbar(im, ax=ax, label="FPSNR (dB)")
         for a in autos:
             if a["scene"] == scene:
