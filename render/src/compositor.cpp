@@ -120,7 +120,6 @@ struct Compositor::Impl {
   std::array<std::optional<detail::ColorTarget>, 2> reduced;
   detail::ColorTarget output, shadow;
   std::array<EyePlan, 2> plans{};
-  bool shadow_used = false;
   PassTimer timer;
 
   GLenum reduced_format() const { return opt.float_output ? GL_RGBA32F : GL_SRGB8_ALPHA8; }
@@ -259,8 +258,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
   m.timer.mark(Pass::shadow);
 
   LightBlock lights = make_light_rig(scene.bounds, m.opt.point_lights);
-  m.shadow_used = !scene.is_pattern();
-  if (m.shadow_used) {
+  if (!scene.is_pattern()) {  // patterns are unlit: no shadow pass
     m.shadow_pass(scene);
     m.timer.mark(Pass::shadow);
   } else {

@@ -123,7 +123,9 @@ int run(const Args& a) {
                 comp->height(), comp->renderer().c_str(), a.out.c_str());
     for (Eye e : kEyes) {
       const auto b = comp->buffer_size(e);
-      std::printf("  %-5s sigma %.2f  buffer %dx%d\n", eye_name(e), setup->frame.eyes[static_cast<std::size_t>(e)].sigma, b[0], b[1]);
+      const render::EyePlan& plan = comp->plan(e);
+      std::printf("  %-5s %s  buffer %dx%d  shaded %zu\n", eye_name(e), render::method_name(plan.method), b[0], b[1],
+                  plan.shaded_samples());
     }
     std::printf("  ms (median of %d): shadow %.2f  G-buffer %.2f  mapping %.2f  lighting %.2f  inverse %.2f  GPU total %.2f  CPU frame %.2f\n",
                 a.frames, med(&PT::shadow), med(&PT::gbuffer), med(&PT::mapping), med(&PT::lighting), med(&PT::inverse),
