@@ -6,7 +6,7 @@
 
 layout(binding = 0) uniform sampler2D u_reduced;
 uniform ivec2 u_origin;  // the eye's viewport origin in the output
-uniform bool u_distortion;
+// With DISTORTION defined (a separate program, see mapping.glsl on branches):
 uniform vec2 u_lens_center;  // GL frame, normalised
 uniform vec3 u_lens_k;       // k1, k2, k3
 uniform vec3 u_lens_scale;   // per channel
@@ -15,10 +15,9 @@ layout(location = 0) out vec4 o_color;
 
 void main() {
   vec2 p = gl_FragCoord.xy - vec2(u_origin);
-  if (!u_distortion) {
-    o_color = resolve(u_reduced, p);
-    return;
-  }
+#ifndef DISTORTION
+  o_color = resolve(u_reduced, p);
+#else
   vec2 span = vec2(u_tan.y - u_tan.x, u_tan.w - u_tan.z);
   vec2 x = (p / u_screen_size - u_lens_center) * span;
   float r2 = dot(x, x);
@@ -30,4 +29,5 @@ void main() {
     rgb[c] = inside ? resolve(u_reduced, src * u_screen_size)[c] : 0.0;
   }
   o_color = vec4(rgb, 1.0);
+#endif
 }

@@ -85,9 +85,13 @@ class PassTimer {
 }  // namespace
 
 // The mapping uniforms of shaders/common/mapping.glsl for one eye's plan.
+// The MAPPING variant of the mapping-dependent programs (shaders/common/mapping.glsl).
+std::size_t mapping_index(const EyePlan& plan) {
+  if (plan.method == Method::kfr) return 1;
+  return plan.layers.empty() ? 0 : 2;
+}
+
 void set_mapping(GLuint p, const EyePlan& plan, glm::vec2 texture_size) {
-  const bool layered = plan.method == Method::hyperbolic || plan.method == Method::linear;
-  set(p, "u_mapping", plan.method == Method::kfr ? 1 : layered ? 2 : 0);
   const bool full = plan.method == Method::full;
   set(p, "u_buffer_size", glm::vec2(plan.buffer_w, plan.buffer_h));
   set(p, "u_texture_size", texture_size);
@@ -112,7 +116,10 @@ void set_mapping(GLuint p, const EyePlan& plan, glm::vec2 texture_size) {
 struct Compositor::Impl {
   CompositorOptions opt;
   int eye_w = 0, eye_h = 0;
-  gl::Program gbuffer_prog, pattern_prog, shadow_prog, map_prog, lighting_prog, inverse_prog;
+  gl::Program gbuffer_prog, pattern_prog, shadow_prog;
+  // One per MAPPING (0 RMFR/full, 1 KFR, 2 layers); resolve also with and without the lens.
+  std::array<gl::Program, 3> map_progs, lighting_progs;
+  std::array<std::array<gl::Program, 2>, 3> resolve_progs;
   gl::VertexArray empty_vao;
   gl::Buffer lights_ubo;
   detail::SurfaceTargets gbuffer;
@@ -183,8 +190,7 @@ struct Compositor::Impl {
 
   // Lighting from `src` (G-buffer or reduced buffer) into the bound framebuffer, with
   // the mapping uniforms already set on the program.
-  void lighting_pass(const detail::SurfaceTargets& src, glm::ivec2 origin, const EyeView& v) {
-    const GLuint p = lighting_prog.id();
+  void lighting_pass(GLuint p, const detail::SurfaceTargets& src, glm::ivec2 origin, const EyeView& v) {
     glUseProgram(p);
     set(p, "u_origin", origin);
     set(p, "u_inv_view_proj", v.inv_view_proj);
@@ -216,8 +222,8 @@ Result<Compositor> Compositor::create(const CompositorOptions& o, const gl::Shad
   impl->opt = o;
   impl->eye_w = o.width / 2;
   impl->eye_h = o.height;
-  auto build = [&](gl::Program& out, std::vector<gl::ShaderStage> stages) -> Status {
-    auto p = shaders.program(stages);
+  auto build = [&](gl::Program& out, std::vector<gl::ShaderStage> stages, const std::string& defines = {}) -> Status {
+    auto p = shaders.program(stages, defines);
     if (!p) return p.error();
     out = std::move(*p);
     return {};
@@ -226,12 +232,20 @@ Result<Compositor> Compositor::create(const CompositorOptions& o, const gl::Shad
       {&impl->gbuffer_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "gbuffer.frag"}}},
       {&impl->pattern_prog, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "pattern.frag"}}},
       {&impl->shadow_prog, {{GL_VERTEX_SHADER, "shadow.vert"}}},
-      {&impl->map_prog, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "map.frag"}}},
-      {&impl->lighting_prog, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}}},
-      {&impl->inverse_prog, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "resolve.frag"}}},
   };
   for (const auto& [prog, stages] : programs)
     if (Status s = build(*prog, stages); !s) return s.error();
+  for (std::size_t m = 0; m < 3; ++m) {
+    const std::string mapping = "#define MAPPING " + std::to_string(m) + "\n";
+    const gl::ShaderStage vert{GL_VERTEX_SHADER, "fullscreen.vert"};
+    if (Status s = build(impl->map_progs[m], {vert, {GL_FRAGMENT_SHADER, "map.frag"}}, mapping); !s) return s.error();
+    if (Status s = build(impl->lighting_progs[m], {vert, {GL_FRAGMENT_SHADER, "lighting.frag"}}, mapping); !s) return s.error();
+    for (std::size_t lens = 0; lens < 2; ++lens)
+      if (Status s = build(impl->resolve_progs[m][lens], {vert, {GL_FRAGMENT_SHADER, "resolve.frag"}},
+                           mapping + (lens ? "#define DISTORTION 1\n" : ""));
+          !s)
+        return s.error();
+  }
 
   impl->empty_vao = gl::VertexArray::create();
   impl->lights_ubo = gl::Buffer::create();
@@ -299,8 +313,9 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     if (plan.method == Method::full) {
       glBindFramebuffer(GL_FRAMEBUFFER, m.output.fbo.id());
       glViewport(eye_origin.x, eye_origin.y, m.eye_w, m.eye_h);
-      set_mapping(m.lighting_prog.id(), plan, glm::vec2(m.eye_w, m.eye_h));
-      m.lighting_pass(m.gbuffer, eye_origin, view);
+      const GLuint lp = m.lighting_progs[0].id();
+      set_mapping(lp, plan, glm::vec2(m.eye_w, m.eye_h));
+      m.lighting_pass(lp, m.gbuffer, eye_origin, view);
       m.timer.mark(Pass::lighting);
       continue;
     }
@@ -319,7 +334,8 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
 
     // Mapping: G-buffer -> reduced G-buffer.
     glBindFramebuffer(GL_FRAMEBUFFER, tg.fbo.id());
-    const GLuint mp = m.map_prog.id();
+    const std::size_t variant = mapping_index(plan);
+    const GLuint mp = m.map_progs[variant].id();
     glUseProgram(mp);
     set_mapping(mp, plan, texture_size);
     m.gbuffer.bind_textures();
@@ -333,11 +349,12 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
 
     // Lighting on the reduced buffer.
     glBindFramebuffer(GL_FRAMEBUFFER, rs.fbo.id());
-    set_mapping(m.lighting_prog.id(), plan, texture_size);
+    const GLuint lp = m.lighting_progs[variant].id();
+    set_mapping(lp, plan, texture_size);
     for (std::size_t r = 0; r < regions.size(); ++r) {
       glViewport(regions[r].x, regions[r].y, regions[r].z, regions[r].w);
-      set(m.lighting_prog.id(), "u_layer", static_cast<int>(r));
-      m.lighting_pass(tg, glm::ivec2(0), view);
+      set(lp, "u_layer", static_cast<int>(r));
+      m.lighting_pass(lp, tg, glm::ivec2(0), view);
     }
     m.timer.mark(Pass::lighting);
 
@@ -345,11 +362,10 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     glBindFramebuffer(GL_FRAMEBUFFER, m.output.fbo.id());
     glViewport(eye_origin.x, eye_origin.y, m.eye_w, m.eye_h);
     glTextureParameteri(rs.texture.id(), GL_TEXTURE_WRAP_T, plan.method == Method::kfr ? GL_REPEAT : GL_CLAMP_TO_EDGE);
-    const GLuint ip = m.inverse_prog.id();
+    const GLuint ip = m.resolve_progs[variant][distort ? 1 : 0].id();
     glUseProgram(ip);
     set_mapping(ip, plan, texture_size);
     set(ip, "u_origin", eye_origin);
-    set(ip, "u_distortion", distort ? 1 : 0);
     set(ip, "u_lens_center", glm::vec2(lens.center.x, 1.0f - lens.center.y));
     set(ip, "u_lens_k", glm::vec3(lens.k1, lens.k2, lens.k3));
     set(ip, "u_lens_scale", lens.channel_scale);

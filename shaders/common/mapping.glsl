@@ -3,13 +3,17 @@
 // Screen positions are eye-viewport pixels in GL's frame (origin bottom-left).
 #include "common/rmfr.glsl"
 
-const int MAPPING_RMFR = 0;    // also full (f = 1e30: identity)
-const int MAPPING_KFR = 1;     // kernel log-polar
-const int MAPPING_LAYERS = 2;  // hyperbolic / linear fall-off: nested rectangles
+// One program per mapping (the compositor defines MAPPING): a software rasteriser runs
+// every side of a branch, even a uniform one, so the choice is made at compile time.
+#define MAPPING_RMFR 0    // also full (f = 1e30: identity)
+#define MAPPING_KFR 1     // kernel log-polar
+#define MAPPING_LAYERS 2  // hyperbolic / linear fall-off: nested rectangles
+#ifndef MAPPING
+#define MAPPING MAPPING_RMFR
+#endif
 const int MAX_LAYERS = 8;
 const float PI_F = 3.14159265359;
 
-uniform int u_mapping;
 uniform vec2 u_buffer_size;   // texels in use
 uniform vec2 u_texture_size;  // texels allocated (layers: the atlas may be larger)
 uniform vec2 u_screen_size;
@@ -27,19 +31,19 @@ ivec2 clamp_pixel(vec2 p) { return clamp(ivec2(floor(p)), ivec2(0), ivec2(u_scre
 
 // The screen pixel whose G-buffer sample fills `texel`.
 ivec2 source_pixel(ivec2 texel) {
-  if (u_mapping == MAPPING_KFR) {
-    vec2 uv = (vec2(texel) + 0.5) / u_buffer_size;
-    float r = exp(u_kfr.x * pow(uv.x, u_kfr.y));
-    float theta = 2.0 * PI_F * uv.y;
-    return clamp_pixel(u_fovea * u_screen_size + r * vec2(cos(theta), sin(theta)));
-  }
-  if (u_mapping == MAPPING_LAYERS) {
-    vec4 rect = u_layer_rect[u_layer], atlas = u_layer_atlas[u_layer];
-    vec2 local = vec2(texel) - vec2(0.0, atlas.x) + 0.5;
-    vec2 p = rect.xy + min(local * atlas.w, rect.zw - 0.5);
-    return clamp_pixel(p);
-  }
+#if MAPPING == MAPPING_KFR
+  vec2 uv = (vec2(texel) + 0.5) / u_buffer_size;
+  float r = exp(u_kfr.x * pow(uv.x, u_kfr.y));
+  float theta = 2.0 * PI_F * uv.y;
+  return clamp_pixel(u_fovea * u_screen_size + r * vec2(cos(theta), sin(theta)));
+#elif MAPPING == MAPPING_LAYERS
+  vec4 rect = u_layer_rect[u_layer], atlas = u_layer_atlas[u_layer];
+  vec2 local = vec2(texel) - vec2(0.0, atlas.x) + 0.5;
+  vec2 p = rect.xy + min(local * atlas.w, rect.zw - 0.5);
+  return clamp_pixel(p);
+#else
   return rmfr_source_pixel(texel, u_buffer_size, u_screen_size, u_fovea, u_f);
+#endif
 }
 
 vec3 view_ray(vec2 p_norm) {
@@ -60,26 +64,26 @@ vec4 sample_layer(sampler2D reduced, int i, vec2 p) {
 // The lit colour of screen pixel centre p, read from the eye's reduced buffer.
 vec4 resolve(sampler2D reduced, vec2 p) {
   vec2 p_norm = p / u_screen_size;
-  if (u_mapping == MAPPING_KFR) {
-    vec2 d = p - u_fovea * u_screen_size;
-    float r = max(length(d), 1.0);
-    float u = pow(log(r) / u_kfr.x, 1.0 / u_kfr.y);
-    float v = fract(atan(d.y, d.x) / (2.0 * PI_F));  // the sampler repeats in v: no seam
-    return texture(reduced, vec2(u, v) * u_buffer_size / u_texture_size);
-  }
-  if (u_mapping == MAPPING_LAYERS) {
-    // The innermost layer that serves this eccentricity, blended into the next one over
-    // the last 15% of its range so the rate change leaves no visible edge.
-    float e = eccentricity_deg(p_norm);
-    for (int i = 0; i < u_layer_count - 1; ++i) {
-      float e_max = u_layer_ecc[i];
-      if (e < e_max) {
-        vec4 c = sample_layer(reduced, i, p);
-        float t = smoothstep(0.85 * e_max, e_max, e);
-        return t > 0.0 ? mix(c, sample_layer(reduced, i + 1, p), t) : c;
-      }
+#if MAPPING == MAPPING_KFR
+  vec2 d = p - u_fovea * u_screen_size;
+  float r = max(length(d), 1.0);
+  float u = pow(log(r) / u_kfr.x, 1.0 / u_kfr.y);
+  float v = fract(atan(d.y, d.x) / (2.0 * PI_F));  // the sampler repeats in v: no seam
+  return texture(reduced, vec2(u, v) * u_buffer_size / u_texture_size);
+#elif MAPPING == MAPPING_LAYERS
+  // The innermost layer that serves this eccentricity, blended into the next one over
+  // the last 15% of its range so the rate change leaves no visible edge.
+  float e = eccentricity_deg(p_norm);
+  for (int i = 0; i < u_layer_count - 1; ++i) {
+    float e_max = u_layer_ecc[i];
+    if (e < e_max) {
+      vec4 c = sample_layer(reduced, i, p);
+      float t = smoothstep(0.85 * e_max, e_max, e);
+      return t > 0.0 ? mix(c, sample_layer(reduced, i + 1, p), t) : c;
     }
-    return sample_layer(reduced, u_layer_count - 1, p);
   }
+  return sample_layer(reduced, u_layer_count - 1, p);
+#else
   return texture(reduced, rmfr_forward(p_norm, u_fovea, u_f));
+#endif
 }
