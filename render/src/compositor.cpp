@@ -1,5 +1,6 @@
 #include "foveal/render/compositor.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -25,6 +26,23 @@ FrameParams efr_frame(Method method, Eye dominant, double sigma_d, double sigma_
     f.fy = fy;
   }
   return p;
+}
+
+PassTimes median_pass_times(const std::vector<PassTimes>& frames) {
+  PassTimes m;
+  if (frames.empty()) return m;
+  auto median = [&](double PassTimes::*field) {
+    std::vector<double> v;
+    for (const PassTimes& t : frames) v.push_back(t.*field);
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  };
+  for (double PassTimes::*f : {&PassTimes::shadow, &PassTimes::gbuffer, &PassTimes::mapping, &PassTimes::lighting,
+                               &PassTimes::inverse, &PassTimes::gpu_total, &PassTimes::cpu})
+    m.*f = median(f);
+  m.shaded_samples = frames.back().shaded_samples;
+  return m;
 }
 
 namespace {

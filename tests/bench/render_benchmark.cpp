@@ -50,11 +50,6 @@ struct Fixture {
   }
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[v.size() / 2];
-}
-
 void BM_FullVsRmfrEfr(benchmark::State& state) {
   static Fixture f;
   if (!f.error.empty()) {
@@ -81,27 +76,24 @@ void BM_FullVsRmfrEfr(benchmark::State& state) {
     tr.push_back(*b);
     tl.push_back(*c);
   }
-  auto med = [](const std::vector<render::PassTimes>& v, double render::PassTimes::*field) {
-    std::vector<double> x;
-    for (const auto& t : v) x.push_back(t.*field);
-    return median(x);
-  };
+  const render::PassTimes mf = render::median_pass_times(tf), mr = render::median_pass_times(tr),
+                          ml = render::median_pass_times(tl);
   using PT = render::PassTimes;
   const std::pair<const char*, double PT::*> passes[] = {{"shadow", &PT::shadow},     {"gbuffer", &PT::gbuffer},
                                                          {"mapping", &PT::mapping},   {"lighting", &PT::lighting},
                                                          {"inverse", &PT::inverse},   {"gpu_total", &PT::gpu_total},
                                                          {"cpu_frame", &PT::cpu}};
   for (const auto& [name, field] : passes) {
-    state.counters[std::string("full_") + name + "_ms"] = med(tf, field);
-    state.counters[std::string("rmfr_") + name + "_ms"] = med(tr, field);
+    state.counters[std::string("full_") + name + "_ms"] = mf.*field;
+    state.counters[std::string("rmfr_") + name + "_ms"] = mr.*field;
   }
   // Lens correction folded into the inverse pass: its extra cost, no extra pass.
-  state.counters["rmfr_lens_inverse_ms"] = med(tl, &PT::inverse);
-  state.counters["rmfr_lens_gpu_total_ms"] = med(tl, &PT::gpu_total);
-  state.counters["lighting_speedup"] = med(tf, &PT::lighting) / med(tr, &PT::lighting);
+  state.counters["rmfr_lens_inverse_ms"] = ml.inverse;
+  state.counters["rmfr_lens_gpu_total_ms"] = ml.gpu_total;
+  state.counters["lighting_speedup"] = mf.lighting / mr.lighting;
   state.counters["lighting_theory"] = 2.0 / (1.0 / (sigma_d * sigma_d) + 1.0 / (sigma_nd * sigma_nd));
-  state.counters["gpu_total_speedup"] = med(tf, &PT::gpu_total) / med(tr, &PT::gpu_total);
-  state.counters["cpu_frame_speedup"] = med(tf, &PT::cpu) / med(tr, &PT::cpu);
+  state.counters["gpu_total_speedup"] = mf.gpu_total / mr.gpu_total;
+  state.counters["cpu_frame_speedup"] = mf.cpu / mr.cpu;
   state.counters["targets_MB"] = static_cast<double>(f.comp->memory().total()) / 1e6;
   state.counters["textures_MB"] = static_cast<double>(f.scene->texture_bytes) / 1e6;
   rusage ru{};

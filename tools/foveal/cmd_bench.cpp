@@ -49,12 +49,6 @@ struct Args {
   std::string grid_values = "0.1:0.5:0.05";
 };
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 std::string num(double v) {
   if (std::isinf(v)) return "inf";
   std::ostringstream s;
@@ -89,9 +83,8 @@ Result<std::vector<double>> parse_range(const std::string& s, const std::string&
 }
 
 struct Measured {
-  render::PassTimes median;
+  render::PassTimes median;  ///< its shaded_samples: the samples every frame shades
   image::Image image;
-  std::size_t shaded = 0;
 };
 
 class Bench {
@@ -109,15 +102,7 @@ class Bench {
     }
     progress_.update(++done_);
     Measured m;
-    auto med = [&](double render::PassTimes::*field) {
-      std::vector<double> v;
-      for (const auto& x : t) v.push_back(x.*field);
-      return median(v);
-    };
-    using PT = render::PassTimes;
-    m.median = {med(&PT::shadow), med(&PT::gbuffer), med(&PT::mapping), med(&PT::lighting), med(&PT::inverse),
-                med(&PT::gpu_total), med(&PT::cpu), t.back().shaded_samples};
-    m.shaded = t.back().shaded_samples;
+    m.median = render::median_pass_times(t);
     m.image = comp_.read_image();
     return m;
   }
@@ -282,11 +267,11 @@ int run(const Args& a) {
       if (!q) return q.error();
       const auto& c = q->combined;
       const render::PassTimes& t = r.median;
-      csv += name + "," + render::method_name(m) + "," + num(sigma) + "," + std::to_string(r.shaded) + "," +
-             num(static_cast<double>(r.shaded) / full_samples) + "," + num(t.gpu_total) + "," + num(t.cpu) + "," +
+      csv += name + "," + render::method_name(m) + "," + num(sigma) + "," + std::to_string(r.median.shaded_samples) + "," +
+             num(static_cast<double>(r.median.shaded_samples) / full_samples) + "," + num(t.gpu_total) + "," + num(t.cpu) + "," +
              num(t.shadow) + "," + num(t.gbuffer) + "," + num(t.mapping) + "," + num(t.lighting) + "," + num(t.inverse) +
              "," + num(c.psnr_db) + "," + num(c.ssim) + "," + num(c.fpsnr_db) + "\n";
-      rows.push_back({{"scene", name}, {"method", render::method_name(m)}, {"sigma", sigma}, {"shaded_samples", r.shaded},
+      rows.push_back({{"scene", name}, {"method", render::method_name(m)}, {"sigma", sigma}, {"shaded_samples", r.median.shaded_samples},
                       {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu},
                       {"passes_ms", {{"shadow", t.shadow}, {"gbuffer", t.gbuffer}, {"mapping", t.mapping},
                                      {"lighting", t.lighting}, {"inverse", t.inverse}}},

@@ -27,12 +27,6 @@ struct Args {
   bool json = false;
 };
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 double mb(std::size_t bytes) { return static_cast<double>(bytes) / (1024.0 * 1024.0); }
 
 int run(const Args& a) {
@@ -74,12 +68,7 @@ int run(const Args& a) {
   const image::Image img = comp->read_image();
   if (Status s = image::save_png(a.out, img); !s) return cli::report(s.error());
 
-  auto med = [&](double render::PassTimes::*field) {
-    std::vector<double> v;
-    for (const auto& t : times) v.push_back(t.*field);
-    return median(v);
-  };
-  using PT = render::PassTimes;
+  const render::PassTimes med = render::median_pass_times(times);
   const render::TargetMemory mem = comp->memory();
   rusage ru{};
   ::getrusage(RUSAGE_SELF, &ru);
@@ -107,9 +96,9 @@ int run(const Args& a) {
       {"eyes", eyes},
       {"renderer", comp->renderer()},
       {"frames", a.frames},
-      {"passes_ms", {{"shadow", med(&PT::shadow)}, {"gbuffer", med(&PT::gbuffer)}, {"mapping", med(&PT::mapping)},
-                     {"lighting", med(&PT::lighting)}, {"inverse", med(&PT::inverse)}, {"gpu_total", med(&PT::gpu_total)},
-                     {"cpu_frame", med(&PT::cpu)}}},
+      {"passes_ms", {{"shadow", med.shadow}, {"gbuffer", med.gbuffer}, {"mapping", med.mapping},
+                     {"lighting", med.lighting}, {"inverse", med.inverse}, {"gpu_total", med.gpu_total},
+                     {"cpu_frame", med.cpu}}},
       {"targets_mb", {{"gbuffer", mb(mem.gbuffer)}, {"transformed", mb(mem.transformed)}, {"reduced", mb(mem.reduced)},
                       {"output", mb(mem.output)}, {"shadow", mb(mem.shadow)}, {"total", mb(mem.total())}}},
       {"textures_mb", mb(scene->texture_bytes)},
@@ -128,8 +117,8 @@ int run(const Args& a) {
                   plan.shaded_samples());
     }
     std::printf("  ms (median of %d): shadow %.2f  G-buffer %.2f  mapping %.2f  lighting %.2f  inverse %.2f  GPU total %.2f  CPU frame %.2f\n",
-                a.frames, med(&PT::shadow), med(&PT::gbuffer), med(&PT::mapping), med(&PT::lighting), med(&PT::inverse),
-                med(&PT::gpu_total), med(&PT::cpu));
+                a.frames, med.shadow, med.gbuffer, med.mapping, med.lighting, med.inverse,
+                med.gpu_total, med.cpu);
     std::printf("  render targets %.1f MB, textures %.1f MB, peak RSS %.0f MB\n", mb(mem.total()), mb(scene->texture_bytes),
                 static_cast<double>(ru.ru_maxrss) / 1024.0);
   }

@@ -14,12 +14,6 @@ namespace {
 
 constexpr std::size_t kRecentFrames = 128;
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 }  // namespace
 
 Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions& o, const DisplayModel& model,
@@ -143,12 +137,7 @@ Status FrameRenderer::finish() {
 bool FrameRenderer::window_closed() const { return window_ && window_->should_close(); }
 
 nlohmann::json FrameRenderer::stats_json() const {
-  auto med = [&](double render::PassTimes::*field) {
-    std::vector<double> v;
-    for (const auto& t : recent_) v.push_back(t.*field);
-    return median(v);
-  };
-  using PT = render::PassTimes;
+  const render::PassTimes med = render::median_pass_times(recent_);
   nlohmann::json eyes;
   for (Eye e : kEyes) {
     const auto& f = last_params_.eyes[static_cast<std::size_t>(e)];
@@ -164,9 +153,9 @@ nlohmann::json FrameRenderer::stats_json() const {
           {"settings_changes_seen", settings_changes_},
           {"auto_f", auto_f_generation_ ? nlohmann::json({{"fx", auto_fx_}, {"fy", auto_fy_}}) : nlohmann::json(nullptr)},
           {"last_frame", eyes},
-          {"passes_ms_median", {{"shadow", med(&PT::shadow)}, {"gbuffer", med(&PT::gbuffer)}, {"mapping", med(&PT::mapping)},
-                                {"lighting", med(&PT::lighting)}, {"inverse", med(&PT::inverse)},
-                                {"gpu_total", med(&PT::gpu_total)}, {"cpu_frame", med(&PT::cpu)}}},
+          {"passes_ms_median", {{"shadow", med.shadow}, {"gbuffer", med.gbuffer}, {"mapping", med.mapping},
+                                {"lighting", med.lighting}, {"inverse", med.inverse},
+                                {"gpu_total", med.gpu_total}, {"cpu_frame", med.cpu}}},
           {"targets_mb", static_cast<double>(comp_->memory().total()) / (1024.0 * 1024.0)},
           {"saved", saved_}};
 }

@@ -40,6 +40,10 @@ struct PassTimes {
   std::size_t shaded_samples = 0;  ///< lighting-pass samples, both eyes
 };
 
+/// Per-field median of several frames' times (the mean of the middle two for an even
+/// count; all zero for none).
+PassTimes median_pass_times(const std::vector<PassTimes>& frames);
+
 struct CompositorOptions {
   int width = 2880, height = 1600;  ///< side-by-side output; each eye width/2 × height
   DisplayModel model = DisplayModel::vive_pro_eye();
