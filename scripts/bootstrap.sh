@@ -9,6 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libhidapi-dev libusb-1.0-0-dev
   libglfw3-dev libglm-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  libdrm-dev libgbm-dev  # direct mode (EGL on GBM, KMS)
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
   googletest libgtest-dev libbenchmark-dev
   python3 python3-matplotlib

@@ -5,6 +5,7 @@
 
 #include <cstring>
 
+#include "egl_util.hpp"
 #include "foveal/render/gl.hpp"
 
 namespace foveal::gl {
@@ -21,20 +22,6 @@ struct EglContext::Impl {
 };
 
 namespace {
-
-std::string egl_error(const char* call) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "%s failed (EGL error 0x%04x)", call, static_cast<unsigned>(eglGetError()));
-  return buf;
-}
-
-bool has_extension(const char* list, const char* name) {
-  if (!list) return false;
-  const std::size_t n = std::strlen(name);
-  for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n)
-    if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
-  return false;
-}
 
 // Surfaceless (Mesa) first, then the first EGL device (drivers without it).
 EGLDisplay open_display() {
@@ -81,9 +68,7 @@ Result<EglContext> EglContext::create() {
   if (!has_extension(dpy_ext, "EGL_KHR_surfaceless_context"))
     return Error{ErrorKind::unsupported, "EGL: the display lacks EGL_KHR_surfaceless_context"};
 
-  const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-  impl->context = eglCreateContext(impl->display, config ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, ctx_attribs);
+  impl->context = eglCreateContext(impl->display, config ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, kGl45CoreAttribs);
   if (impl->context == EGL_NO_CONTEXT)
     return Error{ErrorKind::unsupported, egl_error("eglCreateContext (OpenGL 4.5 core)")};
   if (!eglMakeCurrent(impl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl->context))

@@ -3,6 +3,8 @@
 #define GLFW_INCLUDE_NONE  // GL comes from foveal/render/gl.hpp (core profile)
 #include <GLFW/glfw3.h>
 
+#include <chrono>
+
 namespace foveal::render {
 
 namespace {
@@ -25,6 +27,7 @@ Status init_glfw() {
 struct Window::Impl {
   GLFWwindow* window = nullptr;
   std::vector<int> keys;
+  PresentStats stats;
   ~Impl() {
     if (window) glfwDestroyWindow(window);
   }
@@ -69,6 +72,9 @@ Result<Window> Window::open(const WindowOptions& o) {
   if (!impl->window) return Error{ErrorKind::unsupported, "cannot create an OpenGL 4.5 core window: " + glfw_error()};
   glfwMakeContextCurrent(impl->window);
   glfwSwapInterval(o.vsync ? 1 : 0);
+  // Missed refreshes only mean something with vsync, at the rate of the monitor shown on.
+  if (GLFWmonitor* m = monitor ? monitor : glfwGetPrimaryMonitor(); m && o.vsync)
+    if (const GLFWvidmode* vm = glfwGetVideoMode(m)) impl->stats = PresentStats(vm->refreshRate);
   glfwSetWindowUserPointer(impl->window, impl.get());
   glfwSetKeyCallback(impl->window, [](GLFWwindow* win, int key, int, int action, int) {
     if (action == GLFW_PRESS) static_cast<Impl*>(glfwGetWindowUserPointer(win))->keys.push_back(key);
@@ -87,8 +93,12 @@ void Window::present(GLuint framebuffer, int width, int height) {
   glDisable(GL_FRAMEBUFFER_SRGB);  // copy the sRGB-encoded bytes as they are
   glBlitNamedFramebuffer(framebuffer, 0, 0, 0, width, height, 0, 0, fw, fh, GL_COLOR_BUFFER_BIT, GL_LINEAR);
   glfwSwapBuffers(impl_->window);
+  impl_->stats.record(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                          std::chrono::steady_clock::now().time_since_epoch()).count());
   glfwPollEvents();
 }
+
+const PresentStats& Window::stats() const { return impl_->stats; }
 
 bool Window::should_close() const { return glfwWindowShouldClose(impl_->window) != 0; }
 

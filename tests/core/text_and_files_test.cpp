@@ -134,6 +134,10 @@ TEST(DisplayModel, TheShippedFileMatchesTheBuiltInDefault) {
     EXPECT_NEAR(m->eye(e).tan_top, d.eye(e).tan_top, 1e-5);
   }
   EXPECT_NEAR(d.focal_px(Eye::left).x, 753.6f, 0.01f);
+  EXPECT_EQ(m->refresh_hz, 90.0);
+  EXPECT_EQ(d.refresh_hz, 90.0);
+  EXPECT_EQ(m->edid_vendor, "HVR");
+  EXPECT_EQ(d.edid_vendor, "HVR");
 }
 
 TEST(DisplayModel, DirectionPixelRoundTripAndCentre) {
@@ -158,6 +162,8 @@ TEST(DisplayModel, BadFilesAreRejectedNamingTheFile) {
       {R"({"format":"foveal-display-model v1","eyes":2})", "unknown key 'eyes'"},
       {R"({"format":"foveal-display-model v1","left":{"tangents":{"left":1,"right":-1,"bottom":-1,"top":1}}})", "left < right"},
       {R"({"eye_width":1440})", "format"},
+      {R"({"format":"foveal-display-model v1","refresh_hz":-5})", "refresh_hz"},
+      {R"({"format":"foveal-display-model v1","edid_vendor":"htc"})", "edid_vendor"},
   };
   for (const auto& [content, expect] : cases) {
     test::write_file(dir.path("m.json"), content);
@@ -172,7 +178,7 @@ TEST(Cli, EveryCommandHasHelp) {
   for (const char* cmd : {"foveal --help", "foveal import --help", "foveal log validate --help", "foveal synth --help",
                           "foveal replay --help", "foveal profile create --help", "foveal ctl --help",
                           "foveal calibrate --help", "foveal filter-chart --help", "foveal hid decode --help",
-                          "foveal render --help", "foveal foveate --help", "foveald --help"}) {
+                          "foveal render --help", "foveal foveate --help", "foveal outputs --help", "foveald --help"}) {
     auto r = test::run(test::bin("") + cmd);
     EXPECT_EQ(r.exit_code, 0) << cmd << r.err;
     EXPECT_NE(r.out.find("--"), std::string::npos) << cmd;

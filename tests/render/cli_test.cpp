@@ -1,6 +1,8 @@
 // foveal render / foveate / foveald from the command line: outputs, JSON, exit codes.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <nlohmann/json.hpp>
 
 #include "foveal/image/image.hpp"
@@ -108,4 +110,36 @@ TEST(FovealdSoak, FiveMinutesOfGazeAtSpeed100KeepMemoryAndDescriptorsFlat) {
   EXPECT_GT(j["render"]["frames"].get<int>(), 200);
   EXPECT_LT(j["resources"]["rss_growth_mb"].get<double>(), 2.0);
   EXPECT_LE(j["resources"]["end"]["fds"].get<int>(), j["resources"]["warm"]["fds"].get<int>());
+}
+
+TEST(FovealdCli, DirectModeErrorsNameTheDeviceAndWriteNoFrames) {
+  test::TempDir d;
+  const std::string base = "XDG_CONFIG_HOME=" + d.path() + " " + test::bin("foveald") +
+                           " --scene pattern:checker --no-control --no-shm -q --out " + d.path("out") + " --drm";
+  auto missing = test::run(base + " --drm-device " + d.path("card7"));
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.err.find("no DRM device " + d.path("card7")), std::string::npos) << missing.err;
+  auto not_drm = test::run(base + " --drm-device /dev/null");
+  EXPECT_NE(not_drm.exit_code, 0);
+  EXPECT_NE(not_drm.err.find("/dev/null is not a DRM device"), std::string::npos) << not_drm.err;
+  EXPECT_FALSE(std::filesystem::exists(d.path("out/frames.csv")));
+  auto both = test::run(base + " --window");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(both.err.find("--drm and --window"), std::string::npos) << both.err;
+  auto mode = test::run(base + " --mode 2880x1600@fast");
+  EXPECT_EQ(mode.exit_code, 2);
+  EXPECT_NE(mode.err.find("--mode '2880x1600@fast'"), std::string::npos) << mode.err;
+  auto needs = test::run(test::bin("foveald") + " --connector DP-1");
+  EXPECT_EQ(needs.exit_code, 2);
+  EXPECT_NE(needs.err.find("--drm"), std::string::npos) << needs.err;
+}
+
+TEST(OutputsCli, ListsDrmDevicesAndTheDirectModeChoiceAsJson) {
+  auto r = test::run("env -u DISPLAY -u WAYLAND_DISPLAY " + test::bin("foveal") + " outputs --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["drm"].is_array());
+  EXPECT_TRUE(j.contains("direct_mode"));
+  EXPECT_TRUE(j["monitors"].is_null());  // no window system here
+  EXPECT_NE(j["monitors_error"].get<std::string>().find("no display"), std::string::npos) << r.out;
 }

@@ -30,6 +30,14 @@ TEST(Window, FovealdRendersIntoAWindow) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(test::read_file(d.path("out/summary.json")));
   EXPECT_EQ(j["render"]["frames"].get<int>(), 3);
+  // Pacing stats: every frame presented. Missed refreshes need the monitor's rate, which
+  // Xvfb does not report (0): then "unknown", never a made-up count.
+  const auto& out = j["render"]["output"];
+  EXPECT_EQ(out["kind"], "window");
+  EXPECT_EQ(out["present"]["presented"].get<int>(), 3);
+  if (out["present"]["refresh_hz"].get<double>() > 0) EXPECT_TRUE(out["present"]["missed"].is_number()) << out.dump();
+  else EXPECT_TRUE(out["present"]["missed"].is_null()) << out.dump();
+  EXPECT_TRUE(out["present"].contains("interval_ms")) << out.dump();
 }
 
 TEST(Window, CalibrationTakesAnswersFromTheKeyboard) {

@@ -20,6 +20,7 @@ void add_render(CLI::App& app, int& exit_code);
 void add_foveate(CLI::App& app, int& exit_code);
 void add_metrics(CLI::App& app, int& exit_code);
 void add_bench(CLI::App& app, int& exit_code);
+void add_outputs(CLI::App& app, int& exit_code);
 void add_devices(CLI::App& app, int& exit_code);  // with FOVEAL_HAVE_HID
 void add_record(CLI::App& app, int& exit_code);   // with FOVEAL_HAVE_HID
 

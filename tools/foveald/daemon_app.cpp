@@ -141,12 +141,28 @@ Status DaemonApp::setup() {
 }
 
 Status DaemonApp::setup_renderer() {
-  if (!o_.render) return {};
+  if (!o_.render) {
+    if (o_.drm) return bad_input("--drm needs the compositor (drop --no-render)");
+    return {};
+  }
   RenderOptions ro;
   ro.scene = o_.scene;
   ro.method = o_.method;
   ro.save_every = o_.save_every;
   ro.window = !o_.headless;
+  ro.drm = o_.drm;
+  if (o_.drm) {
+    if (ro.window) return bad_input("--drm and --window exclude each other");
+    render::DrmOutputOptions& d = ro.drm_options;
+    d.device = o_.drm_device;
+    d.wanted.connector = o_.connector;
+    d.wanted.width = model_.output_width();
+    d.wanted.height = model_.output_height();
+    d.wanted.refresh_hz = model_.refresh_hz;
+    d.wanted.edid_vendor = model_.edid_vendor;
+    if (!o_.mode.empty())
+      if (Status s = render::parse_mode(o_.mode, d.wanted); !s) return s;
+  }
   ro.monitor = o_.monitor;
   ro.distortion = o_.distortion;
   if (!o_.size.empty()) {

@@ -31,6 +31,10 @@ Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions
     auto w = render::Window::open(wo);
     if (!w) return w.error();
     r->window_.emplace(std::move(*w));
+  } else if (o.drm) {
+    auto d = render::DrmOutput::open(o.drm_options);
+    if (!d) return d.error();
+    r->drm_.emplace(std::move(*d));
   } else {
     auto ctx = gl::EglContext::create();
     if (!ctx) return ctx.error();
@@ -97,6 +101,8 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
                 t->shadow, t->gbuffer, t->mapping, t->lighting, t->inverse, t->gpu_total, t->cpu);
   csv_->write(line);
   if (window_) window_->present(comp_->output_framebuffer(), comp_->width(), comp_->height());
+  if (drm_)
+    if (Status st = drm_->present(comp_->output_framebuffer(), comp_->width(), comp_->height()); !st) return st;
   const bool save = frames_ == 0 || (o_.save_every > 0 && frames_ % static_cast<std::uint64_t>(o_.save_every) == 0);
   ++frames_;
   if (save) return save_frame();
@@ -134,6 +140,24 @@ Status FrameRenderer::finish() {
   return csv_->commit();
 }
 
+nlohmann::json FrameRenderer::output_json() const {
+  if (window_) return {{"kind", "window"}, {"present", window_->stats().json()}};
+  if (drm_) {
+    const render::KmsMode& m = drm_->mode();
+    const render::KmsConnector& c = drm_->connector();
+    return {{"kind", "drm"},
+            {"device", drm_->device()},
+            {"connector", c.name},
+            {"non_desktop", c.non_desktop},
+            {"edid", c.edid_vendor.empty() ? nlohmann::json(nullptr)
+                                           : nlohmann::json({{"vendor", c.edid_vendor}, {"product", c.edid_product},
+                                                             {"name", c.edid_name}})},
+            {"mode", {{"width", m.width}, {"height", m.height}, {"refresh_hz", m.refresh_hz}}},
+            {"present", drm_->stats().json()}};
+  }
+  return {{"kind", "headless"}};
+}
+
 bool FrameRenderer::window_closed() const { return window_ && window_->should_close(); }
 
 nlohmann::json FrameRenderer::stats_json() const {
@@ -149,6 +173,7 @@ nlohmann::json FrameRenderer::stats_json() const {
           {"method", render::method_name(method_)},
           {"size", {comp_->width(), comp_->height()}},
           {"renderer", comp_->renderer()},
+          {"output", output_json()},
           {"settings_generation", last_generation_},
           {"settings_changes_seen", settings_changes_},
           {"auto_f", auto_f_generation_ ? nlohmann::json({{"fx", auto_fx_}, {"fy", auto_fy_}}) : nlohmann::json(nullptr)},

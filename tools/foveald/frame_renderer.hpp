@@ -12,6 +12,7 @@
 
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/render/compositor.hpp"
+#include "foveal/render/drm_output.hpp"
 #include "foveal/render/egl_context.hpp"
 #include "foveal/render/scene.hpp"
 #include "foveal/render/window.hpp"
@@ -26,14 +27,16 @@ struct RenderOptions {
   int width = 0, height = 0;      ///< 0: the display model's side-by-side size
   int save_every = 0;             ///< also save every Nth frame (0: first and last only)
   bool window = false;
+  bool drm = false;               ///< direct mode (render/drm_output.hpp)
+  render::DrmOutputOptions drm_options;  ///< device, connector, mode
   bool distortion = true;         ///< the display model's lens distortion, if any
   std::string monitor;            ///< fullscreen on this monitor (window mode)
 };
 
 class FrameRenderer {
  public:
-  /// Opens the output (EGL headless or a GLFW window), loads the scene, builds the
-  /// compositor, creates DIR/frames.csv.
+  /// Opens the output (EGL headless, a GLFW window or a DRM/KMS connector), loads the
+  /// scene, builds the compositor, creates DIR/frames.csv.
   static Result<std::unique_ptr<FrameRenderer>> create(const RenderOptions& o, const DisplayModel& model,
                                                        const std::string& out_dir);
   ~FrameRenderer();
@@ -51,12 +54,14 @@ class FrameRenderer {
  private:
   FrameRenderer() = default;
   Status save_frame();
+  nlohmann::json output_json() const;
   Status estimate_f(const render::FrameParams& p);
 
   RenderOptions o_;
   std::string out_dir_;
   std::optional<gl::EglContext> egl_;
   std::optional<render::Window> window_;
+  std::optional<render::DrmOutput> drm_;
   std::optional<render::Scene> scene_;
   std::optional<render::Compositor> comp_;
   render::Method method_ = render::Method::rmfr;

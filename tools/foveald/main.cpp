@@ -29,6 +29,12 @@ int main(int argc, char** argv) {
   app.add_flag("--headless", o.headless, "Render without a window through EGL (the default)");
   app.add_flag("!--window", o.headless, "Show the frames in a window (fullscreen with --monitor)");
   app.add_option("--monitor", o.monitor, "Window mode: fullscreen on the monitor whose name contains this");
+  auto* drm = app.add_flag("--drm", o.drm, "Direct mode: show the frames on a DRM/KMS connector, no display server (docs/headset.md)");
+  app.add_option("--drm-device", o.drm_device, "Direct mode: the card node (default: the first /dev/dri/card* with a matching output)")
+      ->needs(drm);
+  app.add_option("--connector", o.connector, "Direct mode: connector name, e.g. DP-1 (default: the non-desktop or EDID-matching one)")
+      ->needs(drm);
+  app.add_option("--mode", o.mode, "Direct mode: WxH or WxH@HZ (default: the display model's size and refresh rate)")->needs(drm);
   app.add_flag("!--no-render", o.render, "Run the gaze side only, no compositor");
   app.add_flag("!--no-distortion", o.distortion, "Ignore the display model's lens distortion");
   app.add_option("--frames", o.frames, "Stop after this many frames (default: when the replay ends)");

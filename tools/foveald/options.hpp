@@ -26,6 +26,10 @@ struct Options {
   std::string size;           ///< WxH; empty: the display model's
   int save_every = 0;         ///< save every Nth frame as PNG (first and last always)
   std::string monitor;        ///< window mode: fullscreen on this monitor
+  bool drm = false;           ///< direct mode on a DRM/KMS connector
+  std::string drm_device;     ///< direct mode: /dev/dri/cardN; empty: the first that fits
+  std::string connector;      ///< direct mode: connector name; empty: the headset's
+  std::string mode;           ///< direct mode: WxH[@HZ]; empty: the display model's
   bool distortion = true;     ///< apply the display model's lens distortion
   bool json = false;
   int verbosity = 0;          ///< +1 per -v, -1 per -q

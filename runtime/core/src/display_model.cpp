@@ -1,5 +1,6 @@
 #include "foveal/core/display_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -51,6 +52,8 @@ DisplayModel DisplayModel::vive_pro_eye() {
   m.eye_width = 1440;
   m.eye_height = 1600;
   m.ipd_mm = 63.0f;
+  m.refresh_hz = 90.0;
+  m.edid_vendor = "HVR";
   constexpr float kFocal = 753.6f;
   const EyeFrustum fr{-720.0f / kFocal, 720.0f / kFocal, -800.0f / kFocal, 800.0f / kFocal};
   m.frustum = {fr, fr};
@@ -61,6 +64,10 @@ Status DisplayModel::validate(const std::string& where) const {
   if (eye_width < 1 || eye_height < 1 || eye_width > 16384 || eye_height > 16384)
     return bad_input(where + ": eye_width/eye_height must be in 1..16384");
   if (!(ipd_mm > 0.0f && ipd_mm < 200.0f)) return bad_input(where + ": ipd_mm must be in (0, 200)");
+  if (!(refresh_hz >= 0.0 && refresh_hz <= 1000.0)) return bad_input(where + ": refresh_hz must be in [0, 1000]");
+  if (!edid_vendor.empty() &&
+      (edid_vendor.size() != 3 || !std::all_of(edid_vendor.begin(), edid_vendor.end(), [](char c) { return c >= 'A' && c <= 'Z'; })))
+    return bad_input(where + ": edid_vendor must be three capital letters (a PNP ID such as \"HVR\")");
   for (Eye e : kEyes) {
     const EyeFrustum& f = eye(e);
     const float v[4] = {f.tan_left, f.tan_right, f.tan_bottom, f.tan_top};
@@ -102,6 +109,8 @@ Result<DisplayModel> DisplayModel::load(const std::string& path) {
       else if (k == "eye_width") m.eye_width = it->get<int>();
       else if (k == "eye_height") m.eye_height = it->get<int>();
       else if (k == "ipd_mm") m.ipd_mm = it->get<float>();
+      else if (k == "refresh_hz") m.refresh_hz = it->get<double>();
+      else if (k == "edid_vendor") m.edid_vendor = it->get<std::string>();
       else if (k == "format" || k == "source") continue;
       else if (k == "distortion") {
         for (Eye e : kEyes) {

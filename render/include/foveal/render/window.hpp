@@ -9,6 +9,7 @@
 
 #include "foveal/core/error.hpp"
 #include "foveal/render/gl.hpp"
+#include "foveal/render/present_stats.hpp"
 
 namespace foveal::render {
 
@@ -30,6 +31,9 @@ class Window {
 
   /// Blits `framebuffer` (width×height) scaled to the window, swaps, polls events.
   void present(GLuint framebuffer, int width, int height);
+  /// Frames presented and refreshes missed, judged from the time each swap returned
+  /// against the monitor's refresh rate (GLFW has no presentation timestamps).
+  const PresentStats& stats() const;
   bool should_close() const;
   /// Keys pressed since the last call (GLFW key codes), for interactive tools.
   std::vector<int> take_keys();

@@ -42,6 +42,11 @@ struct DisplayModel {
   float ipd_mm = 63.0f;
   std::array<EyeFrustum, 2> frustum{};
   std::array<LensDistortion, 2> distortion{};  ///< disabled unless the model file has one
+  /// The panel's refresh rate (Hz) for the output mode; 0: any (the connector's preferred).
+  double refresh_hz = 0.0;
+  /// EDID manufacturer ID (three letters, e.g. "HVR" for HTC's headsets) that marks the
+  /// headset's connector or monitor; empty: match by mode size alone.
+  std::string edid_vendor;
 
   const EyeFrustum& eye(Eye e) const { return frustum[static_cast<std::size_t>(e)]; }
   int output_width() const { return 2 * eye_width; }  ///< side by side, left eye left
