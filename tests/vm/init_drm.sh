@@ -1,0 +1,65 @@
+#!/bin/busybox sh
+# /init of the direct-mode guest (built by run_drm_vm_test.py): loads bochs, starts
+# foveald on /dev/dri/card0, prints VMTEST-DRM-READY once it has presented
+# $READY_FRAMES frames, waits for the host's "go" on the console (the host takes its
+# screendump in between), stops foveald with SIGTERM and reports how it exited.
+/bin/busybox --install -s /bin
+export PATH=/bin:/usr/bin
+mount -t proc proc /proc
+mount -t sysfs sys /sys
+mount -t devtmpfs dev /dev
+mount -t tmpfs tmp /tmp
+echo "VMTEST-BEGIN kernel $(uname -r), uptime $(cut -d' ' -f1 /proc/uptime) s"
+
+# Each line: a module file and its parameters.
+while read -r m params; do
+  insmod "/modules/$m" $params || echo "VMTEST modules FAIL insmod $m"
+done < /modules/order
+n=0
+while [ ! -e /dev/dri/card0 ]; do
+  n=$((n + 1)); [ $n -gt 100 ] && break; sleep 0.1
+done
+ls -l /dev/dri 2>&1
+
+# READY_FRAMES, READY_TIMEOUT, GO_TIMEOUT, OUT, the environment, and foveald's
+# arguments as "$@".
+. /foveal/vm.conf
+mkdir -p "$XDG_CONFIG_HOME" "$XDG_RUNTIME_DIR"
+cd /tmp
+echo "starting foveald $* at uptime $(cut -d' ' -f1 /proc/uptime) s"
+foveald "$@" > /tmp/foveald.log 2>&1 &
+PID=$!
+
+# Presented frames: data rows of frames.csv, or of the temporary file it is written
+# to until foveald commits it on exit.
+rows() {
+  for f in "$OUT/frames.csv" "$OUT"/frames.csv.tmp.*; do
+    [ -f "$f" ] && { echo $(($(wc -l < "$f") - 1)); return; }
+  done
+  echo 0
+}
+# An exited foveald stays a zombie until "wait": kill -0 would still succeed.
+running() { [ -e /proc/$PID ] && ! grep -q '^State:[[:space:]]*Z' /proc/$PID/status; }
+t=0
+while [ "$(rows)" -lt "$READY_FRAMES" ] && running && [ $t -lt $((READY_TIMEOUT * 10)) ]; do
+  t=$((t + 1)); sleep 0.1
+done
+if [ "$(rows)" -ge "$READY_FRAMES" ] && running; then
+  echo "VMTEST-DRM-READY $(rows) frames at uptime $(cut -d' ' -f1 /proc/uptime) s"
+  read -r -t "$GO_TIMEOUT" go || echo "no go from the host"
+  kill -TERM $PID
+  wait $PID
+  rc=$?
+  echo "foveald exit $rc at uptime $(cut -d' ' -f1 /proc/uptime) s"
+  cat /tmp/foveald.log
+  cat "$OUT/summary.json"
+  cat "$OUT/frames.csv"
+  if [ $rc -eq 0 ]; then echo "VMTEST drm_exit PASS"; else echo "VMTEST drm_exit FAIL exit code $rc"; fi
+else
+  kill -KILL $PID 2>/dev/null
+  cat /tmp/foveald.log
+  dmesg | tail -n 20
+  echo "VMTEST drm_ready FAIL $(rows) of $READY_FRAMES frames presented (foveald exited or ${READY_TIMEOUT} s passed)"
+fi
+echo "VMTEST-END"
+poweroff -f
