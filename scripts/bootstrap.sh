@@ -14,7 +14,6 @@ packages=(
   googletest libgtest-dev libbenchmark-dev
   python3 python3-matplotlib
   qemu-system-x86 linux-image-amd64 busybox-static cpio kmod  # tests/vm (docs/vm-tests.md)
-  libdrm-dev libgbm-dev zlib1g-dev  # tests/vm: vm_drm_probe
   xvfb xauth xdotool  # the GLFW window paths, tested on a virtual X server
   clang libclang-rt-14-dev  # libFuzzer targets (scripts/test.sh)
 )

@@ -407,6 +407,8 @@ Status DrmOutput::present(GLuint framebuffer, int width, int height) {
   return {};
 }
 
+Status DrmOutput::finish() { return impl_->pending ? impl_->wait_flip(1000) : Status{}; }
+
 std::vector<DrmDeviceInfo> DrmOutput::list_devices() {
   std::vector<DrmDeviceInfo> out;
   for (const std::string& node : card_nodes()) {

@@ -26,6 +26,20 @@ ls -l /dev/dri 2>&1
 . /foveal/vm.conf
 mkdir -p "$XDG_CONFIG_HOME" "$XDG_RUNTIME_DIR"
 cd /tmp
+
+# A second foveald for the error checks: one frame of the same pattern.
+SECOND="--drm --scene pattern:checker --no-control --no-shm -q --frames 1 --replay /foveal/constant_gaze.csv"
+# Not permitted: devtmpfs leaves the card node 0600 root, so an ordinary user cannot open it.
+mkdir -p /etc /tmp/user && chmod 777 /tmp/user
+echo "root:x:0:0::/root:/bin/sh" > /etc/passwd
+echo "user:x:1000:1000::/tmp/user:/bin/sh" >> /etc/passwd
+su -s /bin/sh user -c "XDG_CONFIG_HOME=/tmp/user foveald $SECOND --out /tmp/user/out" > /tmp/perm.log 2>&1
+rc=$?
+if [ $rc -ne 0 ] && grep -q "not permitted to open /dev/dri/card0" /tmp/perm.log && [ ! -e /tmp/user/out/frames.csv ]; then
+  echo "VMTEST drm_not_permitted PASS exit $rc: $(head -c 240 /tmp/perm.log)"
+else
+  echo "VMTEST drm_not_permitted FAIL exit $rc: $(head -c 400 /tmp/perm.log)"
+fi
 echo "starting foveald $* at uptime $(cut -d' ' -f1 /proc/uptime) s"
 foveald "$@" > /tmp/foveald.log 2>&1 &
 PID=$!
@@ -47,12 +61,22 @@ done
 if [ "$(rows)" -ge "$READY_FRAMES" ] && running; then
   echo "VMTEST-DRM-READY $(rows) frames at uptime $(cut -d' ' -f1 /proc/uptime) s"
   read -r -t "$GO_TIMEOUT" go || echo "no go from the host"
+  # Busy: the running foveald is the card's DRM master.
+  foveald $SECOND --out /tmp/out2 > /tmp/busy.log 2>&1
+  rc=$?
+  if [ $rc -ne 0 ] && grep -q "/dev/dri/card0 is busy" /tmp/busy.log && [ ! -e /tmp/out2/frames.csv ]; then
+    echo "VMTEST drm_busy PASS exit $rc: $(head -c 240 /tmp/busy.log)"
+  else
+    echo "VMTEST drm_busy FAIL exit $rc: $(head -c 400 /tmp/busy.log)"
+  fi
   kill -TERM $PID
   wait $PID
   rc=$?
   echo "foveald exit $rc at uptime $(cut -d' ' -f1 /proc/uptime) s"
   cat /tmp/foveald.log
+  echo "SUMMARY-BEGIN"
   cat "$OUT/summary.json"
+  echo "SUMMARY-END"
   cat "$OUT/frames.csv"
   if [ $rc -eq 0 ]; then echo "VMTEST drm_exit PASS"; else echo "VMTEST drm_exit FAIL exit code $rc"; fi
 else

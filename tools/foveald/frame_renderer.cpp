@@ -99,10 +99,13 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
                 frames_, static_cast<std::int64_t>(fovea.t_ns), s.generation, p.eyes[0].fovea_x, p.eyes[0].fovea_y,
                 p.eyes[1].fovea_x, p.eyes[1].fovea_y, p.eyes[0].sigma, p.eyes[1].sigma, bl[0], bl[1], br[0], br[1], fx, fy,
                 t->shadow, t->gbuffer, t->mapping, t->lighting, t->inverse, t->gpu_total, t->cpu);
-  csv_->write(line);
   if (window_) window_->present(comp_->output_framebuffer(), comp_->width(), comp_->height());
   if (drm_)
     if (Status st = drm_->present(comp_->output_framebuffer(), comp_->width(), comp_->height()); !st) return st;
+  // A row once the frame is on its way to the screen, readable in the temporary file
+  // while foveald runs.
+  csv_->write(line);
+  std::fflush(csv_->stream());
   const bool save = frames_ == 0 || (o_.save_every > 0 && frames_ % static_cast<std::uint64_t>(o_.save_every) == 0);
   ++frames_;
   if (save) return save_frame();
@@ -136,6 +139,8 @@ Status FrameRenderer::save_frame() {
 }
 
 Status FrameRenderer::finish() {
+  if (drm_)
+    if (Status s = drm_->finish(); !s) return s;
   if (Status s = save_frame(); !s) return s;
   return csv_->commit();
 }

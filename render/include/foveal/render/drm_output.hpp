@@ -46,6 +46,8 @@ class DrmOutput {
   /// the next frame renders while this one waits for vblank. Errors: the kernel refused
   /// the flip (e.g. the master was lost on a VT switch) or no flip completed in 1 s.
   Status present(GLuint framebuffer, int width, int height);
+  /// Waits until the last queued frame is on screen, so that stats() counts it.
+  Status finish();
 
   const std::string& device() const;
   const KmsConnector& connector() const;
