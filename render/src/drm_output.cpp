@@ -432,4 +432,15 @@ std::vector<DrmDeviceInfo> DrmOutput::list_devices() {
   return out;
 }
 
+Result<std::string> find_headset_connector(const KmsWanted& wanted) {
+  std::string seen;
+  for (const DrmDeviceInfo& d : DrmOutput::list_devices()) {
+    if (auto ch = choose_output(d.connectors, wanted); ch && d.error.empty()) return d.connectors[ch->connector].name;
+    seen += "\n  " + d.path + (d.error.empty() ? "" : ": " + d.error);
+    for (const auto& c : d.connectors) seen += "\n    " + describe(c);
+  }
+  return bad_input("no DRM connector offers the display model's " + std::to_string(wanted.width) + "x" +
+                   std::to_string(wanted.height) + " mode" + (seen.empty() ? " (no /dev/dri/card* devices)" : ":" + seen));
+}
+
 }  // namespace foveal::render

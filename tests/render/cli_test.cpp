@@ -114,8 +114,9 @@ TEST(FovealdSoak, FiveMinutesOfGazeAtSpeed100KeepMemoryAndDescriptorsFlat) {
 
 TEST(FovealdCli, DirectModeErrorsNameTheDeviceAndWriteNoFrames) {
   test::TempDir d;
-  const std::string base = "XDG_CONFIG_HOME=" + d.path() + " " + test::bin("foveald") +
-                           " --scene pattern:checker --no-control --no-shm -q --out " + d.path("out") + " --drm";
+  const std::string common = "XDG_CONFIG_HOME=" + d.path() + " " + test::bin("foveald") +
+                             " --scene pattern:checker --no-control --no-shm -q --out " + d.path("out");
+  const std::string base = common + " --drm";
   auto missing = test::run(base + " --drm-device " + d.path("card7"));
   EXPECT_NE(missing.exit_code, 0);
   EXPECT_NE(missing.err.find("no DRM device " + d.path("card7")), std::string::npos) << missing.err;
@@ -129,6 +130,14 @@ TEST(FovealdCli, DirectModeErrorsNameTheDeviceAndWriteNoFrames) {
   auto mode = test::run(base + " --mode 2880x1600@fast");
   EXPECT_EQ(mode.exit_code, 2);
   EXPECT_NE(mode.err.find("--mode '2880x1600@fast'"), std::string::npos) << mode.err;
+  // Without a connector of the display model's size there is no headset monitor to find.
+  if (std::filesystem::exists("/dev/dri")) GTEST_LOG_(INFO) << "this machine has /dev/dri; --monitor auto not checked";
+  else {
+    auto monitor = test::run(common + " --window --monitor auto");
+    EXPECT_EQ(monitor.exit_code, 2);
+    EXPECT_NE(monitor.err.find("--monitor auto: no DRM connector offers the display model's 2880x1600 mode"),
+              std::string::npos) << monitor.err;
+  }
   auto needs = test::run(test::bin("foveald") + " --connector DP-1");
   EXPECT_EQ(needs.exit_code, 2);
   EXPECT_NE(needs.err.find("--drm"), std::string::npos) << needs.err;

@@ -151,19 +151,27 @@ Status DaemonApp::setup_renderer() {
   ro.save_every = o_.save_every;
   ro.window = !o_.headless;
   ro.drm = o_.drm;
+  ro.monitor = o_.monitor;
+  // The headset's output as the display model describes it (docs/headset.md).
+  render::KmsWanted wanted;
+  wanted.width = model_.output_width();
+  wanted.height = model_.output_height();
+  wanted.refresh_hz = model_.refresh_hz;
+  wanted.edid_vendor = model_.edid_vendor;
   if (o_.drm) {
     if (ro.window) return bad_input("--drm and --window exclude each other");
-    render::DrmOutputOptions& d = ro.drm_options;
-    d.device = o_.drm_device;
-    d.wanted.connector = o_.connector;
-    d.wanted.width = model_.output_width();
-    d.wanted.height = model_.output_height();
-    d.wanted.refresh_hz = model_.refresh_hz;
-    d.wanted.edid_vendor = model_.edid_vendor;
+    ro.drm_options.device = o_.drm_device;
+    ro.drm_options.wanted = wanted;
+    ro.drm_options.wanted.connector = o_.connector;
     if (!o_.mode.empty())
-      if (Status s = render::parse_mode(o_.mode, d.wanted); !s) return s;
+      if (Status s = render::parse_mode(o_.mode, ro.drm_options.wanted); !s) return s;
   }
-  ro.monitor = o_.monitor;
+  if (ro.window && o_.monitor == "auto") {
+    auto c = render::find_headset_connector(wanted);
+    if (!c) return bad_input("--monitor auto: " + c.error().message);
+    log::info("--monitor auto: the headset is on connector " + *c);
+    ro.monitor = *c;
+  }
   ro.distortion = o_.distortion;
   if (!o_.size.empty()) {
     auto size = cli::parse_size(o_.size, "--size");

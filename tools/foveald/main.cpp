@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 99));
   app.add_flag("--headless", o.headless, "Render without a window through EGL (the default)");
   app.add_flag("!--window", o.headless, "Show the frames in a window (fullscreen with --monitor)");
-  app.add_option("--monitor", o.monitor, "Window mode: fullscreen on the monitor whose name contains this");
+  app.add_option("--monitor", o.monitor, "Window mode: fullscreen on the monitor whose name contains this; auto: the connector direct mode would take");
   auto* drm = app.add_flag("--drm", o.drm, "Direct mode: show the frames on a DRM/KMS connector, no display server (docs/headset.md)");
   app.add_option("--drm-device", o.drm_device, "Direct mode: the card node (default: the first /dev/dri/card* with a matching output)")
       ->needs(drm);

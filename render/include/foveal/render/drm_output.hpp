@@ -63,4 +63,9 @@ class DrmOutput {
   std::unique_ptr<Impl> impl_;
 };
 
+/// The name of the connector direct mode would take on any card ("DP-2"), to find the
+/// headset among the window system's monitors (X11 names them after the connectors).
+/// bad_input, listing every connector, when none matches.
+Result<std::string> find_headset_connector(const KmsWanted& wanted);
+
 }  // namespace foveal::render
