@@ -2,7 +2,9 @@
 # /init of the direct-mode guest (built by run_drm_vm_test.py): loads bochs, starts
 # foveald on /dev/dri/card0, prints VMTEST-DRM-READY once it has presented
 # $READY_FRAMES frames, waits for the host's "go" on the console (the host takes its
-# screendump in between), stops foveald with SIGTERM and reports how it exited.
+# screendump in between), checks that a second foveald finds the card busy, stops
+# foveald with SIGTERM and reports how it exited. Before all that: the error an ordinary
+# user gets.
 /bin/busybox --install -s /bin
 export PATH=/bin:/usr/bin
 mount -t proc proc /proc
