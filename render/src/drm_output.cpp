@@ -132,7 +132,8 @@ std::vector<std::string> card_nodes() {
   return nodes;
 }
 
-// A CRTC that can drive the connector: its current encoder's, else the first free fit.
+// A CRTC that can drive the connector: the one already driving it, else an idle one it
+// can use, else any it can use (that one's other output goes dark while foveald runs).
 std::optional<std::uint32_t> find_crtc(int fd, const Card& card, const Connector& c) {
   if (c.encoder_id) {
     if (drmModeEncoder* enc = drmModeGetEncoder(fd, c.encoder_id)) {
@@ -141,15 +142,22 @@ std::optional<std::uint32_t> find_crtc(int fd, const Card& card, const Connector
       if (crtc) return crtc;
     }
   }
+  std::optional<std::uint32_t> busy;
   for (std::uint32_t id : c.encoders) {
     drmModeEncoder* enc = drmModeGetEncoder(fd, id);
     if (!enc) continue;
     const std::uint32_t possible = enc->possible_crtcs;
     drmModeFreeEncoder(enc);
-    for (std::size_t i = 0; i < card.crtcs.size() && i < 32; ++i)
-      if (possible & (1u << i)) return card.crtcs[i];
+    for (std::size_t i = 0; i < card.crtcs.size() && i < 32; ++i) {
+      if (!(possible & (1u << i))) continue;
+      drmModeCrtc* crtc = drmModeGetCrtc(fd, card.crtcs[i]);
+      const bool idle = crtc && crtc->buffer_id == 0;
+      if (crtc) drmModeFreeCrtc(crtc);
+      if (idle) return card.crtcs[i];
+      if (!busy) busy = card.crtcs[i];
+    }
   }
-  return std::nullopt;
+  return busy;
 }
 
 }  // namespace
