@@ -63,6 +63,24 @@ std::optional<std::size_t> pick_mode(const KmsConnector& c, const KmsWanted& w) 
 
 }  // namespace
 
+KmsWanted headset_output(const DisplayModel& model) {
+  KmsWanted w;
+  w.width = model.output_width();
+  w.height = model.output_height();
+  w.refresh_hz = model.refresh_hz;
+  w.edid_vendor = model.edid_vendor;
+  return w;
+}
+
+nlohmann::json connector_json(const KmsConnector& c) {
+  nlohmann::json modes = nlohmann::json::array();
+  for (const auto& m : c.modes)
+    modes.push_back({{"width", m.width}, {"height", m.height}, {"refresh_hz", m.refresh_hz}, {"preferred", m.preferred}});
+  nlohmann::json edid = nullptr;
+  if (!c.edid_vendor.empty()) edid = {{"vendor", c.edid_vendor}, {"product", c.edid_product}, {"name", c.edid_name}};
+  return {{"name", c.name}, {"connected", c.connected}, {"non_desktop", c.non_desktop}, {"edid", edid}, {"modes", modes}};
+}
+
 std::string describe(const KmsConnector& c) {
   std::string s = c.name + (c.connected ? " connected" : " disconnected");
   if (c.non_desktop) s += " non-desktop";

@@ -167,3 +167,16 @@ TEST(PresentStats, UnknownWithoutRateOrCounter) {
   EXPECT_TRUE(s.json()["missed"].is_null());
   EXPECT_EQ(s.json()["presented"], 2);
 }
+
+TEST(KmsSelect, TheDisplayModelAsksForItsSizeRateAndVendor) {
+  const KmsWanted w = headset_output(foveal::DisplayModel::vive_pro_eye());
+  EXPECT_EQ(w.width, 2880);
+  EXPECT_EQ(w.height, 1600);
+  EXPECT_EQ(w.refresh_hz, 90.0);
+  EXPECT_EQ(w.edid_vendor, "HVR");
+  EXPECT_TRUE(w.connector.empty());
+  const auto j = connector_json(conn("DP-2", true, {{2880, 1600, 90, true}}, true, "HVR"));
+  EXPECT_EQ(j["edid"]["vendor"], "HVR");
+  EXPECT_EQ(j["modes"][0]["refresh_hz"], 90.0);
+  EXPECT_TRUE(connector_json(conn("DP-1", false, {}))["edid"].is_null());
+}

@@ -14,23 +14,6 @@
 
 namespace foveal::cmd {
 
-namespace {
-
-nlohmann::json connector_json(const render::KmsConnector& c) {
-  nlohmann::json modes = nlohmann::json::array();
-  for (const auto& m : c.modes)
-    modes.push_back({{"width", m.width}, {"height", m.height}, {"refresh_hz", m.refresh_hz}, {"preferred", m.preferred}});
-  return {{"name", c.name},
-          {"connected", c.connected},
-          {"non_desktop", c.non_desktop},
-          {"edid", c.edid_vendor.empty() ? nlohmann::json(nullptr)
-                                         : nlohmann::json({{"vendor", c.edid_vendor}, {"product", c.edid_product},
-                                                           {"name", c.edid_name}})},
-          {"modes", modes}};
-}
-
-}  // namespace
-
 void add_outputs(CLI::App& app, int& exit_code) {
   struct Args {
     std::string display;
@@ -50,18 +33,14 @@ void add_outputs(CLI::App& app, int& exit_code) {
       }
       model = *m;
     }
-    render::KmsWanted wanted;
-    wanted.width = model.output_width();
-    wanted.height = model.output_height();
-    wanted.refresh_hz = model.refresh_hz;
-    wanted.edid_vendor = model.edid_vendor;
+    const render::KmsWanted wanted = render::headset_output(model);
 
     nlohmann::json cards = nlohmann::json::array();
     std::string direct;  // "card connector mode" direct mode would take
     const std::vector<render::DrmDeviceInfo> devices = render::DrmOutput::list_devices();
     for (const render::DrmDeviceInfo& d : devices) {
       nlohmann::json conns = nlohmann::json::array();
-      for (const auto& c : d.connectors) conns.push_back(connector_json(c));
+      for (const auto& c : d.connectors) conns.push_back(render::connector_json(c));
       nlohmann::json card = {{"device", d.path}, {"driver", d.driver}, {"connectors", conns}};
       if (!d.error.empty()) card["error"] = d.error;
       if (auto ch = render::choose_output(d.connectors, wanted); ch && direct.empty() && d.error.empty()) {

@@ -152,12 +152,7 @@ Status DaemonApp::setup_renderer() {
   ro.window = !o_.headless;
   ro.drm = o_.drm;
   ro.monitor = o_.monitor;
-  // The headset's output as the display model describes it (docs/headset.md).
-  render::KmsWanted wanted;
-  wanted.width = model_.output_width();
-  wanted.height = model_.output_height();
-  wanted.refresh_hz = model_.refresh_hz;
-  wanted.edid_vendor = model_.edid_vendor;
+  const render::KmsWanted wanted = render::headset_output(model_);  // docs/headset.md
   if (o_.drm) {
     if (ro.window) return bad_input("--drm and --window exclude each other");
     ro.drm_options.device = o_.drm_device;

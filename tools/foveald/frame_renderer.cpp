@@ -149,14 +149,11 @@ nlohmann::json FrameRenderer::output_json() const {
   if (window_) return {{"kind", "window"}, {"present", window_->stats().json()}};
   if (drm_) {
     const render::KmsMode& m = drm_->mode();
-    const render::KmsConnector& c = drm_->connector();
+    nlohmann::json connector = render::connector_json(drm_->connector());
+    connector.erase("modes");  // `foveal outputs` lists them
     return {{"kind", "drm"},
             {"device", drm_->device()},
-            {"connector", c.name},
-            {"non_desktop", c.non_desktop},
-            {"edid", c.edid_vendor.empty() ? nlohmann::json(nullptr)
-                                           : nlohmann::json({{"vendor", c.edid_vendor}, {"product", c.edid_product},
-                                                             {"name", c.edid_name}})},
+            {"connector", connector},
             {"mode", {{"width", m.width}, {"height", m.height}, {"refresh_hz", m.refresh_hz}}},
             {"present", drm_->stats().json()}};
   }

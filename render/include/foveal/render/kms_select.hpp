@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "foveal/core/display_model.hpp"
 #include "foveal/core/error.hpp"
 
 namespace foveal::render {
@@ -45,6 +48,9 @@ struct KmsWanted {
   std::string edid_vendor; ///< prefer the connector whose EDID carries it
 };
 
+/// What the display model asks for: its side-by-side size, refresh rate and EDID vendor.
+KmsWanted headset_output(const DisplayModel& model);
+
 struct KmsChoice {
   std::size_t connector = 0, mode = 0;  ///< indices into the list and its modes
 };
@@ -56,6 +62,9 @@ Result<KmsChoice> choose_output(const std::vector<KmsConnector>& connectors, con
 
 /// One line per connector for listings and errors: name, state, identity, modes.
 std::string describe(const KmsConnector& c);
+/// {"name", "connected", "non_desktop", "edid": {"vendor", "product", "name"} | null,
+///  "modes": [{"width", "height", "refresh_hz", "preferred"}]}
+nlohmann::json connector_json(const KmsConnector& c);
 
 /// Parses "WxH" or "WxH@HZ" into `wanted`; bad_input names the text.
 Status parse_mode(const std::string& text, KmsWanted& wanted);
