@@ -21,10 +21,7 @@ HidTrackerSource::HidTrackerSource(HidTrackerOptions opts, std::shared_ptr<HidBa
 HidTrackerSource::~HidTrackerSource() { close(); }
 
 void HidTrackerSource::problem(std::string message) {
-  // The first few problems in full, then one in a thousand: a bad device must not flood.
-  ++problems_logged_;
-  if (problems_logged_ <= 10 || problems_logged_ % 1000 == 0)
-    opts_.log("hid: " + message + " (problem " + std::to_string(problems_logged_) + ")");
+  if (problems_.count()) opts_.log("hid: " + message + " (problem " + std::to_string(problems_.problems()) + ")");
   counters_.last_problem = std::move(message);
 }
 

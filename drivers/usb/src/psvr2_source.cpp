@@ -52,8 +52,7 @@ Psvr2Source::~Psvr2Source() {
 }
 
 void Psvr2Source::problem(std::string message) {
-  ++problems_;
-  if (problems_ <= 10 || problems_ % 1000 == 0) opts_.log("psvr2: " + message);
+  if (problems_.count()) opts_.log("psvr2: " + message);
   counters_.last_problem = std::move(message);
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "foveal/core/gaze_source.hpp"
+#include "foveal/core/problem_throttle.hpp"
 #include "foveal/drivers/hid/device_clock.hpp"
 #include "foveal/drivers/hid/hid_backend.hpp"
 #include "foveal/drivers/hid/screen_gaze.hpp"
@@ -86,7 +87,7 @@ class HidTrackerSource final : public GazeSource {
   TrackingData last_;
   DeviceClock clock_;
   HidTrackerCounters counters_;
-  std::uint64_t problems_logged_ = 0;
+  ProblemThrottle problems_;
   std::vector<std::uint8_t> buffer_;
 };
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "foveal/core/gaze_source.hpp"
+#include "foveal/core/problem_throttle.hpp"
 #include "foveal/drivers/usb/psvr2_gaze_packet.hpp"
 
 struct libusb_context;
@@ -59,7 +60,7 @@ class Psvr2Source final : public GazeSource {
   bool anchored_ = false;
   TimeNs last_t_ = 0, last_keepalive_ = 0;
   Psvr2Counters counters_;
-  std::uint64_t problems_ = 0;
+  ProblemThrottle problems_;
 };
 
 }  // namespace foveal::usb
