@@ -178,7 +178,7 @@ Status DaemonApp::setup_renderer() {
   auto r = FrameRenderer::create(ro, model_, o_.out);
   if (!r) return r.error();
   renderer_ = std::move(*r);
-  log::info("compositor: " + renderer_->stats_json()["renderer"].get<std::string>());
+  log::info("compositor: " + renderer_->renderer());
   return {};
 }
 
@@ -367,7 +367,7 @@ int DaemonApp::run() {
   if (renderer_ && !o_.json && log::enabled(log::Level::info))
     std::printf("foveald: rendered %llu frames -> %s/frames.csv, %zu PNG in %s\n",
                 static_cast<unsigned long long>(renderer_->frames()), o_.out.c_str(),
-                renderer_->stats_json()["saved"].size(), o_.out.c_str());
+                renderer_->saved_frames(), o_.out.c_str());
   return rc;
 }
 

@@ -49,6 +49,8 @@ class FrameRenderer {
   bool window_closed() const;
 
   std::uint64_t frames() const { return frames_; }
+  std::size_t saved_frames() const { return saved_.size(); }
+  std::string renderer() const { return comp_->renderer(); }
   nlohmann::json stats_json() const;
 
  private:
