@@ -1,6 +1,10 @@
 // The prober: source specs, the sources they make, and the errors for bad ones.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
 #include "foveal/core/clock.hpp"
 #include "foveal/drivers/probe.hpp"
 #include "test_support.hpp"
@@ -115,6 +119,28 @@ TEST(DeviceSpec, TheOlderDeviceFormsMapToSpecs) {
   EXPECT_EQ(probe::device_spec("auto"), "auto");
   EXPECT_EQ(probe::device_spec("/dev/hidraw2"), "hid:/dev/hidraw2");
   EXPECT_EQ(probe::device_spec("hid:/dev/hidraw2"), "hid:/dev/hidraw2");
+}
+
+}  // namespace
+}  // namespace foveal
+
+namespace foveal {
+namespace {
+
+TEST(RecordCli, RecordsAnySourceTheProberKnows) {
+  test::TempDir d;
+  const auto r = test::run(test::bin("foveal") + " record --source synthetic:5 --duration 1 --json --out " + d.path("s.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["driver"], "synthetic");
+  EXPECT_GE(j["samples"].get<int>(), 100);  // 1 s at 120 Hz, in real time
+  EXPECT_LE(j["samples"].get<int>(), 121);
+  const auto v = test::run(test::bin("foveal") + " log validate --json " + d.path("s.csv"));
+  ASSERT_EQ(v.exit_code, 0) << v.err;
+  const auto bad = test::run(test::bin("foveal") + " record --source nope --out " + d.path("n.csv"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("unknown source 'nope'"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(d.path("n.csv")));
 }
 
 }  // namespace
