@@ -40,9 +40,10 @@ Result<std::vector<DecodedValue>> decode_as(const TrackerLayout& l, ReportType t
 
 /// Timestamp in ns from the Timestamp value: one wide field, or a run of bytes joined by
 /// join_multi_byte_values (little-endian, as the reference descriptor declares it).
-/// nullopt if it would overflow.
+/// nullopt if it would overflow (a run above 2^63 - 1 included); a single wide field's
+/// logical range is not checked.
 std::optional<std::int64_t> timestamp_ns(const ReportValue& stamp) {
-  if (!stamp.in_range || stamp.raw < 0) return std::nullopt;
+  if ((stamp.is_run() && !stamp.in_range) || stamp.raw < 0) return std::nullopt;
   std::uint64_t raw = static_cast<std::uint64_t>(stamp.raw);
   const Field& f = *stamp.first->field;
   // Seconds × 10^exponent; without a time unit HUTRR74 says microseconds.
