@@ -24,5 +24,6 @@ void add_bench(CLI::App& app, int& exit_code);
 void add_outputs(CLI::App& app, int& exit_code);
 void add_devices(CLI::App& app, int& exit_code);
 void add_record(CLI::App& app, int& exit_code);
+void add_study(CLI::App& app, int& exit_code);
 
 }  // namespace foveal::cmd
