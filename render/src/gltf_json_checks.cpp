@@ -156,6 +156,13 @@ class Checker {
       if (Status s = integer(v, "byteStride", path, false, 4, 252); !s) return s;
       if (auto st = v.find("byteStride"); st != v.end() && st->get<std::int64_t>() % 4 != 0)
         return fail(path + ".byteStride", shown(*st) + " is not a multiple of 4");
+      // Inside its buffer (tinygltf takes &data[byteOffset] of image views unchecked).
+      const std::uint64_t offset = v.value("byteOffset", std::uint64_t{0}), length = v["byteLength"].get<std::uint64_t>();
+      const std::uint64_t size = at("buffers", v["buffer"].get<std::size_t>())["byteLength"].get<std::uint64_t>();
+      if (offset > size || length > size - offset)
+        return fail(path, "byteOffset " + std::to_string(offset) + " + byteLength " + std::to_string(length) +
+                              " is past the end of buffers[" + std::to_string(v["buffer"].get<std::size_t>()) + "] (" +
+                              std::to_string(size) + " bytes)");
     }
     return {};
   }

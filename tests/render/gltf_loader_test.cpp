@@ -206,12 +206,11 @@ TEST(GltfLoader, ImageDimensionsAreCheckedBeforeDecoding) {
   expect_refused(load_json(with_image("not a png")), "images[0] (claims): not an image stb_image can decode");
   // An image in a buffer view that runs past its buffer (tinygltf 2.7 reads it unchecked).
   json j = test::quad_model();
-  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 12}});
-  j["buffers"][0]["byteLength"] = 60;
+  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 4000}});
   j["images"] = {{{"bufferView", 2}, {"mimeType", "image/png"}}};
-  CountingSink sink;
-  auto r = load_json(j);
-  expect_refused(r, "images[0]: not an image stb_image can decode");
+  expect_refused(load_json(j), "bufferViews[2]: byteOffset 48 + byteLength 4000 is past the end of buffers[0] (60 bytes)");
+  j["bufferViews"][2]["byteLength"] = 12;  // inside, but not an image
+  expect_refused(load_json(j), "images[0]: not an image stb_image can decode");
 }
 
 TEST(GltfLoader, FilesThatAreNotRegularAreRefused) {
