@@ -6,11 +6,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "foveal/core/display_model.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/core/json_file.hpp"
+#include "foveal/core/pacer.hpp"
 #include "foveal/core/read_file.hpp"
+#include "foveal/drivers/replay_source.hpp"
 #include "test_support.hpp"
 
 namespace foveal {
@@ -141,6 +144,30 @@ TEST(ExtremeTimes, Int64MinAndOtherOutOfRangeTimestampsAreRefused) {
   r = foveal_cli("log validate " + d.path("t.csv") + " --json");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("9223372036.85"), std::string::npos) << r.out;  // the duration, unwrapped
+}
+
+TEST(ExtremeTimes, ReplayAndPacingSaturateInsteadOfWrapping) {
+  // A slowed-down pacer past int64: the latest time there is, not a time in the past.
+  Pacer slow(0.001);
+  slow.start(-kMaxGazeLogTimeNs);
+  EXPECT_EQ(slow.due(kMaxGazeLogTimeNs - 1), std::numeric_limits<TimeNs>::max());
+  EXPECT_EQ(slow.due(-kMaxGazeLogTimeNs), slow.due(-kMaxGazeLogTimeNs));
+  test::TempDir d;
+  test::write_file(d.path("t.csv"), kHeader + row("-4611686018427387904") + row("4611686018427387903"));
+  ReplayOptions o;
+  o.path = d.path("t.csv");
+  o.speed = 0;
+  o.loop = true;
+  ReplaySource src(o);
+  ASSERT_TRUE(src.open());
+  ASSERT_TRUE(src.start());
+  ReadResult a = src.next(std::chrono::seconds(1)), b = src.next(std::chrono::seconds(1));
+  ASSERT_EQ(a.status, ReadStatus::sample);
+  ASSERT_EQ(b.status, ReadStatus::sample);
+  EXPECT_GT(b.sample.t_ns, a.sample.t_ns);  // 2^63 - 1 ns later: saturated, not wrapped
+  ReadResult c = src.next(std::chrono::seconds(1));  // a second pass would start past int64
+  ASSERT_EQ(c.status, ReadStatus::error);
+  EXPECT_NE(c.error.message.find("--loop: the log spans too long a time to repeat it"), std::string::npos) << c.error.message;
 }
 
 TEST(ExtremeNumbers, OutOfRangeIsNotReportedAsNotANumber) {
