@@ -24,7 +24,7 @@ const std::set<std::string> kSupportedRequired = {"KHR_materials_unlit"};
 // message is ours rather than tinygltf's.
 struct LoadContext {
   const GltfLimits* limits = nullptr;
-  std::string file;
+  std::string file, base_dir;
   detail::DecodeBudget* budget = nullptr;
   std::string error;
   void fail(std::string e) {
@@ -32,10 +32,14 @@ struct LoadContext {
   }
 };
 
+// tinygltf looks for a referenced file under the model's directory, then under the
+// current directory: only the first is meant.
 bool file_exists(const std::string& path, void* user) {
   auto* ctx = static_cast<LoadContext*>(user);
   std::error_code ec;
-  return ctx->limits->external_files && std::filesystem::exists(path, ec);
+  const std::string& dir = ctx->base_dir;
+  const std::string prefix = !dir.empty() && dir.back() == '/' ? dir : dir + "/";
+  return ctx->limits->external_files && path.rfind(prefix, 0) == 0 && std::filesystem::exists(path, ec);
 }
 
 std::string expand_path(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
@@ -176,7 +180,7 @@ Result<GltfScene> load_gltf_bytes(std::string_view bytes, const std::string& nam
   *root = nlohmann::json();  // free it before tinygltf builds its own
 
   detail::DecodeBudget budget(limits.max_decoded_bytes);
-  LoadContext ctx{&limits, name, &budget, {}};
+  LoadContext ctx{&limits, name, base_dir, &budget, {}};
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&file_exists, &expand_path, &read_whole_file, &no_write, &ctx});

@@ -231,6 +231,24 @@ TEST(GltfLoader, FilesThatAreNotRegularAreRefused) {
   EXPECT_NE(r.error().message.find("is a FIFO"), std::string::npos) << r.error().message;
 }
 
+TEST(GltfLoader, ReferencedFilesAreLookedUpBesideTheModelOnly) {
+  test::TempDir model_dir, cwd;
+  json j = test::quad_model();
+  j["buffers"][0]["uri"] = "quad.bin";
+  test::write_file(model_dir.path("quad.gltf"), j.dump());
+  test::write_file(cwd.path("quad.bin"), test::quad_buffer());  // tinygltf would also look in "."
+  const auto before = std::filesystem::current_path();
+  std::filesystem::current_path(cwd.path());
+  CountingSink sink;
+  auto r = render::load_gltf(model_dir.path("quad.gltf"), {}, sink);
+  std::filesystem::current_path(before);
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("File not found : quad.bin"), std::string::npos) << r.error().message;
+  test::write_file(model_dir.path("quad.bin"), test::quad_buffer());
+  r = render::load_gltf(model_dir.path("quad.gltf"), {}, sink);
+  EXPECT_TRUE(r) << r.error().message;
+}
+
 TEST(ViewFile, DeepOrBrokenViewFilesAreRefusedNamingTheFile) {
   test::TempDir d;
   test::write_file(d.path("a.view.json"), "{\"eye\": " + test::nested_arrays(500000) + "}");  // 1 MB, under the size limit
