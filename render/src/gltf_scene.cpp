@@ -1,8 +1,9 @@
 // The compositor's side of glTF loading: the CPU loader (gltf_loader.cpp) checks and
 // decodes, this uploads its textures and triangle lists, within this context's
 // GL_MAX_TEXTURE_SIZE.
-#include "foveal/render/gltf_loader.hpp"
+#include <algorithm>
 
+#include "foveal/render/gltf_loader.hpp"
 #include "scene_internal.hpp"
 
 namespace foveal::render::detail {

@@ -11,7 +11,6 @@
 
 namespace foveal::render {
 
-
 const std::vector<std::string>& pattern_names() {
   static const std::vector<std::string> names = {"checker", "stripes-h", "stripes-v", "noise"};
   return names;

@@ -2,7 +2,10 @@
 // and directories as inputs, extreme timestamps and numbers. Each is a clear error,
 // exit 2 from the CLI, never a crash or a hang.
 #include <gtest/gtest.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -14,6 +17,7 @@
 #include "foveal/core/pacer.hpp"
 #include "foveal/core/read_file.hpp"
 #include "foveal/drivers/replay_source.hpp"
+#include "foveal/runtime/control_server.hpp"
 #include "test_support.hpp"
 
 namespace foveal {
@@ -47,6 +51,41 @@ TEST(JsonLimits, DepthIsCountedOnTheBytesAndStringsDoNotCount) {
       << big.error().message;
   EXPECT_TRUE(parse_json_or_discarded(nested(65)).is_discarded());
   EXPECT_FALSE(parse_json_or_discarded("{\"cmd\": \"status\"}").is_discarded());
+}
+
+TEST(JsonLimits, AControlRequestNestedPastTheLimitGetsAnErrorReply) {
+  test::TempDir d;
+  auto server = ControlServer::listen(d.path("c.sock"));
+  ASSERT_TRUE(server) << server.error().message;
+  int handled = 0;
+  const ControlServer::Handler handler = [&](const nlohmann::json&) -> nlohmann::json {
+    ++handled;
+    return {{"ok", true}};
+  };
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  std::snprintf(addr.sun_path, sizeof addr.sun_path, "%s", server->path().c_str());
+  ASSERT_EQ(::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0);
+  auto ask = [&](const std::string& line) {
+    const std::string msg = line + "\n";
+    EXPECT_EQ(::send(fd, msg.data(), msg.size(), MSG_NOSIGNAL), static_cast<ssize_t>(msg.size()));
+    std::string reply;
+    for (int i = 0; i < 200 && reply.find('\n') == std::string::npos; ++i) {
+      server->poll(10, handler);
+      char buf[4096];
+      const ssize_t n = ::recv(fd, buf, sizeof buf, MSG_DONTWAIT);
+      if (n > 0) reply.append(buf, static_cast<std::size_t>(n));
+    }
+    return reply;
+  };
+  // 30,000 deep fits one 64 KiB line; the handler (which copies the request) never sees it.
+  const std::string deep = ask("{\"cmd\": \"set\", \"filter\": " + nested(30000) + "}");
+  EXPECT_NE(deep.find("malformed request"), std::string::npos) << deep;
+  EXPECT_EQ(handled, 0);
+  EXPECT_NE(ask("{\"cmd\": \"status\"}").find("\"ok\":true"), std::string::npos);
+  EXPECT_EQ(handled, 1);
+  ::close(fd);
 }
 
 TEST(JsonLimits, DeepDisplayModelIsRefusedNamingTheFile) {
