@@ -101,6 +101,24 @@ TEST(JsonLimits, DeepDisplayModelIsRefusedNamingTheFile) {
   }
 }
 
+// Found by fuzz_display: a display model that is a JSON array aborted (uncaught
+// type_error); numbers past int or float were cast with undefined behaviour.
+TEST(DisplayModelBadInput, WrongKindsOfJsonAreErrorsNotCrashes) {
+  test::TempDir d;
+  for (const auto& [text, message] : {std::pair{"[]", "m.json: expected a JSON object"},
+                                      std::pair{"5", "m.json: expected a JSON object"},
+                                      std::pair{"{\"eye_width\": 1e300}", "m.json: eye_width: expected an integer, got 1e+300"},
+                                      std::pair{"{\"eye_width\": 99999999999}", "m.json: eye_width: 99999999999 is out of range"},
+                                      std::pair{"{\"ipd_mm\": 1e300}", "m.json: ipd_mm: 1e+300 is out of range"},
+                                      std::pair{"{\"left\": {\"tangents\": {\"left\": \"x\"}}}", "m.json: left: expected a number"}}) {
+    SCOPED_TRACE(text);
+    test::write_file(d.path("m.json"), text);
+    auto m = DisplayModel::load(d.path("m.json"));
+    ASSERT_FALSE(m);
+    EXPECT_NE(m.error().message.find(message), std::string::npos) << m.error().message;
+  }
+}
+
 TEST(JsonLimits, DeepProfileFilterExitsTwoInImportShowAndSet) {
   test::TempDir d;
   const std::string env = "XDG_CONFIG_HOME=" + d.path();
