@@ -101,12 +101,14 @@ TEST(JsonLimits, DeepDisplayModelIsRefusedNamingTheFile) {
   }
 }
 
-// Found by fuzz_display: a display model that is a JSON array aborted (uncaught
-// type_error); numbers past int or float were cast with undefined behaviour.
+// Found by fuzz_display: a display model that is a JSON array, or whose format is not a
+// string, aborted (uncaught type_error); numbers past int or float were cast with
+// undefined behaviour.
 TEST(DisplayModelBadInput, WrongKindsOfJsonAreErrorsNotCrashes) {
   test::TempDir d;
   for (const auto& [text, message] : {std::pair{"[]", "m.json: expected a JSON object"},
                                       std::pair{"5", "m.json: expected a JSON object"},
+                                      std::pair{"{\"format\": 68038064520000000007791}", "m.json: field 'format' must be"},
                                       std::pair{"{\"eye_width\": 1e300}", "m.json: eye_width: expected an integer, got 1e+300"},
                                       std::pair{"{\"eye_width\": 99999999999}", "m.json: eye_width: 99999999999 is out of range"},
                                       std::pair{"{\"ipd_mm\": 1e300}", "m.json: ipd_mm: 1e+300 is out of range"},

@@ -164,7 +164,7 @@ Result<DisplayModel> DisplayModel::load(const std::string& path) {
   } catch (const FieldError& ex) {
     return bad_input(path + ": " + k + ": " + ex.what());
   }
-  if (j.value("format", std::string()) != "foveal-display-model v1")
+  if (auto f = j.find("format"); f == j.end() || *f != "foveal-display-model v1")  // value() throws on a non-string
     return bad_input(path + ": field 'format' must be \"foveal-display-model v1\"");
   if (Status s = m.validate(path); !s) return s.error();
   return m;
