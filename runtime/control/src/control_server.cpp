@@ -1,7 +1,6 @@
 #include "foveal/runtime/control_server.hpp"
 
 #include <errno.h>  // program_invocation_short_name
-#include <fcntl.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
@@ -198,11 +197,13 @@ void ControlServer::accept_clients() {
     const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
     if (fd < 0) break;
     std::erase_if(clients_, [](const Client& c) { return c.fd < 0; });
-    if (clients_.size() >= kMaxClients) {  // make room: the client idle longest goes
-      auto idlest = std::min_element(clients_.begin(), clients_.end(),
-                                     [](const Client& a, const Client& b) { return a.last_active < b.last_active; });
-      drop(*idlest, "the table of " + std::to_string(kMaxClients) + " clients is full and it was idle longest");
-      clients_.erase(idlest);
+    if (clients_.size() >= kMaxClients) {  // make room: one that does not read, else the one idle longest
+      auto victim = std::min_element(clients_.begin(), clients_.end(), [](const Client& a, const Client& b) {
+        return std::pair(a.out.empty(), a.last_active) < std::pair(b.out.empty(), b.last_active);
+      });
+      drop(*victim, std::string("the table of ") + std::to_string(kMaxClients) + " clients is full and it " +
+                        (victim->out.empty() ? "was idle longest" : "does not read its replies"));
+      clients_.erase(victim);
     }
     clients_.push_back({fd, next_id_++, {}, {}, 0, monotonic_now_ns()});
   }

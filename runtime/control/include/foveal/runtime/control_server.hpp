@@ -52,7 +52,8 @@ class ControlServer {
   /// writes queued replies, reads, answers complete lines and accepts new clients.
   /// Malformed, blank, wrongly typed and oversized requests get an error reply; an
   /// unterminated oversized line's client is then disconnected. When kMaxClients are
-  /// connected a newcomer replaces the one idle longest. Never throws, never blocks.
+  /// connected a newcomer replaces one that leaves its replies unread, else the one
+  /// idle longest. Never throws, never blocks.
   void poll(int timeout_ms, const Handler& handler);
 
   const std::string& path() const { return path_; }
