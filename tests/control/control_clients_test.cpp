@@ -18,6 +18,22 @@ using control_test::ControlSocket;
 
 double ms_since(TimeNs t0) { return static_cast<double>(monotonic_now_ns() - t0) / 1e6; }
 
+#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
+#define FOVEAL_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer) || __has_feature(address_sanitizer)
+#define FOVEAL_SANITIZED 1
+#endif
+#endif
+// A loop that waited on stuck clients took 100 ms for each: 3.1 s for 31. A sanitizer
+// build runs everything 5-15 times slower and shares the CPU with the flood, so it gets
+// a wider bound that still tells waiting from not waiting.
+#ifdef FOVEAL_SANITIZED
+constexpr double kStatusBoundMs = 500;
+#else
+constexpr double kStatusBoundMs = 100;
+#endif
+
 TEST_F(ControlSocket, ThirtyOneClientsThatNeverReadDoNotDelayAStatusRequest) {
   // 31 connections flood requests whose ~2 KB replies they never read; a dropped one is
   // replaced at once, so that 31 of them stay connected throughout.
@@ -38,13 +54,13 @@ TEST_F(ControlSocket, ThirtyOneClientsThatNeverReadDoNotDelayAStatusRequest) {
           ++reconnects;
         }
       }
-      std::this_thread::sleep_for(std::chrono::microseconds(200));
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     for (int fd : fds) ::close(fd);
   });
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // let their buffers fill
 
-  std::vector<double> times;
+  std::vector<double> times;  // each request from connect to reply, as `foveal ctl status` does it
   for (int i = 0; i < 20; ++i) {
     const TimeNs t0 = monotonic_now_ns();
     auto r = control_request(path_, {{"cmd", "status"}}, 2000);
@@ -53,17 +69,22 @@ TEST_F(ControlSocket, ThirtyOneClientsThatNeverReadDoNotDelayAStatusRequest) {
     EXPECT_EQ((*r)["echo"]["cmd"], "status");
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
+  // However slow the build, a client that never reads overflows its bound in the end.
+  const TimeNs give_up = monotonic_now_ns() + 30 * kNsPerSec;
+  auto dropped_for_not_reading = [&] {
+    for (const std::string& line : log_lines())
+      if (line.find("does not read") != std::string::npos) return true;
+    return false;
+  };
+  while (!dropped_for_not_reading() && monotonic_now_ns() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
   done = true;
   flood.join();
   std::sort(times.begin(), times.end());
   std::printf("status with %d non-reading clients: median %.2f ms, max %.2f ms over %zu; %d flooders dropped\n",
               kFlooders, times[times.size() / 2], times.back(), times.size(), reconnects.load());
-  // The old loop waited up to 100 ms on each stuck client: 3.1 s for 31.
-  EXPECT_LT(times.back(), 100.0) << "the slowest of 20 status requests (p99)";
-  EXPECT_GT(server_->clients_dropped(), 0u) << "clients that never read are dropped";
-  const auto logs = log_lines();
-  ASSERT_FALSE(logs.empty());
-  EXPECT_NE(logs.front().find("does not read"), std::string::npos) << logs.front();
+  EXPECT_LT(times.back(), kStatusBoundMs) << "the slowest of 20 status requests (p99)";
+  EXPECT_TRUE(dropped_for_not_reading()) << "a client that never reads is dropped with a log line";
 }
 
 TEST_F(ControlSocket, MoreIdleClientsThanTheTableNeverLockOutANewOne) {

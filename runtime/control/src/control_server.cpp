@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <tuple>
 #include <utility>
 
 #include "socket_path.hpp"
@@ -145,19 +146,20 @@ nlohmann::json ControlServer::answer(const std::string& line, const Handler& han
   }
 }
 
-void ControlServer::read_and_answer(Client& c, const Handler& handler) {
+void ControlServer::read_and_answer(Client& c, const Handler& handler, int max_requests) {
   // Read only while fewer than a turn's requests wait: a flood stays in the kernel.
   char buf[16 * 1024];
-  while (c.in.size() <= kMaxMessageBytes && std::count(c.in.begin(), c.in.end(), '\n') < kMaxRequestsPerTurn) {
+  while (c.in.size() <= kMaxMessageBytes && c.lines < max_requests) {
     const ssize_t n = ::recv(c.fd, buf, sizeof buf, MSG_DONTWAIT);
     if (n > 0) {
       c.in.append(buf, static_cast<std::size_t>(n));
+      c.lines += static_cast<int>(std::count(buf, buf + n, '\n'));
       c.last_active = monotonic_now_ns();
       continue;
     }
     if (n < 0 && errno == EINTR) continue;
     if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) break;
-    if (c.in.find('\n') == std::string::npos) {  // closed (0) or broken, nothing left to answer
+    if (c.lines == 0) {  // closed (0) or broken, nothing left to answer
       ::close(c.fd);
       c.fd = -1;
       return;
@@ -165,7 +167,7 @@ void ControlServer::read_and_answer(Client& c, const Handler& handler) {
     break;  // closed after its last requests: answer them first, the next read sees the end
   }
   std::size_t start = 0;
-  for (int answered = 0; c.fd >= 0 && answered < kMaxRequestsPerTurn; ++answered) {
+  for (int answered = 0; c.fd >= 0 && answered < max_requests; ++answered) {
     const std::size_t nl = c.in.find('\n', start);
     if (nl == std::string::npos) break;
     std::size_t len = nl - start;
@@ -177,10 +179,11 @@ void ControlServer::read_and_answer(Client& c, const Handler& handler) {
       queue_reply(c, answer(c.in.substr(start, len), handler));
     }
     start = nl + 1;
+    --c.lines;
   }
   c.in.erase(0, start);
   if (c.fd < 0) return;
-  if (c.in.find('\n') != std::string::npos) {
+  if (c.lines > 0) {
     work_waiting_ = true;
   } else if (c.in.size() > kMaxMessageBytes) {  // no end of line in sight: refuse and hang up
     bad_.fetch_add(1, std::memory_order_relaxed);
@@ -196,16 +199,20 @@ void ControlServer::accept_clients() {
   for (std::size_t i = 0; i < kMaxClients; ++i) {
     const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
     if (fd < 0) break;
-    std::erase_if(clients_, [](const Client& c) { return c.fd < 0; });
-    if (clients_.size() >= kMaxClients) {  // make room: one that does not read, else the one idle longest
-      auto victim = std::min_element(clients_.begin(), clients_.end(), [](const Client& a, const Client& b) {
-        return std::pair(a.out.empty(), a.last_active) < std::pair(b.out.empty(), b.last_active);
-      });
+    // Dropped clients stay in the table (fd -1) until poll() ends: its indices stay valid.
+    const auto live = std::count_if(clients_.begin(), clients_.end(), [](const Client& c) { return c.fd >= 0; });
+    if (static_cast<std::size_t>(live) >= kMaxClients) {  // make room: one that does not read, else the idlest
+      auto rank = [](const Client& c) { return std::tuple(c.fd < 0, c.out.empty(), c.last_active); };
+      auto victim = std::min_element(clients_.begin(), clients_.end(),
+                                     [&](const Client& a, const Client& b) { return rank(a) < rank(b); });
       drop(*victim, std::string("the table of ") + std::to_string(kMaxClients) + " clients is full and it " +
                         (victim->out.empty() ? "was idle longest" : "does not read its replies"));
-      clients_.erase(victim);
     }
-    clients_.push_back({fd, next_id_++, {}, {}, 0, monotonic_now_ns()});
+    Client c;
+    c.fd = fd;
+    c.id = next_id_++;
+    c.last_active = monotonic_now_ns();
+    clients_.push_back(std::move(c));
   }
 }
 
@@ -217,18 +224,32 @@ void ControlServer::poll(int timeout_ms, const Handler& handler) {
   const bool waiting = std::exchange(work_waiting_, false);
   if (::poll(fds.data(), fds.size(), waiting ? 0 : timeout_ms) < 0 && !waiting) return;
 
-  // Existing clients first: one that just connected and asked is answered before a
-  // wave of newcomers could push it out.
-  const std::size_t n = clients_.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    Client& c = clients_[i];
-    const short ev = fds[i].revents;
-    if (ev & POLLOUT) flush(c);
-    const bool lines_left = c.in.find('\n') != std::string::npos;
-    if (c.fd >= 0 && ((ev & (POLLIN | POLLHUP | POLLERR)) || lines_left)) read_and_answer(c, handler);
-    if (c.fd >= 0 && !c.out.empty()) flush(c);  // most replies leave at once
+  const std::size_t polled = clients_.size();
+  std::vector<bool> done(polled);
+  for (std::size_t i = 0; i < polled; ++i) {
+    if (fds[i].revents & POLLOUT) flush(clients_[i]);
+    // Clients that hung up: their last requests are answered (a `set` sent without
+    // waiting still counts) and their places freed before newcomers need them.
+    if (clients_[i].fd >= 0 && (fds[i].revents & (POLLHUP | POLLERR))) {
+      read_and_answer(clients_[i], handler, kMaxRequestsPerTurn);
+      done[i] = true;
+    }
   }
+  // Newcomers are read at once (`ctl` sends right after connecting). Clients that read
+  // their replies go first; those that leave them unread get one request each, last.
   if (fds.back().revents & POLLIN) accept_clients();
+  done.resize(clients_.size());
+  std::vector<bool> unread(clients_.size());
+  for (std::size_t i = 0; i < clients_.size(); ++i) unread[i] = !clients_[i].out.empty();
+  for (const bool slow : {false, true})
+    for (std::size_t i = 0; i < clients_.size(); ++i) {
+      Client& c = clients_[i];
+      if (c.fd < 0 || done[i] || unread[i] != slow) continue;
+      const bool ready = i >= polled || (fds[i].revents & (POLLIN | POLLHUP | POLLERR));
+      if (ready || c.lines > 0) read_and_answer(c, handler, slow ? 1 : kMaxRequestsPerTurn);
+      // Most replies leave at once; a client whose socket was full waits for POLLOUT.
+      if (c.fd >= 0 && !slow && !c.out.empty()) flush(c);
+    }
   std::erase_if(clients_, [](const Client& c) { return c.fd < 0; });
 }
 

@@ -29,6 +29,7 @@ class ControlServer {
   /// Unread replies a client may have queued before it is dropped.
   static constexpr std::size_t kMaxPendingReplyBytes = 256 * 1024;
   /// Requests answered per client per poll(): a flooding client cannot starve the others.
+  /// A client that leaves replies unread gets one per turn, after everyone else.
   static constexpr int kMaxRequestsPerTurn = 8;
 
   /// Turns one parsed request into its reply. Runs on the poll() thread. The request is
@@ -68,12 +69,13 @@ class ControlServer {
     int fd = -1;
     std::uint64_t id = 0;
     std::string in, out;     ///< unparsed input; replies not yet sent
+    int lines = 0;           ///< complete lines in `in`
     std::size_t out_sent = 0;  ///< bytes of `out` already written
     TimeNs last_active = 0;  ///< last byte received or sent
   };
   ControlServer() = default;
   void accept_clients();
-  void read_and_answer(Client& c, const Handler& handler);
+  void read_and_answer(Client& c, const Handler& handler, int max_requests);
   nlohmann::json answer(const std::string& line, const Handler& handler);
   void queue_reply(Client& c, const nlohmann::json& reply);
   void flush(Client& c);
