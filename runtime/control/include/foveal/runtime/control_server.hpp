@@ -58,6 +58,7 @@ class ControlServer {
   void poll(int timeout_ms, const Handler& handler);
 
   const std::string& path() const { return path_; }
+  /// On the poll() thread only; the counters below may be read from any thread.
   std::size_t clients() const { return clients_.size(); }
   std::uint64_t requests_served() const { return served_.load(std::memory_order_relaxed); }
   std::uint64_t bad_requests() const { return bad_.load(std::memory_order_relaxed); }
