@@ -5,10 +5,10 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
+#include "foveal/core/file_mode.hpp"
 #include "foveal/runtime/control_server.hpp"
 
 namespace foveal {
@@ -22,12 +22,6 @@ namespace control_detail {
 
 namespace {
 
-std::string octal(mode_t m) {
-  char buf[8];
-  std::snprintf(buf, sizeof buf, "%04o", static_cast<unsigned>(m & 07777));
-  return buf;
-}
-
 Status check_private_dir(const std::string& dir, const struct stat& st) {
   const std::string rule = "; the control socket needs a directory of yours that nobody else can enter "
                            "(mode 0700), or another --control path";
@@ -37,7 +31,7 @@ Status check_private_dir(const std::string& dir, const struct stat& st) {
     return bad_input(dir + ": belongs to uid " + std::to_string(st.st_uid) + ", not to you (uid " +
                      std::to_string(::geteuid()) + ")" + rule);
   if ((st.st_mode & 077) != 0)
-    return bad_input(dir + ": has mode " + octal(st.st_mode) + ", open to group or others" + rule);
+    return bad_input(dir + ": has mode " + mode_text(st.st_mode) + ", open to group or others" + rule);
   return {};
 }
 

@@ -9,20 +9,11 @@
 #include <utility>
 
 #include "atomic_file_temps.hpp"
+#include "foveal/core/file_mode.hpp"
 
 namespace foveal {
 
 namespace {
-
-const char* kind_of(mode_t m) {
-  if (S_ISCHR(m)) return "a character device";
-  if (S_ISBLK(m)) return "a block device";
-  if (S_ISFIFO(m)) return "a FIFO";
-  if (S_ISDIR(m)) return "a directory";
-  if (S_ISSOCK(m)) return "a socket";
-  if (S_ISLNK(m)) return "a symbolic link";
-  return "not a regular file";
-}
 
 /// The mode the temporary file is created with: an existing target's permission bits,
 /// else 0666 (the umask then applies, as for any new file). `keep` says whether the
@@ -36,7 +27,7 @@ Result<mode_t> target_mode(const std::string& path, bool& keep) {
   }
   // Renaming over a device, FIFO or link would replace it with a regular file.
   if (!S_ISREG(st.st_mode))
-    return bad_input(path + ": is " + kind_of(st.st_mode) +
+    return bad_input(path + ": is " + file_kind_name(st.st_mode) +
                      (S_ISLNK(st.st_mode) ? "; name the file it points to" : "; outputs go to regular files only"));
   keep = true;
   return static_cast<mode_t>(st.st_mode & 0777);

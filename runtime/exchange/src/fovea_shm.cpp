@@ -7,22 +7,17 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <new>
 #include <utility>
+
+#include "foveal/core/file_mode.hpp"
 
 namespace foveal {
 
 std::string default_fovea_shm_name() { return "/foveal-fovea-" + std::to_string(::getuid()); }
 
 namespace {
-
-std::string octal(mode_t m) {
-  char buf[8];
-  std::snprintf(buf, sizeof buf, "%04o", static_cast<unsigned>(m & 07777));
-  return buf;
-}
 
 /// Opens the block for writing: a new one, or one a dead foveald of this user left.
 /// Someone else's block (another owner, a wider mode, not a plain file) is refused:
@@ -42,7 +37,7 @@ Result<int> open_for_writing(const std::string& name) {
     else if (!S_ISREG(st.st_mode)) wrong = "it is not a plain shared-memory object";
     else if (st.st_uid != ::geteuid())
       wrong = "it belongs to uid " + std::to_string(st.st_uid) + ", not to you (uid " + std::to_string(::geteuid()) + ")";
-    else if ((st.st_mode & 07777) != 0600) wrong = "its mode is " + octal(st.st_mode) + ", not 0600";
+    else if ((st.st_mode & 07777) != 0600) wrong = "its mode is " + mode_text(st.st_mode) + ", not 0600";
     if (!wrong.empty()) {
       ::close(fd);
       return bad_input(what + ": exists and is not foveald's: " + wrong + "; refusing to publish gaze into it");
@@ -94,7 +89,7 @@ Result<FoveaShm> FoveaShm::open(const std::string& name) {
   }
   if ((st.st_mode & 077) != 0) {  // foveald makes it 0600: a wider block is someone else's bait
     ::close(fd);
-    return bad_input("shared memory " + name + ": mode " + octal(st.st_mode) +
+    return bad_input("shared memory " + name + ": mode " + mode_text(st.st_mode) +
                      " lets other users write it; not a block of foveald's");
   }
   void* p = ::mmap(nullptr, sizeof(FoveaShmBlock), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
