@@ -5,22 +5,9 @@
 # screendump in between), checks that a second foveald finds the card busy, stops
 # foveald with SIGTERM and reports how it exited. Before all that: the error an ordinary
 # user gets.
-/bin/busybox --install -s /bin
-export PATH=/bin:/usr/bin
-mount -t proc proc /proc
-mount -t sysfs sys /sys
-mount -t devtmpfs dev /dev
-mount -t tmpfs tmp /tmp
-echo "VMTEST-BEGIN kernel $(uname -r), uptime $(cut -d' ' -f1 /proc/uptime) s"
-
-# Each line: a module file and its parameters.
-while read -r m params; do
-  insmod "/modules/$m" $params || echo "VMTEST modules FAIL insmod $m"
-done < /modules/order
-n=0
-while [ ! -e /dev/dri/card0 ]; do
-  n=$((n + 1)); [ $n -gt 100 ] && break; sleep 0.1
-done
+. /vm/guest_lib.sh
+guest_boot
+wait_until 100 test -e /dev/dri/card0
 ls -l /dev/dri 2>&1
 
 # READY_FRAMES, READY_TIMEOUT, GO_TIMEOUT, OUT, the environment, and foveald's
