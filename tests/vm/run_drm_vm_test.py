@@ -20,6 +20,7 @@ import sys
 import time
 import zlib
 
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 from qemu_guest import HERE, Initramfs, host_ready, qemu_command, run_console, verdicts
 
 # bochs and what it needs, in load order. No fbdev emulation: no fbcon drawing on a

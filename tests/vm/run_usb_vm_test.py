@@ -16,6 +16,7 @@ import subprocess
 import sys
 import time
 
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 from qemu_guest import Initramfs, host_ready, qemu_command, run_console, verdicts
 
 NAME = "run_usb_vm_test"
