@@ -69,7 +69,8 @@ else
   echo "VMTEST devices_usb FAIL $(tr -d '\n' < /tmp/devices2.json | head -c 300)"
 fi
 foveal record --device psvr2 --out /tmp/psvr2.csv --duration 2 --json > /tmp/record2.json 2>&1
-n=$(grep -o '"samples": [0-9]*' /tmp/record2.json | grep -o '[0-9]*$')
+# The top-level "samples" (the last key; driver_counters has one too).
+n=$(grep -o '"samples": [0-9]*' /tmp/record2.json | tail -n 1 | grep -o '[0-9]*$')
 if [ "${n:-0}" -ge 100 ] && [ -s /tmp/psvr2.csv ]; then
   echo "VMTEST record_usb PASS samples=$n $(head -c 120 /tmp/psvr2.csv | tr '\n' ' ')"
 else
