@@ -44,7 +44,8 @@ hid_gadget() {
 }
 
 # psvr2_gadget DIR FFS: the PS VR2 gaze interface (054c:0cde) as a FunctionFS function
-# mounted at FFS, for `foveal_vm_guest psvr2-gadget FFS`; not plugged in yet.
+# mounted at FFS, with its device side `foveal_vm_guest psvr2-gadget FFS` running (pid
+# in PSVR2, output in /tmp/psvr2.log); not plugged in yet.
 psvr2_gadget() {
   mkdir -p $1/strings/0x409 $1/functions/ffs.gaze $1/configs/c.1
   echo 0x054c > $1/idVendor
@@ -53,6 +54,15 @@ psvr2_gadget() {
   ln -s $1/functions/ffs.gaze $1/configs/c.1/
   mkdir -p $2
   mount -t functionfs gaze $2
+  foveal_vm_guest psvr2-gadget $2 > /tmp/psvr2.log 2>&1 &
+  PSVR2=$!
+  wait_until 50 test -e $2/ep1
+}
+
+# stop_device PID LOG: ends an emulated device's program and prints what it logged.
+stop_device() {
+  kill $1; wait $1
+  cat $2
 }
 
 # The PS VR2 gadget is on the bus (as the host side sees it).

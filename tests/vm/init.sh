@@ -47,16 +47,12 @@ fi
 # (c) 20 unplug/replug cycles.
 foveal_vm_guest replug $G/UDC dummy_udc.0 20
 
-kill $FEED; wait $FEED
-cat /tmp/feed.log
+stop_device $FEED /tmp/feed.log
 
 # (b) an emulated PS VR2 gaze interface through FunctionFS, read by the libusb driver.
 echo "" > $G/UDC
 P=/sys/kernel/config/usb_gadget/psvr2
 psvr2_gadget $P /dev/ffs-gaze
-foveal_vm_guest psvr2-gadget /dev/ffs-gaze > /tmp/psvr2.log 2>&1 &
-PSVR2=$!
-wait_until 50 test -e /dev/ffs-gaze/ep1
 echo dummy_udc.0 > $P/UDC || echo "psvr2: bind failed"
 wait_until 50 psvr2_present
 ls /dev/bus/usb/*/ 2>&1 | tr '\n' ' '; echo
@@ -76,8 +72,7 @@ if [ "${n:-0}" -ge 100 ] && [ -s /tmp/psvr2.csv ]; then
 else
   echo "VMTEST record_usb FAIL $(tr -d '\n' < /tmp/record2.json)"
 fi
-kill $PSVR2; wait $PSVR2
-cat /tmp/psvr2.log
+stop_device $PSVR2 /tmp/psvr2.log
 if grep -q "value=030c index=5 data=0c 01" /tmp/psvr2.log; then
   echo "VMTEST psvr2_enable PASS the gadget received the gaze-stream enable request"
 else

@@ -21,18 +21,13 @@ hid_gadget $G
 (wait_until 1200 test -e /dev/hidg0 && exec foveal_vm_guest feed /dev/hidg0) > /tmp/feed.log 2>&1 &
 FEED=$!
 foveal_vm_guest live hid $G/UDC dummy_udc.0 /tmp/live-hid -- foveald --source hid $RENDER
-kill $FEED; wait $FEED
-cat /tmp/feed.log
+stop_device $FEED /tmp/feed.log
 echo "" > $G/UDC
 
 # The PS VR2 gaze interface on the same controller.
 P=/sys/kernel/config/usb_gadget/psvr2
 psvr2_gadget $P /dev/ffs-gaze
-foveal_vm_guest psvr2-gadget /dev/ffs-gaze > /tmp/psvr2.log 2>&1 &
-PSVR2=$!
-wait_until 50 test -e /dev/ffs-gaze/ep1
 foveal_vm_guest live psvr2 $P/UDC dummy_udc.0 /tmp/live-psvr2 -- foveald --source psvr2 $RENDER
-kill $PSVR2; wait $PSVR2
-cat /tmp/psvr2.log
+stop_device $PSVR2 /tmp/psvr2.log
 echo "VMTEST-END"
 poweroff -f

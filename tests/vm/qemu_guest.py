@@ -158,10 +158,11 @@ def find_kernel(module):
     return found
 
 
-def host_ready(name, module):
-    """(qemu, kver) when the guest can run here; else prints why and returns the exit
-    code: SKIP without qemu or a kernel with `module`, 1 without a static busybox
-    (scripts/bootstrap.sh installs busybox-static with qemu: not a reason to skip)."""
+def host_ready(name, module, work):
+    """(qemu, kver) when the guest can run here, with `work` made an empty directory;
+    else prints why and returns the exit code: SKIP without qemu or a kernel with
+    `module`, 1 without a static busybox (scripts/bootstrap.sh installs busybox-static
+    with qemu: not a reason to skip)."""
     qemu = shutil.which("qemu-system-x86_64")
     if not qemu:
         print("SKIPPED: qemu-system-x86_64 is not installed (apt-get install qemu-system-x86; scripts/bootstrap.sh does it)")
@@ -174,6 +175,8 @@ def host_ready(name, module):
     if not os.access(BUSYBOX, os.X_OK) or subprocess.run(["ldd", BUSYBOX], capture_output=True).returncode == 0:
         print(f"{name}: {BUSYBOX} is missing or not static (apt-get install busybox-static)")
         return 1
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
     return qemu, kver
 
 

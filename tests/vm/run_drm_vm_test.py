@@ -185,15 +185,12 @@ def main():
         if ":" not in spec:
             p.error(f"--extra-file {spec}: expected SRC:GUESTPATH")
 
-    found = host_ready("run_drm_vm_test", "drivers/gpu/drm/tiny/bochs")
+    start = time.monotonic()
+    work = os.path.abspath(a.work)
+    found = host_ready("run_drm_vm_test", "drivers/gpu/drm/tiny/bochs", work)
     if isinstance(found, int):
         return found
     qemu, kver = found
-
-    start = time.monotonic()
-    work = os.path.abspath(a.work)
-    shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(work)
     guest_args = shlex.split(a.guest_args)
     host_args = shlex.split(a.host_args)
     guest_out = os.path.join("/tmp", out_dir(guest_args, "foveald-out"))  # foveald runs in /tmp

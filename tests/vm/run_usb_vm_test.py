@@ -11,7 +11,6 @@ docs/vm-tests.md describes the guests and their timings.
 """
 import argparse
 import os
-import shutil
 import subprocess
 import sys
 import time
@@ -53,14 +52,12 @@ def main():
     if a.mesa and not a.source_dir:
         p.error("--mesa needs --source-dir")
 
-    found = host_ready(NAME, "drivers/usb/gadget/udc/dummy_hcd")
+    start = time.monotonic()
+    work = os.path.abspath(a.work)
+    found = host_ready(NAME, "drivers/usb/gadget/udc/dummy_hcd", work)
     if isinstance(found, int):
         return found
     qemu, kver = found
-    start = time.monotonic()
-    work = os.path.abspath(a.work)
-    shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(work)
     try:
         size = build_initramfs(a, kver, work)
     except (OSError, subprocess.CalledProcessError) as e:

@@ -20,13 +20,13 @@ inline bool verdict(const char* name, bool pass, const std::string& details) {
 /// Open file descriptors of this process.
 int count_open_fds();
 
-/// Polls `pred` every millisecond until it holds (true) or `timeout_ns` passed (false).
+/// Polls `pred` every `period_ns` until it holds (true) or `timeout_ns` passed (false).
 template <class Pred>
-bool wait_for(Pred pred, TimeNs timeout_ns) {
+bool wait_for(Pred pred, TimeNs timeout_ns, TimeNs period_ns = kNsPerMs) {
   const TimeNs until = monotonic_now_ns() + timeout_ns;
   while (!pred()) {
     if (monotonic_now_ns() > until) return false;
-    sleep_until_ns(monotonic_now_ns() + kNsPerMs);
+    sleep_until_ns(monotonic_now_ns() + period_ns);
   }
   return true;
 }

@@ -46,6 +46,9 @@ namespace {
 using nlohmann::json;
 
 constexpr double kPeriodNs = 8'333'333.3;  // both emulated devices send at 120 Hz
+// How often to ask foveald's status while waiting: each request costs the emulated CPUs
+// what the gaze thread needs.
+constexpr TimeNs kAskEveryNs = 50 * kNsPerMs;
 
 /// What one kind of device needs here: its presence, and the sample its k-th report makes.
 struct LiveDevice {
@@ -95,23 +98,28 @@ std::vector<std::string> split_csv(const std::string& line) {
   return out;
 }
 
-std::vector<TraceRow> read_trace(const std::string& path) {
-  std::vector<TraceRow> rows;
+/// Calls `row` with the fields of every data row of a CSV file that has at least `fields`.
+template <class Row>
+void for_each_row(const std::string& path, std::size_t fields, Row row) {
   std::ifstream f(path);
   std::string line;
   std::getline(f, line);  // header
-  while (std::getline(f, line)) {
-    const auto v = split_csv(line);
-    if (v.size() < 9) continue;
+  while (std::getline(f, line))
+    if (const auto v = split_csv(line); v.size() >= fields) row(v);
+}
+
+std::vector<TraceRow> read_trace(const std::string& path) {
+  std::vector<TraceRow> rows;
+  for_each_row(path, 9, [&](const std::vector<std::string>& v) {
     TraceRow r;
     r.rel = std::stoll(v[0]);
-    for (int e = 0; e < 2; ++e) {
-      r.state[e] = v[static_cast<std::size_t>(1 + 4 * e)];
-      r.x[e] = std::stod(v[static_cast<std::size_t>(2 + 4 * e)]);
-      r.y[e] = std::stod(v[static_cast<std::size_t>(3 + 4 * e)]);
+    for (std::size_t e = 0; e < 2; ++e) {
+      r.state[e] = v[1 + 4 * e];
+      r.x[e] = std::stod(v[2 + 4 * e]);
+      r.y[e] = std::stod(v[3 + 4 * e]);
     }
     rows.push_back(std::move(r));
-  }
+  });
   return rows;
 }
 
@@ -122,20 +130,15 @@ struct FrameRow {
 
 std::vector<FrameRow> read_frames(const std::string& path) {
   std::vector<FrameRow> rows;
-  std::ifstream f(path);
-  std::string line;
-  std::getline(f, line);
-  while (std::getline(f, line)) {
-    const auto v = split_csv(line);
-    if (v.size() < 7) continue;
+  for_each_row(path, 7, [&](const std::vector<std::string>& v) {
     FrameRow r;
     r.t_ns = std::stoll(v[1]);
-    for (int e = 0; e < 2; ++e) {
-      r.fx[e] = std::stod(v[static_cast<std::size_t>(3 + 2 * e)]);
-      r.fy[e] = std::stod(v[static_cast<std::size_t>(4 + 2 * e)]);
+    for (std::size_t e = 0; e < 2; ++e) {
+      r.fx[e] = std::stod(v[3 + 2 * e]);
+      r.fy[e] = std::stod(v[4 + 2 * e]);
     }
     rows.push_back(r);
-  }
+  });
   return rows;
 }
 
@@ -313,10 +316,10 @@ int run_live(const std::string& kind, const std::string& udc_file, const std::st
   bool saw_reconnecting = false;
   std::string state_before, waiting_for;
   FoveaShmPayload anchor{};
-  if (!wait_for([&] { return !alive() || ask(); }, 120 * kNsPerSec) || !alive()) problem = "foveald's control socket never answered";
+  if (!wait_for([&] { return !alive() || ask(); }, 120 * kNsPerSec, kAskEveryNs) || !alive()) problem = "foveald's control socket never answered";
   if (problem.empty()) {
     // The first open is under way when the socket opens; its failure says why it waits.
-    wait_for([&] { return !ask() || !str_at(status, "/source/waiting_for").empty(); }, 20 * kNsPerSec);
+    wait_for([&] { return !ask() || !str_at(status, "/source/waiting_for").empty(); }, 20 * kNsPerSec, kAskEveryNs);
     state_before = str_at(status, "/source/state");
     waiting_for = str_at(status, "/source/waiting_for");
     std::printf("live: control after %.1f s: source %s (%s)\n", ms(monotonic_now_ns() - t_spawn) / 1e3,
@@ -327,7 +330,7 @@ int run_live(const std::string& kind, const std::string& udc_file, const std::st
   if (problem.empty() &&
       !wait_for([&] {
         return !alive() || (ask() && u64_at(status, "/samples") >= 240 && u64_at(status, "/render/frames") >= 3);
-      }, 120 * kNsPerSec))
+      }, 120 * kNsPerSec, kAskEveryNs))
     problem = "no 240 samples and 3 frames within 120 s of the plug-in: " + status.dump().substr(0, 300);
   if (problem.empty() && !alive()) problem = "foveald exited";
   if (problem.empty()) {
@@ -343,7 +346,7 @@ int run_live(const std::string& kind, const std::string& udc_file, const std::st
     if (!write_udc(udc_file, "")) problem = "cannot unbind";
     else if (!wait_for([&] { return !dev->present(); }, 5 * kNsPerSec)) problem = "the device did not go away";
     t_node_gone = monotonic_now_ns();
-    saw_reconnecting = problem.empty() && wait_for([&] { return state() == "reconnecting"; }, 5 * kNsPerSec);
+    saw_reconnecting = problem.empty() && wait_for([&] { return state() == "reconnecting"; }, 5 * kNsPerSec, kAskEveryNs);
     sleep_until_ns(std::max(monotonic_now_ns(), t_unplug + kNsPerSec));
   }
   if (problem.empty()) {
@@ -363,7 +366,7 @@ int run_live(const std::string& kind, const std::string& udc_file, const std::st
     wait_for([&] {
       return !alive() || (monotonic_now_ns() > t_back + 2 * kNsPerSec && ask() &&
                           u64_at(status, "/render/frames") >= frames_then + 3);
-    }, 60 * kNsPerSec);
+    }, 60 * kNsPerSec, kAskEveryNs);
   }
   // 4. SIGTERM, then the outputs.
   if (alive()) ::kill(pid, SIGTERM);
