@@ -19,24 +19,17 @@
 #include <unistd.h>
 
 #include <cmath>
-#include <cstring>
 #include <fstream>
-#include <functional>
 #include <map>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
-#include "feeder_pattern.hpp"
 #include "foveal/core/display_model.hpp"
-#include "foveal/drivers/hid/screen_gaze.hpp"
 #include "foveal/runtime/control_server.hpp"
 #include "foveal/runtime/fovea_shm.hpp"
-#include "foveal/runtime/gaze_pipeline.hpp"
 #include "vm_guest.hpp"
-#ifdef FOVEAL_VM_HAVE_USB
-#include "psvr2_pattern.hpp"
-#endif
+#include "vm_live_files.hpp"
+#include "vm_live_follow.hpp"
 
 extern char** environ;
 
@@ -45,216 +38,9 @@ namespace {
 
 using nlohmann::json;
 
-constexpr double kPeriodNs = 8'333'333.3;  // both emulated devices send at 120 Hz
 // How often to ask foveald's status while waiting: each request costs the emulated CPUs
 // what the gaze thread needs.
 constexpr TimeNs kAskEveryNs = 50 * kNsPerMs;
-
-/// What one kind of device needs here: its presence, and the sample its k-th report makes.
-struct LiveDevice {
-  std::function<bool()> present;
-  std::function<GazeSample(std::uint64_t k)> sample;
-  std::uint64_t period = 0;  ///< sample(k) repeats with this period in k
-  std::string device_driver;  ///< SourceInfo::driver of the opened device
-};
-
-Result<LiveDevice> live_device(const std::string& kind) {
-  if (kind == "hid")
-    return LiveDevice{hidraw_present,
-                      [](std::uint64_t k) {
-                        const auto p = pattern(k);
-                        hid::TrackingData d;
-                        d.gaze_valid = d.left_valid = d.right_valid = true;
-                        d.gaze_x_mm = p.gaze_x_um / 1000.0;
-                        d.gaze_y_mm = p.gaze_y_um / 1000.0;
-                        d.left_eye_mm = glm::dvec3(p.left_um[0], p.left_um[1], p.left_um[2]) / 1000.0;
-                        d.right_eye_mm = glm::dvec3(p.right_um[0], p.right_um[1], p.right_um[2]) / 1000.0;
-                        return hid::screen_gaze_to_sample(d, hid::ScreenPlane{});
-                      },
-                      100000, "hid"};
-#ifdef FOVEAL_VM_HAVE_USB
-  if (kind == "psvr2")
-    return LiveDevice{[] { return usb_device_present(kPsvr2Vendor, kPsvr2Product); },
-                      [](std::uint64_t k) {
-                        const auto rec = psvr2_record(k);
-                        return usb::psvr2_to_sample(*usb::parse_psvr2_gaze(rec));
-                      },
-                      1000, "usb"};
-#endif
-  return bad_input("live: unknown device kind '" + kind + "' (hid, psvr2)");
-}
-
-struct TraceRow {
-  TimeNs rel = 0;  ///< from the first sample
-  std::string state[2];
-  double x[2] = {0, 0}, y[2] = {0, 0};
-};
-
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string f;
-  while (std::getline(ss, f, ',')) out.push_back(f);
-  return out;
-}
-
-/// Calls `row` with the fields of every data row of a CSV file that has at least `fields`.
-template <class Row>
-void for_each_row(const std::string& path, std::size_t fields, Row row) {
-  std::ifstream f(path);
-  std::string line;
-  std::getline(f, line);  // header
-  while (std::getline(f, line))
-    if (const auto v = split_csv(line); v.size() >= fields) row(v);
-}
-
-std::vector<TraceRow> read_trace(const std::string& path) {
-  std::vector<TraceRow> rows;
-  for_each_row(path, 9, [&](const std::vector<std::string>& v) {
-    TraceRow r;
-    r.rel = std::stoll(v[0]);
-    for (std::size_t e = 0; e < 2; ++e) {
-      r.state[e] = v[1 + 4 * e];
-      r.x[e] = std::stod(v[2 + 4 * e]);
-      r.y[e] = std::stod(v[3 + 4 * e]);
-    }
-    rows.push_back(std::move(r));
-  });
-  return rows;
-}
-
-struct FrameRow {
-  TimeNs t_ns = 0;
-  double fx[2] = {0, 0}, fy[2] = {0, 0};  ///< fovea per eye, in viewport fractions
-};
-
-std::vector<FrameRow> read_frames(const std::string& path) {
-  std::vector<FrameRow> rows;
-  for_each_row(path, 7, [&](const std::vector<std::string>& v) {
-    FrameRow r;
-    r.t_ns = std::stoll(v[1]);
-    for (std::size_t e = 0; e < 2; ++e) {
-      r.fx[e] = std::stod(v[3 + 2 * e]);
-      r.fy[e] = std::stod(v[4 + 2 * e]);
-    }
-    rows.push_back(r);
-  });
-  return rows;
-}
-
-json read_json(const std::string& path) {
-  std::ifstream f(path);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return json::parse(ss.str(), nullptr, false);
-}
-
-/// A value at a JSON pointer, or null (the summary's shape is checked, not trusted).
-json at(const json& j, const std::string& pointer) {
-  const json::json_pointer p(pointer);
-  return j.is_object() && j.contains(p) ? j.at(p) : json();
-}
-
-std::string str_at(const json& j, const std::string& pointer) {
-  const json v = at(j, pointer);
-  return v.is_string() ? v.get<std::string>() : "";
-}
-
-std::uint64_t u64_at(const json& j, const std::string& pointer) {
-  const json v = at(j, pointer);
-  return v.is_number_unsigned() ? v.get<std::uint64_t>() : 0;
-}
-
-bool same_fovea(const FoveaFrame& f, const TraceRow& r) {
-  for (Eye e : kEyes) {
-    const auto i = static_cast<std::size_t>(e);
-    const FoveaPoint& p = f.eye(e);
-    if (r.state[i] != fovea_state_name(p.state) || std::abs(p.px.x - r.x[i]) > 2e-3 || std::abs(p.px.y - r.y[i]) > 2e-3)
-      return false;
-  }
-  return true;
-}
-
-/// Replays the device's pattern through the pipeline foveald runs (default profile,
-/// Vive Pro Eye) and compares every trace row from the first one with an eye in view:
-/// each must be the pipeline's output for one of the next reports (nearest first to
-/// the spacing of the row times).
-struct FollowResult {
-  std::size_t rows = 0, matched = 0, first_row = 0;
-  std::uint64_t k0 = 0;
-  std::size_t resyncs = 0;      ///< rows found only by the wide search ...
-  std::int64_t max_resync = 0;  ///< ... at most this many reports past the estimate
-  std::string problem;
-};
-
-FollowResult check_follows(const std::vector<TraceRow>& rows, TimeNs t0, const LiveDevice& dev) {
-  FollowResult res;
-  GazePipeline pipe(DisplayModel::vive_pro_eye(), FilterConfig{});
-  std::size_t s = 0;
-  while (s < rows.size() && rows[s].state[0] == "lost" && rows[s].state[1] == "lost") ++s;
-  if (s == rows.size()) {
-    res.problem = "no trace row with an eye in view";
-    return res;
-  }
-  res.first_row = s;
-  auto sample_at = [&](std::uint64_t k, const TraceRow& r) {
-    GazeSample g = dev.sample(k);
-    g.t_ns = t0 + r.rel;
-    return g;
-  };
-  bool found = false;
-  for (std::uint64_t k = 0; k < dev.period && !found; ++k) {
-    pipe.reset();
-    if (same_fovea(pipe.update(sample_at(k, rows[s])), rows[s])) found = true, res.k0 = k;
-  }
-  if (!found) {
-    res.problem = "trace row " + std::to_string(s) + " is no report of the device's pattern";
-    return res;
-  }
-  std::uint64_t k = res.k0;
-  res.rows = res.matched = 1;
-  // The reports after k in [1, hi], nearest first to `est`: the first whose output is the row's.
-  auto advance = [&](const TraceRow& row, std::int64_t est, std::int64_t hi) {
-    for (std::int64_t step = 0; step <= 2 * hi; ++step) {
-      const std::int64_t d = est + (step % 2 ? (step + 1) / 2 : -(step / 2));
-      if (d < 1 || d > hi) continue;
-      GazePipeline trial = pipe;
-      if (same_fovea(trial.update(sample_at(k + static_cast<std::uint64_t>(d), row)), row)) {
-        pipe = std::move(trial);
-        k += static_cast<std::uint64_t>(d);
-        return d;
-      }
-    }
-    return std::int64_t{0};
-  };
-  for (std::size_t j = s + 1; j < rows.size(); ++j) {
-    ++res.rows;
-    // The row spacing estimates how many reports on: first a few either side (the
-    // device clock's offset settling, reports the host missed under load), then up to
-    // 5 s of reports (a stall, a replug).
-    const auto est = std::max<std::int64_t>(1, std::llround(static_cast<double>(rows[j].rel - rows[j - 1].rel) / kPeriodNs));
-    std::int64_t d = advance(rows[j], est, est + 12 + est / 4);
-    if (d == 0 && (d = advance(rows[j], est, 4 * est + 600)) != 0) {
-      ++res.resyncs;
-      res.max_resync = std::max(res.max_resync, d - est);
-    }
-    if (d != 0) {
-      ++res.matched;
-      continue;
-    }
-    if (res.problem.empty()) {
-      char b[300];
-      std::snprintf(b, sizeof b, "row %zu (t %.3f s, %.1f ms after the last): L %s (%.3f,%.3f) R %s (%.3f,%.3f) is no report after k=%llu",
-                    j, static_cast<double>(rows[j].rel) / 1e9, static_cast<double>(rows[j].rel - rows[j - 1].rel) / 1e6,
-                    rows[j].state[0].c_str(), rows[j].x[0], rows[j].y[0], rows[j].state[1].c_str(), rows[j].x[1],
-                    rows[j].y[1], static_cast<unsigned long long>(k));
-      res.problem = b;
-    }
-    k += static_cast<std::uint64_t>(est);
-    (void)pipe.update(sample_at(k, rows[j]));
-  }
-  return res;
-}
 
 /// foveald as a child with its output in `log`.
 pid_t spawn(const std::vector<std::string>& args, const std::string& log) {
