@@ -3,10 +3,9 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "commands.hpp"
+#include "foveal/core/read_file.hpp"
 #include "foveal/drivers/hid/report_decoder.hpp"
 #include "foveal/tools/cli.hpp"
 
@@ -14,15 +13,16 @@ namespace foveal::cmd {
 
 namespace {
 
-// An argument is a file holding hex text if such a file exists, else hex text itself.
+// An argument is a file holding hex text if such a path exists (it must be a regular
+// file: a directory or a FIFO is an error, not hex text), else hex text itself.
 Result<std::vector<std::uint8_t>> hex_argument(const std::string& arg, const char* what) {
+  constexpr std::size_t kMaxHexFileBytes = std::size_t{1} << 20;  // descriptors are < 4 KiB of bytes
   std::string text = arg;
   std::error_code ec;
-  if (std::filesystem::is_regular_file(arg, ec)) {
-    std::ifstream in(arg);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    text = ss.str();
+  if (std::filesystem::exists(std::filesystem::symlink_status(arg, ec))) {
+    auto file = read_regular_file(arg, kMaxHexFileBytes, std::string(what) + " file");
+    if (!file) return file.error();
+    text = std::move(*file);
   }
   auto bytes = hid::parse_hex_bytes(text);
   if (!bytes) return bad_input(std::string(what) + ": " + bytes.error().message);
