@@ -118,6 +118,42 @@ TEST(LogQuality, AccuracyRecoversAKnownOffsetFromKnownTargets) {
   EXPECT_NEAR(j["channels"]["right"]["data_loss_pct"].get<double>(), 0.0, 1e-4);
 }
 
+TEST(LogQuality, BetweenMarkersMeasuresTheirWindow) {
+  // 3 s at 120 Hz; markers at 1 s and 2 s (and a decoy 'end' before the start).
+  test::TempDir d;
+  GazeLogHeader header;
+  header.rate_hz = 120;
+  auto w = GazeLogWriter::create(d.path("m.csv"), header);
+  ASSERT_TRUE(w);
+  for (std::int64_t i = 0; i < 360; ++i) {
+    const std::int64_t t = i * 1'000'000'000 / 120;
+    const char* mark = i == 30 ? "end" : i == 120 ? "trial 1, start" : i == 240 ? "end" : nullptr;
+    if (mark) {
+      ASSERT_TRUE(w->mark({t, mark}));
+    }
+    GazeSample s;
+    s.t_ns = t;
+    s.eyes[0] = s.eyes[1] = {kValidDirection, {0, 0, -1}};
+    ASSERT_TRUE(w->write(s));
+  }
+  ASSERT_TRUE(w->commit());
+  const auto r = test::run(foveal_cli("log quality --json " + d.path("m.csv") + " --between 'trial 1, start' end"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["window"]["start_s"].get<double>(), 1.0, 1e-9);
+  EXPECT_NEAR(j["window"]["end_s"].get<double>(), 2.0, 1e-9);
+  EXPECT_EQ(j["channels"]["left"]["samples"], 120);
+
+  const auto missing = test::run(foveal_cli("log quality " + d.path("m.csv") + " --between start end"));
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find(d.path("m.csv") + ": quality: --between: no marker 'start' (markers: 'end', 'trial 1, start', 'end')"),
+            std::string::npos) << missing.err;
+  const auto backwards = test::run(foveal_cli("log quality " + d.path("m.csv") + " --between end 'trial 1, start'"));
+  EXPECT_EQ(backwards.exit_code, 0) << backwards.err;  // the first 'end', then the next start
+  const auto both = test::run(foveal_cli("log quality " + d.path("m.csv") + " --between a b --start 1"));
+  EXPECT_EQ(both.exit_code, 2);
+}
+
 TEST(LogQuality, BadInputNamesTheFileAndLineAndExitsTwo) {
   test::TempDir d;
   const std::string log = d.path("log.csv");

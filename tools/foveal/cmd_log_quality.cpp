@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <string>
+#include <vector>
 #include <cstdio>
 
 #include "commands.hpp"
@@ -119,6 +121,7 @@ void add_log_quality(CLI::App& log, int& exit_code) {
   struct Args {
     std::string file, targets;
     std::optional<double> start_s, end_s;
+    std::vector<std::string> between;
     bool json = false;
   };
   auto args = std::make_shared<Args>();
@@ -127,6 +130,10 @@ void add_log_quality(CLI::App& log, int& exit_code) {
   sub->add_option("file", args->file, "Native gaze log")->required();
   sub->add_option("--start", args->start_s, "Window start, seconds from the first sample");
   sub->add_option("--end", args->end_s, "Window end, seconds from the first sample");
+  sub->add_option("--between", args->between, "Window from marker MARK1 to the next marker MARK2")
+      ->expected(2)
+      ->excludes("--start")
+      ->excludes("--end");
   sub->add_option("--targets", args->targets, "Targets CSV (start_s,end_s,azimuth_deg,elevation_deg) for accuracy");
   sub->add_flag("--json", args->json, "Print the report as JSON");
   sub->callback([args, &exit_code] {
@@ -140,10 +147,20 @@ void add_log_quality(CLI::App& log, int& exit_code) {
       options.targets = std::move(t.value());
     }
     GazeLogHeader header;
-    auto samples = read_gaze_log(args->file, &header);
+    std::vector<GazeMarker> markers;
+    auto samples = read_gaze_log(args->file, &header, &markers);
     if (!samples) {
       exit_code = cli::report(samples.error());
       return;
+    }
+    if (!args->between.empty()) {
+      auto w = window_between_markers(*samples, markers, args->between[0], args->between[1]);
+      if (!w) {
+        exit_code = cli::report(Error{w.error().kind, args->file + ": " + w.error().message});
+        return;
+      }
+      options.start_s = w->start_s;
+      options.end_s = w->end_s;
     }
     auto q = compute_gaze_quality(*samples, header.rate_hz, options);
     if (!q) {

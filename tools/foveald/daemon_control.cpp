@@ -168,7 +168,7 @@ nlohmann::json DaemonApp::handle(const nlohmann::json& req) {
     // Stamped on arrival, on the samples' clock; the gaze thread writes it into the trace.
     const auto text = req.find("text");
     if (text == req.end() || !text->is_string()) return error_reply("mark: expected \"text\": a string");
-    if (Status s = cli::check_marker_text(text->get<std::string>()); !s) return error_reply(s.error().message);
+    if (Status s = check_marker_text(text->get<std::string>()); !s) return error_reply(s.error().message);
     const TimeNs now = monotonic_now_ns();
     markers_.push({now, text->get<std::string>()});
     return {{"ok", true}, {"t_ns", now}, {"markers", markers_.pushed()}};

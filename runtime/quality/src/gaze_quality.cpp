@@ -55,6 +55,24 @@ const char* quality_channel_name(QualityChannel c) {
   return "?";
 }
 
+Result<MarkerWindow> window_between_markers(std::span<const GazeSample> samples, std::span<const GazeMarker> markers,
+                                            const std::string& from, const std::string& to) {
+  auto known = [&] {
+    std::string list;
+    for (std::size_t i = 0; i < markers.size() && i < 10; ++i) list += (i ? "', '" : " (markers: '") + markers[i].text;
+    return markers.empty() ? std::string(" (the log has no markers)") : list + (markers.size() > 10 ? "', ...)" : "')");
+  };
+  if (samples.empty()) return bad_input("quality: the log holds no samples");
+  std::size_t i = 0;
+  while (i < markers.size() && markers[i].text != from) ++i;
+  if (i == markers.size()) return bad_input("quality: --between: no marker '" + from + "'" + known());
+  std::size_t j = i + 1;
+  while (j < markers.size() && markers[j].text != to) ++j;
+  if (j == markers.size()) return bad_input("quality: --between: no marker '" + to + "' after '" + from + "'" + known());
+  const TimeNs t0 = samples.front().t_ns;
+  return MarkerWindow{seconds(markers[i].t_ns - t0), seconds(markers[j].t_ns - t0)};
+}
+
 Result<GazeQuality> compute_gaze_quality(std::span<const GazeSample> samples, double rate_hz,
                                          const QualityOptions& options) {
   if (samples.empty()) return bad_input("quality: the log holds no samples");

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "foveal/core/error.hpp"
+#include "foveal/core/gaze_marker.hpp"
 #include "foveal/core/gaze_sample.hpp"
 #include "foveal/quality/channel_quality.hpp"
 
@@ -53,6 +54,14 @@ struct GazeQuality {
   std::vector<TargetQuality> targets;
   std::array<Accuracy, kQualityChannels> accuracy;
 };
+
+/// The window from the first marker with text `from` to the first marker after it with
+/// text `to`, in seconds from the first sample (for QualityOptions::start_s/end_s).
+struct MarkerWindow {
+  double start_s = 0, end_s = 0;
+};
+Result<MarkerWindow> window_between_markers(std::span<const GazeSample> samples, std::span<const GazeMarker> markers,
+                                            const std::string& from, const std::string& to);
 
 /// `samples` in time order (a gaze log's). Errors: an empty window, a target outside it.
 Result<GazeQuality> compute_gaze_quality(std::span<const GazeSample> samples, double rate_hz,

@@ -46,7 +46,7 @@ class FoveaTrace {
         t0_ = m.t_ns;
         have_t0_ = true;
       }
-      file_->write("#mark," + std::to_string(m.t_ns - t0_) + "," + m.text + "\n");
+      file_->write(marker_row({m.t_ns - t0_, m.text}));
     }
   }
   Status commit() { return file_->commit(); }

@@ -5,36 +5,14 @@
 #include <atomic>
 #include <cstdint>
 #include <mutex>
-#include <string>
-#include <string_view>
 #include <vector>
 
-#include "foveal/core/clock.hpp"
-#include "foveal/core/error.hpp"
+#include "foveal/core/gaze_marker.hpp"
 
 namespace foveal::cli {
 
-struct TraceMarker {
-  TimeNs t_ns = 0;  ///< CLOCK_MONOTONIC, the clock of the samples
-  std::string text;
-};
-
-constexpr std::size_t kMaxMarkerBytes = 256;
-
-/// A marker's text: 1 to kMaxMarkerBytes bytes, no control characters (it is the rest of
-/// a CSV row, so commas are fine and line ends are not).
-inline Status check_marker_text(std::string_view text) {
-  if (text.empty()) return bad_input("mark: the text is empty");
-  if (text.size() > kMaxMarkerBytes)
-    return bad_input("mark: the text has " + std::to_string(text.size()) + " bytes; at most " +
-                     std::to_string(kMaxMarkerBytes));
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c < 0x20 || c == 0x7f)
-      return bad_input("mark: byte " + std::to_string(i + 1) + " of the text is a control character");
-  }
-  return {};
-}
+/// Stamped on CLOCK_MONOTONIC, the clock of the samples.
+using TraceMarker = GazeMarker;
 
 class MarkerQueue {
  public:
