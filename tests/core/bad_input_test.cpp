@@ -20,6 +20,14 @@ const std::string kHeader =
 std::string row(long t, const char* lx = "0.1") {
   return std::to_string(t) + ",1," + lx + ",0,-0.99,,,,,,1,0.1,0,-0.99,,,,,,0,,,,,,\n";
 }
+// v2: the same columns plus the head pose's.
+const std::string kHeaderV2 = "# foveal-gaze-log v2" + kHeader.substr(kHeader.find('\n'), kHeader.size() - kHeader.find('\n') - 1) +
+                              ",head_valid,head_x_m,head_y_m,head_z_m,head_qw,head_qx,head_qy,head_qz\n";
+std::string row_v2(long t, const std::string& head = "1,0.97,1.18,-0.55,1,0,0,0") {
+  std::string r = row(t);
+  r.pop_back();
+  return r + "," + head + "\n";
+}
 
 struct NativeCase {
   const char* name;
@@ -46,7 +54,15 @@ std::vector<NativeCase> native_cases() {
       {"nan", kHeader + row(0, "nan"), ":4:", "left_dir_x"},
       {"crlf", crlf, ":4:", "CRLF"},
       {"utf8_bom", "\xEF\xBB\xBF" + kHeader + row(0), ":1:", "byte-order mark"},
-      {"unknown_version", "# foveal-gaze-log v2\n# rate_hz=120\n", ":1:", "v2 is not supported"},
+      {"unknown_version", "# foveal-gaze-log v3\n# rate_hz=120\n", ":1:", "v3 is not supported"},
+      {"v1_columns_in_v2", "# foveal-gaze-log v2" + kHeader.substr(kHeader.find('\n')) + row(0), ":3:", "head_valid"},
+      {"head_not_a_number", kHeaderV2 + row_v2(0) + row_v2(8, "1,0.97,abc,-0.55,1,0,0,0"), ":5:", "head_y_m"},
+      {"head_valid_not_a_flag", kHeaderV2 + row_v2(0, "2,0.97,1.18,-0.55,1,0,0,0"), ":4:", "head_valid"},
+      {"head_value_without_flag", kHeaderV2 + row_v2(0, "0,0.97,,,,,,"), ":4:", "head_x_m"},
+      {"head_flag_without_value", kHeaderV2 + row_v2(0, "1,0.97,1.18,-0.55,,0,0,0"), ":4:", "head_qw"},
+      {"head_nan_quaternion", kHeaderV2 + row_v2(0, "1,0.97,1.18,-0.55,nan,0,0,0"), ":4:", "head_qw"},
+      {"head_non_unit_quaternion", kHeaderV2 + row_v2(0, "1,0.97,1.18,-0.55,0.5,0,0,0"), ":4:", "head_qw..head_qz"},
+      {"head_truncated", kHeaderV2 + row_v2(0, "1,0.97,1.18"), ":4:", "head_z_m"},
   };
 }
 
