@@ -41,9 +41,9 @@ Result<Camera> frame_camera(const FrameParams& p, const DisplayModel& model) {
   Camera c{p.head, p.ipd_mm == 0.0 ? double{model.ipd_mm} : p.ipd_mm};
   if (!std::isfinite(c.ipd_mm) || !(c.ipd_mm > 0.0) || c.ipd_mm > 200.0)
     return bad_input("frame: ipd_mm " + std::to_string(p.ipd_mm) + " is not in (0, 200] mm");
-  const float n = glm::length(c.head.orientation);
-  if (!is_finite(c.head) || !(n > 1e-6f)) return bad_input("frame: the head pose is not finite or its orientation is zero");
-  if (n != 1.0f) c.head.orientation /= n;
+  if (!is_finite(c.head) || !(glm::length(c.head.orientation) > 1e-6f))
+    return bad_input("frame: the head pose is not finite or its orientation is zero");
+  c.head.orientation = renormalized(c.head.orientation);
   return c;
 }
 

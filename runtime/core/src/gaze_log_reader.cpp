@@ -22,9 +22,8 @@ std::string where(const std::string& path, std::uint64_t line) {
 }
 
 std::string quat_norm_error(const glm::quat& q) {
-  const double n = std::sqrt(double{q.w} * q.w + double{q.x} * q.x + double{q.y} * q.y + double{q.z} * q.z);
   char buf[160];
-  std::snprintf(buf, sizeof buf, "quaternion norm %.6g is not 1 (tolerance %g): not a head orientation", n,
+  std::snprintf(buf, sizeof buf, "quaternion norm %.6g is not 1 (tolerance %g): not a head orientation", quaternion_norm(q),
                 static_cast<double>(kUnitQuaternionTolerance));
   return buf;
 }

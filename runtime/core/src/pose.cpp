@@ -10,10 +10,20 @@ bool is_finite(const Pose& p) {
          std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
 }
 
+double quaternion_norm(const glm::quat& q) {
+  return std::sqrt(double{q.w} * q.w + double{q.x} * q.x + double{q.y} * q.y + double{q.z} * q.z);
+}
+
 bool is_unit(const glm::quat& q) {
   if (!std::isfinite(q.w) || !std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) return false;
-  const double n = std::sqrt(double{q.w} * q.w + double{q.x} * q.x + double{q.y} * q.y + double{q.z} * q.z);
-  return std::abs(n - 1.0) <= kUnitQuaternionTolerance;
+  return std::abs(quaternion_norm(q) - 1.0) <= kUnitQuaternionTolerance;
+}
+
+glm::quat renormalized(const glm::quat& q) {
+  const double n = quaternion_norm(q);
+  if (std::abs(n - 1.0) <= 2.5e-7) return q;  // within ~2 float ulps of 1
+  const float inv = static_cast<float>(1.0 / n);
+  return glm::quat(q.w * inv, q.x * inv, q.y * inv, q.z * inv);
 }
 
 Pose compose(const Pose& a, const Pose& b) {
@@ -33,7 +43,7 @@ Pose inverse(const Pose& p) {
 Pose relative_to(const Pose& anchor, const Pose& p) {
   if (p == anchor) return Pose{};
   Pose r = compose(inverse(anchor), p);
-  r.orientation = glm::normalize(r.orientation);
+  r.orientation = renormalized(r.orientation);
   return r;
 }
 

@@ -5,7 +5,7 @@ namespace foveal {
 bool PoseTrack::push(const TimedPose& p) {
   const bool usable = is_finite(p.pose) && is_unit(p.pose.orientation);
   TimedPose kept = p;
-  if (usable) kept.pose.orientation = glm::normalize(p.pose.orientation);
+  if (usable) kept.pose.orientation = renormalized(p.pose.orientation);
   std::lock_guard lock(mutex_);
   if (!usable || (count_ > 0 && p.t_ns <= at(count_ - 1).t_ns)) {
     ++dropped_;

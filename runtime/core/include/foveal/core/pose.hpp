@@ -43,8 +43,15 @@ constexpr float kUnitQuaternionTolerance = 1e-3f;
 
 /// Every component finite.
 bool is_finite(const Pose& p);
+/// |q|, computed in double.
+double quaternion_norm(const glm::quat& q);
 /// Finite and | |q| - 1 | <= kUnitQuaternionTolerance.
 bool is_unit(const glm::quat& q);
+
+/// `q` scaled to unit length, or `q` itself, bit for bit, when its norm is already 1 to
+/// float precision (so a stored pose passes through a track or the compositor unchanged).
+/// `q` must be finite and non-zero.
+glm::quat renormalized(const glm::quat& q);
 
 /// `a` after `b`: p -> a(b(p)). compose(a, identity) == a exactly.
 Pose compose(const Pose& a, const Pose& b);

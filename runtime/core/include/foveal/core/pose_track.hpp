@@ -25,7 +25,7 @@ class PoseTrack final : public PoseSource {
 
   /// Adds a pose on the runtime clock. Returns false, and drops it, when its time does
   /// not come after the newest pose's or when it is not finite or its orientation is not
-  /// a unit quaternion (is_unit); a kept orientation is renormalised.
+  /// a unit quaternion (is_unit); a kept orientation is renormalised (renormalized()).
   bool push(const TimedPose& p);
   PoseAt pose_at(TimeNs t_ns) const override;
   /// Forgets every pose and the anchor (e.g. a new source).
