@@ -1,7 +1,7 @@
 // The acceptance figures on synthetic scanpaths with ground truth at 0.5 deg RMS noise.
 #include <gtest/gtest.h>
 
-#include "foveal/runtime/filter_score.hpp"
+#include "foveal/tools/filter_score.hpp"
 
 namespace foveal {
 namespace {

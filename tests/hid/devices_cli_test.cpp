@@ -17,7 +17,7 @@ TEST(DevicesCli, HelpNamesTheOptions) {
   EXPECT_NE(d.out.find("--json"), std::string::npos);
   auto r = test::run(test::bin("foveal") + " record --help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* opt : {"--device", "--out", "--duration", "--json"}) EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+  for (const char* opt : {"--source", "--device", "--out", "--duration", "--json"}) EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
 }
 
 TEST(DevicesCli, JsonListIsWellFormed) {
@@ -27,7 +27,7 @@ TEST(DevicesCli, JsonListIsWellFormed) {
   ASSERT_FALSE(j.is_discarded()) << d.out;
   ASSERT_TRUE(j.contains("devices") && j["devices"].is_array());
   for (const auto& dev : j["devices"])
-    for (const char* key : {"id", "driver", "path", "vid_pid", "name", "sample_rate_hz"}) EXPECT_TRUE(dev.contains(key)) << key;
+    for (const char* key : {"id", "driver", "spec", "path", "vid_pid", "name", "sample_rate_hz"}) EXPECT_TRUE(dev.contains(key)) << key;
 }
 
 TEST(RecordCli, BadArgumentsAndMissingDevicesExitTwoAndWriteNothing) {
@@ -41,7 +41,7 @@ TEST(RecordCli, BadArgumentsAndMissingDevicesExitTwoAndWriteNothing) {
   EXPECT_NE(path.err.find("/dev/hidraw-none"), std::string::npos) << path.err;
   auto id = test::run(test::bin("foveal") + " record --device 99 --out " + out + " --duration 1");
   EXPECT_EQ(id.exit_code, 2);
-  EXPECT_NE(id.err.find("--device 99: no such tracker"), std::string::npos) << id.err;
+  EXPECT_NE(id.err.find("hid:99: no such tracker"), std::string::npos) << id.err;
   auto missing = test::run(test::bin("foveal") + " record --duration 1");
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_FALSE(std::filesystem::exists(out));

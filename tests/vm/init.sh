@@ -94,7 +94,7 @@ ls /dev/bus/usb/*/ 2>&1 | tr '\n' ' '; echo
 dmesg | tail -5
 foveal_vm_guest psvr2-probe 500 30
 foveal devices --json > /tmp/devices2.json 2>&1
-if grep -q '"vid_pid": "054c:0cde"' /tmp/devices2.json && grep -q '"driver": "usb"' /tmp/devices2.json; then
+if grep -q '"vid_pid": "054c:0cde"' /tmp/devices2.json && grep -q '"driver": "psvr2"' /tmp/devices2.json; then
   echo "VMTEST devices_usb PASS $(tr -d '\n ' < /tmp/devices2.json | head -c 300)"
 else
   echo "VMTEST devices_usb FAIL $(tr -d '\n' < /tmp/devices2.json | head -c 300)"

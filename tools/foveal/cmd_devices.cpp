@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "commands.hpp"
-#include "device_catalog.hpp"
+#include "foveal/drivers/probe.hpp"
 #include "foveal/tools/cli.hpp"
 
 namespace foveal::cmd {
@@ -16,25 +16,23 @@ void add_devices(CLI::App& app, int& exit_code) {
   CLI::App* sub = app.add_subcommand("devices", "List the eye trackers present and the drivers that read them");
   sub->add_flag("--json", *json, "Print the list as JSON");
   sub->callback([json, &exit_code] {
-    auto rows = list_devices(true);
+    auto rows = probe::list_devices(true);
     if (!rows) {
       exit_code = cli::report(rows.error());
       return;
     }
     if (*json) {
       nlohmann::json list = nlohmann::json::array();
-      for (const DeviceRow& r : *rows)
-        list.push_back({{"id", r.id}, {"driver", r.driver}, {"path", r.path}, {"vid_pid", r.vid_pid}, {"name", r.name},
-                        {"serial", r.serial}, {"sample_rate_hz", r.rate_hz}, {"problem", r.problem}});
+      for (const probe::DeviceRow& r : *rows) list.push_back(probe::device_json(r));
       cli::print_json({{"devices", list}});
       return;
     }
     if (rows->empty()) {
-      std::printf("no eye trackers found\n");
+      std::printf("no eye trackers found (drivers: hid, psvr2; docs/drivers.md)\n");
       return;
     }
     std::printf("%-3s %-7s %-16s %-10s %-10s %s\n", "id", "driver", "path", "vid:pid", "rate", "name");
-    for (const DeviceRow& r : *rows) {
+    for (const probe::DeviceRow& r : *rows) {
       const std::string rate = r.rate_hz > 0 ? std::to_string(static_cast<int>(r.rate_hz + 0.5)) + " Hz" : "unknown";
       const std::string note = r.problem.empty() ? "" : "  (" + r.problem + ")";
       std::printf("%-3zu %-7s %-16s %-10s %-10s %s%s\n", r.id, r.driver.c_str(), r.path.c_str(), r.vid_pid.c_str(),

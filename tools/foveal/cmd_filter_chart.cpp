@@ -11,7 +11,7 @@
 #include "foveal/core/data_paths.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/import/importers.hpp"
-#include "foveal/runtime/filter_score.hpp"
+#include "foveal/tools/filter_score.hpp"
 #include "foveal/tools/cli.hpp"
 
 namespace foveal::cmd {

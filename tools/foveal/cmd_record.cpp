@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "device_catalog.hpp"
 #include "foveal/core/gaze_log.hpp"
+#include "foveal/drivers/probe.hpp"
 #include "foveal/tools/cli.hpp"
 
 namespace foveal::cmd {
@@ -36,14 +36,15 @@ double estimate_rate(const std::vector<GazeSample>& s) {
 
 void add_record(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string device, out;
+    std::string source, device, out;
     double duration_s = 10;
     bool json = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand("record", "Record a tracker's gaze into a native gaze log");
-  sub->add_option("--device,-d", args->device, "Tracker: an id from `foveal devices`, a hidraw path, psvr2, or auto (the first)")
-      ->capture_default_str();
+  sub->add_option("--source,-s", args->source, "Source spec (default: auto, the first tracker found):\n" + probe::source_spec_help());
+  sub->add_option("--device,-d", args->device, "Short form: an id from `foveal devices`, a hidraw path, psvr2, or auto")
+      ->excludes("--source");
   sub->add_option("--out,-o", args->out, "Output native gaze log (written atomically)")->required();
   sub->add_option("--duration", args->duration_s, "Seconds to record (Ctrl-C stops early)")->capture_default_str();
   sub->add_flag("--json", args->json, "Print the summary as JSON");
@@ -52,7 +53,14 @@ void add_record(CLI::App& app, int& exit_code) {
       exit_code = cli::report(bad_input("record: --duration must be > 0"));
       return;
     }
-    auto device = make_device_source(args->device);
+    auto spec = probe::parse_source_spec(args->source.empty() ? probe::device_spec(args->device) : args->source);
+    if (!spec) {
+      exit_code = cli::report(spec.error());
+      return;
+    }
+    probe::SourceOptions so;
+    so.synthetic_duration_s = args->duration_s;
+    auto device = probe::make_source(*spec, so);
     if (!device) {
       exit_code = cli::report(device.error());
       return;
@@ -106,18 +114,9 @@ void add_record(CLI::App& app, int& exit_code) {
           head.push_back(r.sample);
         }
       } else if (r.status == ReadStatus::disconnected) {
-        // Retry with backoff (50 ms doubling to 400 ms): back within ~0.5 s of the replug.
-        TimeNs backoff = 50 * kNsPerMs;
-        bool back = false;
-        while (!back && !g_interrupted.load() && monotonic_now_ns() < t_end) {
-          src.close();
-          back = src.open() && src.start();
-          if (!back) {
-            sleep_until_ns(std::min(monotonic_now_ns() + backoff, t_end));
-            backoff = std::min<TimeNs>(backoff * 2, 400 * kNsPerMs);
-          }
-        }
-        if (back) ++reconnects;
+        if (reopen_with_backoff(src, [&] { return g_interrupted.load() || monotonic_now_ns() >= t_end; })) ++reconnects;
+      } else if (r.status == ReadStatus::end) {
+        break;
       } else if (r.status == ReadStatus::error) {
         exit_code = cli::report(r.error);
         return;

@@ -10,7 +10,7 @@ namespace foveal::cmd {
 void add_import(CLI::App& app, int& exit_code);
 void add_log(CLI::App& app, int& exit_code);
 void add_synth(CLI::App& app, int& exit_code);
-void add_hid(CLI::App& app, int& exit_code);
+void add_hid(CLI::App& app, int& exit_code);  // with FOVEAL_HAVE_HID
 void add_profile(CLI::App& app, int& exit_code);
 void add_ctl(CLI::App& app, int& exit_code);
 void add_calibrate(CLI::App& app, int& exit_code);
@@ -21,7 +21,7 @@ void add_foveate(CLI::App& app, int& exit_code);
 void add_metrics(CLI::App& app, int& exit_code);
 void add_bench(CLI::App& app, int& exit_code);
 void add_outputs(CLI::App& app, int& exit_code);
-void add_devices(CLI::App& app, int& exit_code);  // with FOVEAL_HAVE_HID
-void add_record(CLI::App& app, int& exit_code);   // with FOVEAL_HAVE_HID
+void add_devices(CLI::App& app, int& exit_code);
+void add_record(CLI::App& app, int& exit_code);
 
 }  // namespace foveal::cmd

@@ -24,25 +24,13 @@ Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions
   auto method = render::parse_method(o.method);
   if (!method) return method.error();
   r->method_ = *method;
-  if (o.window) {
-    render::WindowOptions wo;
-    wo.monitor = o.monitor;
-    wo.title = "foveald";
-    auto w = render::Window::open(wo);
-    if (!w) return w.error();
-    r->window_.emplace(std::move(*w));
-  } else if (o.drm) {
-    auto d = render::DrmOutput::open(o.drm_options);
-    if (!d) return d.error();
-    r->drm_.emplace(std::move(*d));
-  } else {
-    auto ctx = gl::EglContext::create();
-    if (!ctx) return ctx.error();
-    r->egl_.emplace(std::move(*ctx));
-  }
+  auto output = render::open_output(o.output);
+  if (!output) return output.error();
+  r->output_ = std::move(*output);
   auto scene = render::load_scene(o.scene.empty() ? data_path("data/scenes/Dungeon/dungeon_simplified.gltf") : o.scene);
   if (!scene) return scene.error();
   r->scene_.emplace(std::move(*scene));
+  r->scene_name_ = r->scene_->name;
   render::CompositorOptions co;
   co.width = o.width > 0 ? o.width : model.output_width();
   co.height = o.height > 0 ? o.height : model.output_height();
@@ -51,6 +39,10 @@ Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions
   auto comp = render::Compositor::create(co);
   if (!comp) return comp.error();
   r->comp_.emplace(std::move(*comp));
+  r->renderer_name_ = r->comp_->renderer();
+  r->size_ = {r->comp_->width(), r->comp_->height()};
+  r->snap_.output = r->output_->json();
+  r->snap_.targets_mb = static_cast<double>(r->comp_->memory().total()) / (1024.0 * 1024.0);
   auto csv = AtomicFile::create(out_dir + "/frames.csv");
   if (!csv) return csv.error();
   r->csv_.emplace(std::move(*csv));
@@ -67,12 +59,13 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
   const Eye dominant = s.dominant_eye == 0 ? Eye::left : Eye::right;
   render::FrameParams p = render::efr_frame(method_, dominant, s.sigma_d, s.sigma_nd, s.f_x, s.f_y);
   for (Eye e : kEyes) {
-    const std::size_t i = static_cast<std::size_t>(e);
+    // The gaze pipeline decides what a lost eye shows (docs/filtering.md); the centre
+    // stands in only before the first sample.
     const FoveaPoint& fp = fovea.eye(e);
-    if (fp.state != FoveaState::lost && std::isfinite(fp.px.x) && std::isfinite(fp.px.y))
-      last_fovea_[i] = glm::dvec2(double(fp.px.x) / model.eye_width, double(fp.px.y) / model.eye_height);
-    p.eyes[i].fovea_x = last_fovea_[i].x;
-    p.eyes[i].fovea_y = last_fovea_[i].y;
+    const bool known = std::isfinite(fp.px.x) && std::isfinite(fp.px.y) && model.eye_width > 0 && model.eye_height > 0;
+    auto& eye = p.eyes[static_cast<std::size_t>(e)];
+    eye.fovea_x = known ? double(fp.px.x) / model.eye_width : 0.5;
+    eye.fovea_y = known ? double(fp.px.y) / model.eye_height : 0.5;
   }
   // f < 0 means automatic: estimated once per settings change (docs/methods.md).
   if ((s.f_x <= 0 || s.f_y <= 0) && auto_f_generation_ != s.generation) {
@@ -86,11 +79,8 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
   const double fx = p.eyes[0].fx, fy = p.eyes[0].fy;
   auto t = comp_->render(*scene_, p);
   if (!t) return t.error();
-  if (frames_ > 0 && s.generation != last_generation_) ++settings_changes_;
+  const bool generation_changed = frames_ > 0 && s.generation != last_generation_;
   last_generation_ = s.generation;
-  last_params_ = p;
-  if (recent_.size() < kRecentFrames) recent_.push_back(*t);
-  else recent_[frames_ % kRecentFrames] = *t;
 
   const auto bl = comp_->buffer_size(Eye::left), br = comp_->buffer_size(Eye::right);
   char line[512];
@@ -99,15 +89,30 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
                 frames_, static_cast<std::int64_t>(fovea.t_ns), s.generation, p.eyes[0].fovea_x, p.eyes[0].fovea_y,
                 p.eyes[1].fovea_x, p.eyes[1].fovea_y, p.eyes[0].sigma, p.eyes[1].sigma, bl[0], bl[1], br[0], br[1], fx, fy,
                 t->shadow, t->gbuffer, t->mapping, t->lighting, t->inverse, t->gpu_total, t->cpu);
-  if (window_) window_->present(comp_->output_framebuffer(), comp_->width(), comp_->height());
-  if (drm_)
-    if (Status st = drm_->present(comp_->output_framebuffer(), comp_->width(), comp_->height()); !st) return st;
-  // A row once the frame is on its way to the screen, readable in the temporary file
-  // while foveald runs.
-  csv_->write(line);
-  std::fflush(csv_->stream());
+  if (Status st = output_->present(comp_->output_framebuffer(), comp_->width(), comp_->height()); !st) return st;
+  {
+    // A row once the frame is on its way to the screen, readable in the temporary file
+    // while foveald runs.
+    std::lock_guard lock(csv_mutex_);
+    if (csv_closed_) return {};  // abandoned: this frame is not counted
+    csv_->write(line);
+    std::fflush(csv_->stream());
+  }
   const bool save = frames_ == 0 || (o_.save_every > 0 && frames_ % static_cast<std::uint64_t>(o_.save_every) == 0);
   ++frames_;
+  {
+    std::lock_guard lock(snapshot_mutex_);
+    snap_.frames = frames_;
+    snap_.last_params = p;
+    snap_.buffers = {bl, br};
+    if (snap_.recent.size() < kRecentFrames) snap_.recent.push_back(*t);
+    else snap_.recent[(frames_ - 1) % kRecentFrames] = *t;
+    snap_.generation = s.generation;
+    if (generation_changed) ++snap_.settings_changes;
+    if (auto_f_generation_) snap_.auto_f = {auto_fx_, auto_fy_};
+    snap_.output = output_->json();
+    snap_.targets_mb = static_cast<double>(comp_->memory().total()) / (1024.0 * 1024.0);
+  }
   if (save) return save_frame();
   return {};
 }
@@ -134,57 +139,67 @@ Status FrameRenderer::save_frame() {
   std::snprintf(name, sizeof name, "frame_%06" PRIu64 ".png", frames_ - 1);
   if (Status s = image::save_png(out_dir_ + "/" + name, comp_->read_image()); !s) return s;
   saved_frame_ = frames_ - 1;
-  saved_.push_back(name);
+  std::lock_guard lock(snapshot_mutex_);
+  snap_.saved.push_back(name);
   return {};
 }
 
-Status FrameRenderer::finish() {
-  if (drm_)
-    if (Status s = drm_->finish(); !s) return s;
-  if (Status s = save_frame(); !s) return s;
+Status FrameRenderer::finish(bool save_last) {
+  if (Status s = output_->finish(); !s) return s;
+  {
+    std::lock_guard lock(snapshot_mutex_);
+    snap_.output = output_->json();
+  }
+  if (save_last)
+    if (Status s = save_frame(); !s) return s;
+  std::lock_guard lock(csv_mutex_);
+  if (csv_closed_) return {};
+  csv_closed_ = true;
   return csv_->commit();
 }
 
-nlohmann::json FrameRenderer::output_json() const {
-  if (window_) return {{"kind", "window"}, {"present", window_->stats().json()}};
-  if (drm_) {
-    const render::KmsMode& m = drm_->mode();
-    nlohmann::json connector = render::connector_json(drm_->connector());
-    connector.erase("modes");  // `foveal outputs` lists them
-    return {{"kind", "drm"},
-            {"device", drm_->device()},
-            {"connector", connector},
-            {"mode", {{"width", m.width}, {"height", m.height}, {"refresh_hz", m.refresh_hz}}},
-            {"present", drm_->stats().json()}};
-  }
-  return {{"kind", "headless"}};
+Status FrameRenderer::abandon() {
+  std::lock_guard lock(csv_mutex_);
+  if (csv_closed_) return {};
+  csv_closed_ = true;
+  return csv_->commit();
 }
 
-bool FrameRenderer::window_closed() const { return window_ && window_->should_close(); }
+std::uint64_t FrameRenderer::frames() const {
+  std::lock_guard lock(snapshot_mutex_);
+  return snap_.frames;
+}
+
+std::size_t FrameRenderer::saved_frames() const {
+  std::lock_guard lock(snapshot_mutex_);
+  return snap_.saved.size();
+}
 
 nlohmann::json FrameRenderer::stats_json() const {
-  const render::PassTimes med = render::median_pass_times(recent_);
+  std::lock_guard lock(snapshot_mutex_);
+  const render::PassTimes med = render::median_pass_times(snap_.recent);
   nlohmann::json eyes;
   for (Eye e : kEyes) {
-    const auto& f = last_params_.eyes[static_cast<std::size_t>(e)];
-    const auto b = comp_->buffer_size(e);
-    eyes[eye_name(e)] = {{"sigma", f.sigma}, {"fovea", {f.fovea_x, f.fovea_y}}, {"buffer", {b[0], b[1]}}};
+    const auto i = static_cast<std::size_t>(e);
+    const auto& f = snap_.last_params.eyes[i];
+    eyes[eye_name(e)] = {{"sigma", f.sigma}, {"fovea", {f.fovea_x, f.fovea_y}}, {"buffer", snap_.buffers[i]}};
   }
-  return {{"frames", frames_},
-          {"scene", scene_->name},
+  return {{"frames", snap_.frames},
+          {"scene", scene_name_},
           {"method", render::method_name(method_)},
-          {"size", {comp_->width(), comp_->height()}},
-          {"renderer", comp_->renderer()},
-          {"output", output_json()},
-          {"settings_generation", last_generation_},
-          {"settings_changes_seen", settings_changes_},
-          {"auto_f", auto_f_generation_ ? nlohmann::json({{"fx", auto_fx_}, {"fy", auto_fy_}}) : nlohmann::json(nullptr)},
+          {"size", size_},
+          {"renderer", renderer_name_},
+          {"output", snap_.output},
+          {"settings_generation", snap_.generation},
+          {"settings_changes_seen", snap_.settings_changes},
+          {"auto_f", snap_.auto_f ? nlohmann::json({{"fx", snap_.auto_f->first}, {"fy", snap_.auto_f->second}})
+                                  : nlohmann::json(nullptr)},
           {"last_frame", eyes},
           {"passes_ms_median", {{"shadow", med.shadow}, {"gbuffer", med.gbuffer}, {"mapping", med.mapping},
                                 {"lighting", med.lighting}, {"inverse", med.inverse},
                                 {"gpu_total", med.gpu_total}, {"cpu_frame", med.cpu}}},
-          {"targets_mb", static_cast<double>(comp_->memory().total()) / (1024.0 * 1024.0)},
-          {"saved", saved_}};
+          {"targets_mb", snap_.targets_mb},
+          {"saved", snap_.saved}};
 }
 
 }  // namespace foveal::daemon

@@ -1,9 +1,11 @@
 #pragma once
 // foveald's render side: the compositor driven by the latest fovea and the active
-// render settings, once per frame on the main thread (it never waits for the gaze
-// thread). Keeps per-frame stats (frames.csv), saves chosen frames as PNG and exposes
-// a summary for `status` and summary.json.
+// render settings, once per frame on the render (main) thread; it never waits for the
+// gaze or control threads. Keeps per-frame stats (frames.csv), saves chosen frames as
+// PNG and publishes a snapshot of its stats that any thread may read (`status`,
+// summary.json) without waiting for a frame.
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,10 +14,8 @@
 
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/render/compositor.hpp"
-#include "foveal/render/drm_output.hpp"
-#include "foveal/render/egl_context.hpp"
+#include "foveal/render/output.hpp"
 #include "foveal/render/scene.hpp"
-#include "foveal/render/window.hpp"
 #include "foveal/runtime/fovea.hpp"
 #include "render_settings.hpp"
 
@@ -26,58 +26,73 @@ struct RenderOptions {
   std::string method = "rmfr";
   int width = 0, height = 0;      ///< 0: the display model's side-by-side size
   int save_every = 0;             ///< also save every Nth frame (0: first and last only)
-  bool window = false;
-  bool drm = false;               ///< direct mode (render/drm_output.hpp)
-  render::DrmOutputOptions drm_options;  ///< device, connector, mode
+  render::OutputOptions output;   ///< headless, window or direct mode
   bool distortion = true;         ///< the display model's lens distortion, if any
-  std::string monitor;            ///< fullscreen on this monitor (window mode)
 };
 
 class FrameRenderer {
  public:
   /// Opens the output (EGL headless, a GLFW window or a DRM/KMS connector), loads the
-  /// scene, builds the compositor, creates DIR/frames.csv.
+  /// scene, builds the compositor, creates DIR/frames.csv. Render thread.
   static Result<std::unique_ptr<FrameRenderer>> create(const RenderOptions& o, const DisplayModel& model,
                                                        const std::string& out_dir);
   ~FrameRenderer();
 
-  /// Renders one frame for `fovea` (viewport pixels of `model`) with `settings`.
-  /// A lost or never-seen eye keeps its last fovea (the centre at first).
+  /// Renders one frame for `fovea` (viewport pixels of `model`; the gaze pipeline has
+  /// already decided what a lost eye shows) with `settings`. Render thread.
   Status render(const FoveaFrame& fovea, const RenderSettings& settings, const DisplayModel& model);
-  /// Saves the last frame (if not yet saved), commits frames.csv.
-  Status finish();
-  bool window_closed() const;
+  /// Saves the last frame (if `save_last` and not yet saved: a 2880x1600 PNG takes about
+  /// a second on llvmpipe, too long after SIGTERM), commits frames.csv. Render thread.
+  Status finish(bool save_last);
+  /// From any thread, while render() may be running: commits frames.csv with the
+  /// frames completed so far; the frame in flight (if any) is dropped, and nothing is
+  /// written after this. For a shutdown that cannot wait for a slow frame.
+  Status abandon();
+  bool window_closed() const { return output_->closed(); }
 
-  std::uint64_t frames() const { return frames_; }
-  std::size_t saved_frames() const { return saved_.size(); }
-  std::string renderer() const { return comp_->renderer(); }
+  std::uint64_t frames() const;   ///< any thread
+  std::size_t saved_frames() const;  ///< any thread
+  const std::string& renderer() const { return renderer_name_; }
+  /// Any thread: the stats as of the last completed frame.
   nlohmann::json stats_json() const;
 
  private:
   FrameRenderer() = default;
   Status save_frame();
-  nlohmann::json output_json() const;
   Status estimate_f(const render::FrameParams& p);
+
+  /// What other threads may read, updated after each frame under snapshot_mutex_.
+  struct Snapshot {
+    std::uint64_t frames = 0;
+    render::FrameParams last_params;
+    std::array<std::array<int, 2>, 2> buffers{};
+    std::vector<render::PassTimes> recent;  ///< ring of the last 128 frames
+    std::uint32_t generation = 0;
+    std::uint64_t settings_changes = 0;
+    std::optional<std::pair<double, double>> auto_f;
+    nlohmann::json output;
+    double targets_mb = 0;
+    std::vector<std::string> saved;
+  };
 
   RenderOptions o_;
   std::string out_dir_;
-  std::optional<gl::EglContext> egl_;
-  std::optional<render::Window> window_;
-  std::optional<render::DrmOutput> drm_;
+  std::string renderer_name_, scene_name_;
+  std::array<int, 2> size_{};  ///< the output's width and height
+  std::unique_ptr<render::Output> output_;
   std::optional<render::Scene> scene_;
   std::optional<render::Compositor> comp_;
   render::Method method_ = render::Method::rmfr;
+  std::mutex csv_mutex_;  ///< frames.csv: written by render(), committed by finish() or abandon()
   std::optional<AtomicFile> csv_;
-  std::array<glm::dvec2, 2> last_fovea_{glm::dvec2(0.5), glm::dvec2(0.5)};
-  render::FrameParams last_params_;
-  std::vector<render::PassTimes> recent_;  ///< ring of the last 128 frames
-  std::uint64_t frames_ = 0, saved_frame_ = ~0ull;
-  std::vector<std::string> saved_;
+  bool csv_closed_ = false;
+  std::uint64_t frames_ = 0, saved_frame_ = ~0ull;  ///< render thread
   std::uint32_t last_generation_ = 0;
   // Automatic f: estimated from a full frame when the settings ask for it and change.
   std::optional<std::uint32_t> auto_f_generation_;
   double auto_fx_ = 0.3, auto_fy_ = 0.3;
-  std::uint64_t settings_changes_ = 0;
+  mutable std::mutex snapshot_mutex_;
+  Snapshot snap_;
 };
 
 }  // namespace foveal::daemon

@@ -1,10 +1,11 @@
-// foveald: the runtime daemon. Replays a gaze log (the bundled real Vive Pro Eye
-// recording by default) through the runtime: a gaze thread maps samples to a fovea
-// per eye and publishes them (exchange, shared memory, trace); the main thread serves
-// the control socket and signals.
+// foveald: the runtime daemon. Reads gaze from any source the prober knows (a tracker,
+// or by default a replay of the bundled real Vive Pro Eye recording): a gaze thread maps
+// samples to a fovea per eye and publishes them (exchange, shared memory, trace), a
+// control thread serves the socket and signals, the main thread renders.
 #include <CLI/CLI.hpp>
 
 #include "daemon_app.hpp"
+#include "foveal/drivers/probe.hpp"
 #include "foveal/tools/cli.hpp"
 #include "foveal/tools/log.hpp"
 
@@ -13,7 +14,10 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "foveald 0.1.0");
   foveal::daemon::Options o;
   int verbose = 0, quiet = 0;
-  app.add_option("--replay", o.replay, "Native gaze log to replay (default: the bundled Vive Pro Eye recording)");
+  app.add_option("--source,-s", o.source, "Gaze source (default: replay of the bundled Vive Pro Eye recording):\n" +
+                                             foveal::probe::source_spec_help());
+  app.add_option("--replay", o.replay, "Short for --source replay:PATH");
+  app.add_option("--duration", o.duration_s, "Stop after this many seconds, whatever the source");
   app.add_option("--display", o.display, "Display-model JSON (default: the profile's, else HTC Vive Pro Eye)");
   app.add_option("--profile", o.profile, "User profile (default: the active one, else built-in defaults)");
   app.add_option("--out,-o", o.out, "Output directory: trace.csv, frames.csv, frame_*.png, summary.json")->capture_default_str();

@@ -12,8 +12,20 @@ constexpr auto kPollTimeout = std::chrono::milliseconds(50);  // bounds stop() l
 constexpr TimeNs kStatsPeriod = 50 * kNsPerMs;
 }  // namespace
 
-GazeLoop::GazeLoop(GazeSource& source, Mapper mapper, Observer observer)
-    : source_(source), mapper_(std::move(mapper)), observer_(std::move(observer)) {}
+const char* source_state_name(SourceState s) {
+  switch (s) {
+    case SourceState::waiting: return "waiting";
+    case SourceState::streaming: return "streaming";
+    case SourceState::reconnecting: return "reconnecting";
+    case SourceState::ended: return "ended";
+    case SourceState::failed: return "failed";
+    case SourceState::stopped: return "stopped";
+  }
+  return "?";
+}
+
+GazeLoop::GazeLoop(GazeSource& source, Mapper mapper, Observer observer, bool wait_for_source)
+    : source_(source), mapper_(std::move(mapper)), observer_(std::move(observer)), wait_for_source_(wait_for_source) {}
 
 GazeLoop::~GazeLoop() { stop(); }
 
@@ -53,18 +65,13 @@ void GazeLoop::publish_stats(bool force) {
 
 bool GazeLoop::reconnect() {
   // Device loss: keep the last fovea published, retry with backoff until it is back.
-  TimeNs backoff = 50 * kNsPerMs;
-  while (!stop_.load(std::memory_order_acquire)) {
-    source_.close();
-    if (source_.open() && source_.start()) {
-      ++local_.reconnects;
-      return true;
-    }
-    const TimeNs until = monotonic_now_ns() + backoff;
-    while (!stop_.load(std::memory_order_acquire) && monotonic_now_ns() < until) sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
-    backoff = std::min<TimeNs>(backoff * 2, 400 * kNsPerMs);  // resume within ~0.5 s of return
-  }
-  return false;
+  local_.state = SourceState::reconnecting;
+  publish_stats(true);
+  if (!reopen_with_backoff(source_, [this] { return stop_.load(std::memory_order_acquire); })) return false;
+  ++local_.reconnects;
+  local_.state = SourceState::streaming;
+  local_.device = source_.info();
+  return true;
 }
 
 void GazeLoop::run() {
@@ -75,6 +82,27 @@ void GazeLoop::run() {
     sp.sched_priority = rt_priority_;
     local_.realtime = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp) == 0;
   }
+  if (wait_for_source_) {
+    // A live device that is not there yet: wait for it the way a lost one is waited for,
+    // saying why in the stats.
+    local_.state = SourceState::waiting;
+    Status first = source_.open();
+    if (first) first = source_.start();
+    if (!first) {
+      local_.waiting_for = first.error().message;
+      publish_stats(true);
+      if (!reopen_with_backoff(source_, [this] { return stop_.load(std::memory_order_acquire); })) {
+        local_.state = SourceState::stopped;
+        publish_stats(true);
+        finished_.store(true, std::memory_order_release);
+        return;
+      }
+    }
+    local_.waiting_for.clear();
+  }
+  local_.state = SourceState::streaming;
+  local_.device = source_.info();
+  publish_stats(true);
   while (!stop_.load(std::memory_order_acquire)) {
     if (mapper_pending_.load(std::memory_order_acquire)) {
       std::lock_guard lock(mutex_);
@@ -97,17 +125,20 @@ void GazeLoop::run() {
       ++local_.timeouts;
     } else if (r.status == ReadStatus::end) {
       local_.ended = true;
+      local_.state = SourceState::ended;
       break;
     } else if (r.status == ReadStatus::disconnected) {
       ++local_.disconnects;
       if (!reconnect()) break;
     } else {
       local_.failed = true;
+      local_.state = SourceState::failed;
       local_.last_error = r.error.message;
       break;
     }
     publish_stats(false);
   }
+  if (local_.state == SourceState::streaming || local_.state == SourceState::reconnecting) local_.state = SourceState::stopped;
   publish_stats(true);
   finished_.store(true, std::memory_order_release);
 }

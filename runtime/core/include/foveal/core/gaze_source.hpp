@@ -2,6 +2,7 @@
 // The one interface every gaze driver implements (replay, synthetic, hid, usb).
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "foveal/core/error.hpp"
@@ -50,5 +51,11 @@ class GazeSource {
   virtual ReadResult next(std::chrono::nanoseconds timeout) = 0;
   virtual SourceInfo info() const = 0;
 };
+
+/// Device loss: closes `source` and tries open() + start() again with backoff (50 ms
+/// doubling to 400 ms, so a device that is back is read again within about 0.5 s) until
+/// it works (true) or `should_stop` says so (false). Every driver's recovery goes
+/// through here: the gaze loop's, `foveal record`'s.
+bool reopen_with_backoff(GazeSource& source, const std::function<bool()>& should_stop);
 
 }  // namespace foveal

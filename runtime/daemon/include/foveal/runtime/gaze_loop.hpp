@@ -14,7 +14,15 @@
 
 namespace foveal {
 
+/// Where the gaze thread is: waiting for a device that is not there (yet), reading
+/// samples, recovering from a device loss, or done.
+enum class SourceState { waiting, streaming, reconnecting, ended, failed, stopped };
+const char* source_state_name(SourceState s);
+
 struct GazeLoopStats {
+  SourceState state = SourceState::waiting;
+  SourceInfo device;              ///< the source's info() after its last successful open
+  std::string waiting_for;        ///< while waiting: why the last open failed
   std::uint64_t samples = 0;      ///< samples mapped and published
   std::uint64_t skipped = 0;      ///< samples read while paused
   std::uint64_t timeouts = 0;
@@ -37,8 +45,9 @@ class GazeLoop {
   /// Called on the gaze thread after each publish (e.g. to write a trace). Keep it short.
   using Observer = std::function<void(const GazeSample&, const FoveaFrame&)>;
 
-  /// `source` must be open and started, and outlive the loop.
-  GazeLoop(GazeSource& source, Mapper mapper, Observer observer = {});
+  /// `source` must outlive the loop. It is opened and started already, or, with
+  /// `wait_for_source`, the loop opens it itself, retrying until the device is there.
+  GazeLoop(GazeSource& source, Mapper mapper, Observer observer = {}, bool wait_for_source = false);
   ~GazeLoop();
   GazeLoop(const GazeLoop&) = delete;
   GazeLoop& operator=(const GazeLoop&) = delete;
@@ -74,6 +83,7 @@ class GazeLoop {
   GazeLoopStats stats_;
   Mapper next_mapper_;
   std::atomic<bool> mapper_pending_{false};
+  bool wait_for_source_ = false;
 
   // Gaze-thread-only state.
   LatencyHistogram latency_;

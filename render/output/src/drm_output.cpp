@@ -15,7 +15,7 @@
 #include <ctime>
 #include <filesystem>
 
-#include "egl_util.hpp"
+#include "../../src/egl_util.hpp"
 
 namespace foveal::render {
 

@@ -1,0 +1,28 @@
+// Headless: a surfaceless EGL context; frames stay in the compositor's framebuffer.
+#include "foveal/render/egl_context.hpp"
+#include "output_kinds.hpp"
+
+namespace foveal::render {
+
+namespace {
+
+class HeadlessOutput final : public Output {
+ public:
+  explicit HeadlessOutput(gl::EglContext ctx) : ctx_(std::move(ctx)) {}
+  const char* kind() const override { return "headless"; }
+  Status present(GLuint, int, int) override { return {}; }
+  nlohmann::json json() const override { return {{"kind", kind()}}; }
+
+ private:
+  gl::EglContext ctx_;
+};
+
+}  // namespace
+
+Result<std::unique_ptr<Output>> open_headless_output() {
+  auto ctx = gl::EglContext::create();
+  if (!ctx) return ctx.error();
+  return std::unique_ptr<Output>(new HeadlessOutput(std::move(*ctx)));
+}
+
+}  // namespace foveal::render
