@@ -13,6 +13,9 @@ namespace foveal {
 /// lerped, orientation slerped), held at the oldest kept pose before it and at the
 /// newest after it (no extrapolation), invalid while nothing has been pushed. The
 /// anchor of PoseAt::relative is the first pose pushed since construction or reset().
+/// At a pushed pose's own time it returns that pose bit for bit, so a frame drawn for a
+/// gaze sample (FoveaFrame::t_ns) gets exactly the pose recorded with it;
+/// pose_at(std::numeric_limits<TimeNs>::max()) is the newest pose.
 ///
 /// Thread safety: every member may be called from any thread. One mutex guards the
 /// ring and is held only to copy one pose in (push) or to find and copy two out
