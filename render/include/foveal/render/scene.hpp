@@ -12,26 +12,9 @@
 
 #include "foveal/core/error.hpp"
 #include "foveal/render/gl_objects.hpp"
+#include "foveal/render/scene_types.hpp"
 
 namespace foveal::render {
-
-struct Bounds {
-  glm::vec3 min{0.0f}, max{0.0f};
-  glm::vec3 center() const { return (min + max) * 0.5f; }
-  float radius() const;  ///< half the diagonal
-};
-
-/// glTF 2.0 metal-roughness material. Texture indices point into Scene::textures (-1: none).
-struct Material {
-  glm::vec4 base_color{1.0f};
-  float metallic = 1.0f, roughness = 1.0f;
-  glm::vec3 emissive{0.0f};
-  float normal_scale = 1.0f, occlusion_strength = 1.0f;
-  float alpha_cutoff = -1.0f;  ///< >= 0 for alphaMode MASK
-  bool unlit = false;          ///< KHR_materials_unlit
-  bool double_sided = false;
-  int base_color_tex = -1, metal_rough_tex = -1, normal_tex = -1, occlusion_tex = -1, emissive_tex = -1;
-};
 
 /// One indexed triangle list with interleaved vertices (position, normal, uv, tangent).
 struct Primitive {
@@ -41,24 +24,12 @@ struct Primitive {
   int material = -1;
 };
 
-struct DrawItem {
-  int primitive = 0;
-  glm::mat4 world{1.0f};
-};
-
 /// Built-in test patterns, drawn in each eye's screen space (the camera plays no part).
 struct Pattern {
   enum class Kind { checker, stripes_h, stripes_v, noise } kind = Kind::checker;
   float angle_deg = 0.0f;  ///< rotation of the pattern about the viewport centre
   float tile_px = 32.0f;   ///< screen pixels per texture repeat at angle 0
   gl::Texture texture;     ///< one tile, mipmapped, repeating
-};
-
-/// Where the viewer's head is: the midpoint between the eyes, looking along -z.
-struct ViewPose {
-  glm::mat4 head_to_world{1.0f};  ///< rotation and translation only
-  float units_per_meter = 1.0f;   ///< scales the IPD into scene units
-  std::string source;             ///< "view file", "glTF camera NAME" or "framing"
 };
 
 struct Scene {
