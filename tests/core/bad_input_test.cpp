@@ -103,6 +103,15 @@ std::string sr_row(long tick, const char* dx = "0.1") {
   return std::to_string(tick) + ";1;1;31;31;0.9;0.9;3.5;3.6;30;2;-38;-30;1;-35;" + dx + ";-0.1;0.98;0.1;-0.1;0.98\n";
 }
 
+// With the headset pose columns (the real recordings have them).
+const std::string kSrHelmetHeader = kSrHeader.substr(0, kSrHeader.size() - 1) +
+                                    ";helmet_pos_x;helmet_pos_y;helmet_pos_z;helmet_rot_x;helmet_rot_y;helmet_rot_z\n";
+std::string sr_helmet_row(long tick, const std::string& helmet = "0.97;1.18;0.55;4.7;356.7;3.5") {
+  std::string r = sr_row(tick);
+  r.pop_back();
+  return r + ";" + helmet + "\n";
+}
+
 struct ImportCase {
   const char* name;
   std::string content;
@@ -139,6 +148,10 @@ std::vector<ImportCase> sranipal_cases() {
       {"duplicate_time", kSrHeader + sr_row(200) + sr_row(200), ":3: time(100ns)"},
       {"nan", kSrHeader + sr_row(100, "nan"), ":2: gaze_direct_L.x: 'nan' is not finite"},
       {"time_span_overflow", kSrHeader + sr_row(0) + sr_row(361582867577684445), ":3: time(100ns)"},
+      {"helmet_not_a_number", kSrHelmetHeader + sr_helmet_row(100, "0.97;1.18;0.55;x;356.7;3.5"), ":2: helmet_rot_x: 'x' is not a number"},
+      {"helmet_nan", kSrHelmetHeader + sr_helmet_row(100, "0.97;nan;0.55;4.7;356.7;3.5"), ":2: helmet_pos_y: 'nan' is not finite"},
+      {"helmet_position_out_of_range", kSrHelmetHeader + sr_helmet_row(100, "1e300;1.18;0.55;4.7;356.7;3.5"), ":2: helmet_pos_x: 1e300 m is out of range"},
+      {"helmet_column_missing", kSrHelmetHeader.substr(0, kSrHelmetHeader.rfind(';')) + "\n" + sr_row(100), "'helmet_rot_z' is missing"},
   };
 }
 

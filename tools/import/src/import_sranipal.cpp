@@ -118,6 +118,10 @@ Status read_head(const TableReader& t, const std::array<std::size_t, 6>& c, Head
   for (int i = 0; i < 6; ++i) {
     auto f = t.number<double>(c[i]);
     if (!f) return f.error();
+    // A room-scale tracker: anything beyond a kilometre (or a million degrees) is not a
+    // pose, and would overflow the log's floats.
+    if (!(std::abs(*f) <= (i < 3 ? 1e3 : 1e6)))
+      return t.field_error(c[i], std::string(t.field(c[i])) + (i < 3 ? " m" : " degrees") + " is out of range");
     v[i] = *f;
   }
   h.valid = true;
