@@ -30,7 +30,7 @@ ctest --test-dir build-asan -L cpu -E 'Foveald' --output-on-failure -j"$jobs"
 step "TSan: threaded runtime tests"
 cmake -S . -B build-tsan -G Ninja "${fast[@]}" -DFOVEAL_SANITIZE=thread > /dev/null
 ninja -C build-tsan -j"$jobs" foveal_exchange_tests foveal_daemon_tests foveal_control_tests
-ctest --test-dir build-tsan -R 'SeqLock|FoveaShm|GazeLoop|LatencyHistogram|ControlSocket' --output-on-failure -j"$jobs"
+ctest --test-dir build-tsan -R 'SeqLock|FoveaShm|PoseTrack|GazeLoop|LatencyHistogram|ControlSocket' --output-on-failure -j"$jobs"
 
 step "libFuzzer: each target ${FOVEAL_FUZZ_SECONDS:-15} s"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DFOVEAL_FUZZ=ON "${fast[@]}" > /dev/null

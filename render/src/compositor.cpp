@@ -28,6 +28,27 @@ FrameParams efr_frame(Method method, Eye dominant, double sigma_d, double sigma_
   return p;
 }
 
+namespace {
+
+struct Camera {
+  Pose head;
+  double ipd_mm = 0;
+};
+
+// The frame's head pose and IPD, checked; the orientation renormalised (a pose that went
+// through float arithmetic is a little off unit length).
+Result<Camera> frame_camera(const FrameParams& p, const DisplayModel& model) {
+  Camera c{p.head, p.ipd_mm == 0.0 ? double{model.ipd_mm} : p.ipd_mm};
+  if (!std::isfinite(c.ipd_mm) || !(c.ipd_mm > 0.0) || c.ipd_mm > 200.0)
+    return bad_input("frame: ipd_mm " + std::to_string(p.ipd_mm) + " is not in (0, 200] mm");
+  if (!is_finite(c.head) || !(glm::length(c.head.orientation) > 1e-6f))
+    return bad_input("frame: the head pose is not finite or its orientation is zero");
+  c.head.orientation = renormalized(c.head.orientation);
+  return c;
+}
+
+}  // namespace
+
 PassTimes median_pass_times(const std::vector<PassTimes>& frames) {
   PassTimes m;
   if (frames.empty()) return m;
@@ -291,6 +312,8 @@ Compositor::~Compositor() = default;
 
 Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& params) {
   Impl& m = *impl_;
+  const auto camera = frame_camera(params, m.opt.model);
+  if (!camera) return camera.error();
   const auto cpu_start = Clock::now();
   PassTimes times;
   m.timer.begin_frame();
@@ -319,7 +342,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     if (!planned) return Error{planned.error().kind, std::string(eye_name(e)) + " eye: " + planned.error().message};
     const EyePlan& plan = m.plans[i] = std::move(*planned);
     times.shaded_samples += plan.shaded_samples();
-    const EyeView view = eye_view(scene, m.opt.model, e);
+    const EyeView view = eye_view(scene, m.opt.model, e, camera->head, camera->ipd_mm);
     const glm::ivec2 eye_origin(static_cast<int>(i) * m.eye_w, 0);
 
     // G-buffer.

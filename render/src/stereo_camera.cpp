@@ -3,13 +3,23 @@
 #include <algorithm>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 namespace foveal::render {
 
-EyeView eye_view(const Scene& scene, const DisplayModel& model, Eye eye) {
-  const float half_ipd = 0.5f * model.ipd_mm / 1000.0f * scene.view.units_per_meter;
+glm::mat4 head_to_world(const Scene& scene, const Pose& head) {
+  if (head == Pose{}) return scene.view.head_to_world;
+  glm::mat4 pose = glm::mat4_cast(head.orientation);
+  pose[3] = glm::vec4(head.position_m * scene.view.units_per_meter, 1.0f);
+  return scene.view.head_to_world * pose;
+}
+
+EyeView eye_view(const Scene& scene, const DisplayModel& model, Eye eye, const Pose& head, double ipd_mm) {
+  // In float, as before the IPD became a parameter: the display model's default gives
+  // the same bits as it always did.
+  const float half_ipd = 0.5f * static_cast<float>(ipd_mm) / 1000.0f * scene.view.units_per_meter;
   const float side = eye == Eye::left ? -1.0f : 1.0f;
-  const glm::mat4 eye_to_world = scene.view.head_to_world * glm::translate(glm::mat4(1.0f), glm::vec3(side * half_ipd, 0, 0));
+  const glm::mat4 eye_to_world = head_to_world(scene, head) * glm::translate(glm::mat4(1.0f), glm::vec3(side * half_ipd, 0, 0));
   EyeView v;
   v.view = glm::inverse(eye_to_world);
   v.position = glm::vec3(eye_to_world[3]);

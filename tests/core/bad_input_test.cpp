@@ -20,6 +20,14 @@ const std::string kHeader =
 std::string row(long t, const char* lx = "0.1") {
   return std::to_string(t) + ",1," + lx + ",0,-0.99,,,,,,1,0.1,0,-0.99,,,,,,0,,,,,,\n";
 }
+// v2: the same columns plus the head pose's.
+const std::string kHeaderV2 = "# foveal-gaze-log v2" + kHeader.substr(kHeader.find('\n'), kHeader.size() - kHeader.find('\n') - 1) +
+                              ",head_valid,head_x_m,head_y_m,head_z_m,head_qw,head_qx,head_qy,head_qz\n";
+std::string row_v2(long t, const std::string& head = "1,0.97,1.18,-0.55,1,0,0,0") {
+  std::string r = row(t);
+  r.pop_back();
+  return r + "," + head + "\n";
+}
 
 struct NativeCase {
   const char* name;
@@ -46,7 +54,15 @@ std::vector<NativeCase> native_cases() {
       {"nan", kHeader + row(0, "nan"), ":4:", "left_dir_x"},
       {"crlf", crlf, ":4:", "CRLF"},
       {"utf8_bom", "\xEF\xBB\xBF" + kHeader + row(0), ":1:", "byte-order mark"},
-      {"unknown_version", "# foveal-gaze-log v2\n# rate_hz=120\n", ":1:", "v2 is not supported"},
+      {"unknown_version", "# foveal-gaze-log v3\n# rate_hz=120\n", ":1:", "v3 is not supported"},
+      {"v1_columns_in_v2", "# foveal-gaze-log v2" + kHeader.substr(kHeader.find('\n')) + row(0), ":3:", "head_valid"},
+      {"head_not_a_number", kHeaderV2 + row_v2(0) + row_v2(8, "1,0.97,abc,-0.55,1,0,0,0"), ":5:", "head_y_m"},
+      {"head_valid_not_a_flag", kHeaderV2 + row_v2(0, "2,0.97,1.18,-0.55,1,0,0,0"), ":4:", "head_valid"},
+      {"head_value_without_flag", kHeaderV2 + row_v2(0, "0,0.97,,,,,,"), ":4:", "head_x_m"},
+      {"head_flag_without_value", kHeaderV2 + row_v2(0, "1,0.97,1.18,-0.55,,0,0,0"), ":4:", "head_qw"},
+      {"head_nan_quaternion", kHeaderV2 + row_v2(0, "1,0.97,1.18,-0.55,nan,0,0,0"), ":4:", "head_qw"},
+      {"head_non_unit_quaternion", kHeaderV2 + row_v2(0, "1,0.97,1.18,-0.55,0.5,0,0,0"), ":4:", "head_qw..head_qz"},
+      {"head_truncated", kHeaderV2 + row_v2(0, "1,0.97,1.18"), ":4:", "head_z_m"},
   };
 }
 
@@ -87,6 +103,15 @@ std::string sr_row(long tick, const char* dx = "0.1") {
   return std::to_string(tick) + ";1;1;31;31;0.9;0.9;3.5;3.6;30;2;-38;-30;1;-35;" + dx + ";-0.1;0.98;0.1;-0.1;0.98\n";
 }
 
+// With the headset pose columns (the real recordings have them).
+const std::string kSrHelmetHeader = kSrHeader.substr(0, kSrHeader.size() - 1) +
+                                    ";helmet_pos_x;helmet_pos_y;helmet_pos_z;helmet_rot_x;helmet_rot_y;helmet_rot_z\n";
+std::string sr_helmet_row(long tick, const std::string& helmet = "0.97;1.18;0.55;4.7;356.7;3.5") {
+  std::string r = sr_row(tick);
+  r.pop_back();
+  return r + ";" + helmet + "\n";
+}
+
 struct ImportCase {
   const char* name;
   std::string content;
@@ -123,6 +148,10 @@ std::vector<ImportCase> sranipal_cases() {
       {"duplicate_time", kSrHeader + sr_row(200) + sr_row(200), ":3: time(100ns)"},
       {"nan", kSrHeader + sr_row(100, "nan"), ":2: gaze_direct_L.x: 'nan' is not finite"},
       {"time_span_overflow", kSrHeader + sr_row(0) + sr_row(361582867577684445), ":3: time(100ns)"},
+      {"helmet_not_a_number", kSrHelmetHeader + sr_helmet_row(100, "0.97;1.18;0.55;x;356.7;3.5"), ":2: helmet_rot_x: 'x' is not a number"},
+      {"helmet_nan", kSrHelmetHeader + sr_helmet_row(100, "0.97;nan;0.55;4.7;356.7;3.5"), ":2: helmet_pos_y: 'nan' is not finite"},
+      {"helmet_position_out_of_range", kSrHelmetHeader + sr_helmet_row(100, "1e300;1.18;0.55;4.7;356.7;3.5"), ":2: helmet_pos_x: 1e300 m is out of range"},
+      {"helmet_column_missing", kSrHelmetHeader.substr(0, kSrHelmetHeader.rfind(';')) + "\n" + sr_row(100), "'helmet_rot_z' is missing"},
   };
 }
 

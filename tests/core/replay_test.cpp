@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "foveal/core/gaze_log.hpp"
+#include "foveal/core/pose_track.hpp"
 #include "foveal/drivers/replay_source.hpp"
 #include "test_support.hpp"
 
@@ -47,6 +48,37 @@ TEST(Replay, SpeedZeroDeliversEverySampleWithTheRecordedSpacing) {
   EXPECT_EQ(src.next(std::chrono::milliseconds(1)).status, ReadStatus::end);
   EXPECT_EQ(src.info().driver, "replay");
   EXPECT_DOUBLE_EQ(src.info().nominal_rate_hz, 120.0);
+}
+
+// The pose seam end to end: the replay delivers each sample's recorded head pose with
+// it, stamped with the sample's runtime-clock time (start + (t - t_first) / speed), and a
+// PoseTrack fed from the delivered samples answers with the recorded poses at those times.
+TEST(Replay, DeliversTheRecordedHeadPoseOnTheRuntimeClock) {
+  auto log = read_gaze_log(bundled());
+  ASSERT_TRUE(log);
+  ReplayOptions o = options(bundled(), 20.0);
+  o.end_s = 1.0;
+  ReplaySource src(o);
+  ASSERT_TRUE(src.open());
+  ASSERT_TRUE(src.start());
+  EXPECT_TRUE(src.info().head_pose);
+  const auto out = drain(src);
+  ASSERT_GT(out.size(), 100u);
+  PoseTrack track;
+  for (const GazeSample& s : out) {
+    ASSERT_TRUE(s.head.valid);
+    ASSERT_TRUE(track.push({s.t_ns, s.head.pose}));
+  }
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    EXPECT_EQ(out[i].head, (*log)[i].head) << i;
+    EXPECT_EQ(track.pose_at(out[i].t_ns).pose, (*log)[i].head.pose) << i;
+  }
+  EXPECT_EQ(track.pose_at(out[0].t_ns).relative, Pose{});
+  EXPECT_NE(track.pose_at(out.back().t_ns).relative, Pose{});  // the head moved
+
+  ReplaySource v1(options(test::source_path("tests/vm/data/constant_gaze.csv"), 0.0));
+  ASSERT_TRUE(v1.open());
+  EXPECT_FALSE(v1.info().head_pose);
 }
 
 TEST(Replay, SpeedScalesTheTimeline) {

@@ -41,6 +41,7 @@ inline int gaze_log(const std::uint8_t* data, std::size_t size) {
     if (!got || !*got) break;
     for (const auto& e : s.eyes)
       if (e.has(foveal::kValidDirection) && !std::isfinite(e.direction.x)) std::abort();  // never NaN
+    if (s.head.valid && (!foveal::is_finite(s.head.pose) || !foveal::is_unit(s.head.pose.orientation))) std::abort();
   }
   (void)foveal::compute_gaze_log_stats(f.path());
   return 0;

@@ -34,10 +34,12 @@ void add_import(CLI::App& app, int& exit_code) {
     const ImportSummary& s = *r;
     if (args->json) {
       cli::print_json({{"format", s.format}, {"input", args->in}, {"output", args->out}, {"samples", s.rows},
-                       {"rate_hz", s.rate_hz}, {"invalid_left", s.invalid[0]}, {"invalid_right", s.invalid[1]}});
+                       {"rate_hz", s.rate_hz}, {"invalid_left", s.invalid[0]}, {"invalid_right", s.invalid[1]},
+                       {"head_pose", s.head_pose}, {"format_version", s.head_pose ? 2 : 1}});
     } else {
       std::cout << "imported " << s.rows << " samples (" << s.format << ", " << s.rate_hz << " Hz) -> " << args->out
-                << "\n  invalid: left " << s.invalid[0] << ", right " << s.invalid[1] << "\n";
+                << "\n  invalid: left " << s.invalid[0] << ", right " << s.invalid[1]
+                << (s.head_pose ? "\n  head pose: yes (gaze log v2)" : "\n  head pose: none (gaze log v1)") << "\n";
     }
   });
 }

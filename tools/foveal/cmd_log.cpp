@@ -28,7 +28,9 @@ nlohmann::json stats_json(const std::string& path, const GazeLogStats& s) {
           {"longest_gap_ms", s.longest_gap_ms},
           {"longest_gap_at_s", s.longest_gap_at_s},
           {"blinks", s.blinks},
-          {"invalid_runs", runs}};
+          {"invalid_runs", runs},
+          {"head_pose", {{"samples", s.head_pose_samples}, {"max_turn_deg", s.head_max_turn_deg},
+                         {"max_travel_m", s.head_max_travel_m}}}};
 }
 
 void print_text(const std::string& path, const GazeLogStats& s) {
@@ -39,6 +41,9 @@ void print_text(const std::string& path, const GazeLogStats& s) {
               s.estimated_rate_hz, s.header.rate_hz, s.median_interval_ms);
   std::printf("  invalid            left %.2f%%, right %.2f%%\n", s.invalid_pct[0], s.invalid_pct[1]);
   std::printf("  longest gap        %.2f ms at %.3f s\n", s.longest_gap_ms, s.longest_gap_at_s);
+  if (s.header.has_head_pose())
+    std::printf("  head pose          %llu samples; at most %.1f deg and %.3f m from the first\n",
+                static_cast<unsigned long long>(s.head_pose_samples), s.head_max_turn_deg, s.head_max_travel_m);
   std::printf("  invalid runs       %zu (%llu blink-like)\n", s.invalid_runs.size(),
               static_cast<unsigned long long>(s.blinks));
   // In time order, capped: --json has them all.

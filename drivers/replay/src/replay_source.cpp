@@ -130,6 +130,7 @@ SourceInfo ReplaySource::info() const {
   const auto slash = opts_.path.find_last_of('/');
   i.name = slash == std::string::npos ? opts_.path : opts_.path.substr(slash + 1);
   i.nominal_rate_hz = reader_ ? reader_->header().rate_hz : 0;
+  i.head_pose = reader_ && reader_->header().has_head_pose();
   return i;
 }
 

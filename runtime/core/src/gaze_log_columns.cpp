@@ -2,8 +2,8 @@
 
 namespace foveal {
 
-const std::vector<std::string>& gaze_log_columns() {
-  static const std::vector<std::string> cols = [] {
+const std::vector<std::string>& gaze_log_columns(int version) {
+  static const std::vector<std::string> v1 = [] {
     std::vector<std::string> c{"t_ns"};
     for (const char* eye : {"left", "right"}) {
       const std::string e = eye;
@@ -16,7 +16,13 @@ const std::vector<std::string>& gaze_log_columns() {
       c.push_back(f);
     return c;
   }();
-  return cols;
+  static const std::vector<std::string> v2 = [] {
+    std::vector<std::string> c = v1;
+    for (const char* f : {"head_valid", "head_x_m", "head_y_m", "head_z_m", "head_qw", "head_qx", "head_qy", "head_qz"})
+      c.push_back(f);
+    return c;
+  }();
+  return version >= kGazeLogV2 ? v2 : v1;
 }
 
 }  // namespace foveal

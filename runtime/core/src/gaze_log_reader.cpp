@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/core/text_fields.hpp"
@@ -10,10 +11,22 @@ namespace {
 
 constexpr std::size_t kEyeFields = 9;       // valid, dir xyz, origin xyz, pupil, openness
 constexpr std::size_t kCombinedFields = 7;  // valid, dir xyz, origin xyz
-constexpr std::size_t kRowFields = 1 + 2 * kEyeFields + kCombinedFields;
+constexpr std::size_t kHeadFields = 8;      // valid, position xyz, quaternion wxyz (v2)
+constexpr std::size_t kHeadColumn = 1 + 2 * kEyeFields + kCombinedFields;  // head_valid's index
+constexpr const char* kHeadQuatColumns = "head_qw..head_qz";
+constexpr const char* kExpectedMagic = "expected '# foveal-gaze-log v1' or '... v2'";
+
+std::size_t row_fields(int version) { return kHeadColumn + (version >= kGazeLogV2 ? kHeadFields : 0); }
 
 std::string where(const std::string& path, std::uint64_t line) {
   return path + ":" + std::to_string(line);
+}
+
+std::string quat_norm_error(const glm::quat& q) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "quaternion norm %.6g is not 1 (tolerance %g): not a head orientation", quaternion_norm(q),
+                static_cast<double>(kUnitQuaternionTolerance));
+  return buf;
 }
 
 }  // namespace
@@ -42,21 +55,21 @@ Status GazeLogReader::read_header() {
   };
   auto got = lines_.next(line);
   if (!got) return got.error();
-  if (!*got) return bad_input(where(path(), 1) + ": file is empty; expected '# foveal-gaze-log v1'");
+  if (!*got) return bad_input(where(path(), 1) + ": file is empty; " + kExpectedMagic);
   if (line.text.size() >= 3 && static_cast<unsigned char>(line.text[0]) == 0xEF &&
       static_cast<unsigned char>(line.text[1]) == 0xBB && static_cast<unsigned char>(line.text[2]) == 0xBF)
     return bad_input(where(path(), 1) + ": starts with a UTF-8 byte-order mark; gaze logs have none");
   if (line.text.substr(0, kGazeLogMagic.size()) != kGazeLogMagic)
-    return bad_input(where(path(), 1) + ": not a foveal gaze log; expected '# foveal-gaze-log v1'");
+    return bad_input(where(path(), 1) + ": not a foveal gaze log; " + kExpectedMagic);
   if (Status s = check_line(line); !s) return s;
   {
     const std::string_view v = line.text.substr(kGazeLogMagic.size());
     int version = 0;
     if (!parse_number(v, version))
       return bad_input(where(path(), 1) + ": format version: '" + std::string(v) + "' is not a number");
-    if (version != kGazeLogVersion)
+    if (version != kGazeLogV1 && version != kGazeLogV2)
       return Error{ErrorKind::unsupported, where(path(), 1) + ": format version: v" + std::to_string(version) +
-                                          " is not supported (this build reads v1)"};
+                                          " is not supported (this build reads v1 and v2)"};
     header_.version = version;
   }
   // "# key=value" lines, then the column row.
@@ -84,7 +97,7 @@ Status GazeLogReader::read_header() {
   if (header_.rate_hz <= 0)
     return bad_input(where(path(), line.number) + ": header: '# rate_hz=...' is missing");
   split_fields(line.text, ',', fields_);
-  const auto& cols = gaze_log_columns();
+  const auto& cols = gaze_log_columns(header_.version);
   for (std::size_t i = 0; i < cols.size(); ++i) {
     if (i >= fields_.size())
       return bad_input(where(path(), line.number) + ": column row: column '" + cols[i] + "' is missing");
@@ -183,10 +196,24 @@ Result<bool> GazeLogReader::next(GazeSample& out) {
       read_float(e.has(kValidOpenness), e.openness, last_block);
     }
   };
+  const bool with_head = header_.has_head_pose();
   read_block(s.eyes[0], true, false);
   read_block(s.eyes[1], true, false);
-  read_block(s.combined, false, true);
+  read_block(s.combined, false, !with_head);
   s.combined.pupil_mm = s.combined.openness = 0.0f;  // not stored for the combined gaze
+  s.head = HeadPose{};
+  if (with_head && ok) {
+    const char flag = p != end ? *p : '\0';
+    s.head.valid = flag == '1';
+    ok = (flag == '0' || flag == '1') && (p = advance(p + 1, false)) != nullptr;
+    Pose& h = s.head.pose;
+    float* dst[] = {&h.position_m.x, &h.position_m.y, &h.position_m.z, &h.orientation.w,
+                    &h.orientation.x, &h.orientation.y, &h.orientation.z};
+    for (int i = 0; i < 7; ++i) read_float(s.head.valid, *dst[i], i == 6);
+    if (ok && s.head.valid && !is_unit(h.orientation))
+      return row_error(line.number, kHeadQuatColumns, quat_norm_error(h.orientation));
+    if (!s.head.valid) h = Pose{};  // read_float wrote zeros
+  }
   if (!ok || !line.terminated) return describe_row_error(line);
   if (s.t_ns < -kMaxGazeLogTimeNs || s.t_ns >= kMaxGazeLogTimeNs)
     return row_error(line.number, gaze_log_columns()[0],
@@ -207,17 +234,18 @@ Result<bool> GazeLogReader::next(GazeSample& out) {
 }
 
 Error GazeLogReader::describe_row_error(const LineReader::Line& line) {
-  const auto& cols = gaze_log_columns();
+  const auto& cols = gaze_log_columns(header_.version);
+  const std::size_t want = row_fields(header_.version);
   split_fields(line.text, ',', fields_);
-  if (fields_.size() < kRowFields) {
+  if (fields_.size() < want) {
     const std::string what = line.terminated ? "missing (row has " + std::to_string(fields_.size()) + " of " +
-                                                   std::to_string(kRowFields) + " fields)"
+                                                   std::to_string(want) + " fields)"
                                              : "missing: truncated last row (no line end)";
     return row_error(line.number, cols[fields_.size()], what);
   }
-  if (fields_.size() > kRowFields)
+  if (fields_.size() > want)
     return bad_input(where(path(), line.number) + ": row has " + std::to_string(fields_.size()) +
-                     " fields, expected " + std::to_string(kRowFields));
+                     " fields, expected " + std::to_string(want));
   if (!line.terminated) return bad_input(where(path(), line.number) + ": truncated last row (no line end)");
 
   std::int64_t t = 0;
@@ -240,6 +268,21 @@ Error GazeLogReader::describe_row_error(const LineReader::Line& line) {
       if (!present && !f.empty()) return row_error(line.number, cols[col], "has a value but its validity bit is clear");
       if (!present) continue;
       if (f.empty()) return row_error(line.number, cols[col], "empty but its validity bit is set");
+      float v = 0;
+      if (!parse_number(f, v)) return row_error(line.number, cols[col], "'" + std::string(f) + "' is " + number_problem<float>(f));
+      if (!std::isfinite(v)) return row_error(line.number, cols[col], "'" + std::string(f) + "' is not finite");
+    }
+  }
+  if (header_.has_head_pose()) {
+    const std::string_view hv = fields_[col];
+    if (hv != "0" && hv != "1")
+      return row_error(line.number, cols[col], "'" + std::string(hv) + "' is not 0 or 1");
+    const bool present = hv == "1";
+    for (++col; col < want; ++col) {
+      const std::string_view f = fields_[col];
+      if (!present && !f.empty()) return row_error(line.number, cols[col], "has a value but head_valid is 0");
+      if (!present) continue;
+      if (f.empty()) return row_error(line.number, cols[col], "empty but head_valid is 1");
       float v = 0;
       if (!parse_number(f, v)) return row_error(line.number, cols[col], "'" + std::string(f) + "' is " + number_problem<float>(f));
       if (!std::isfinite(v)) return row_error(line.number, cols[col], "'" + std::string(f) + "' is not finite");

@@ -1,6 +1,8 @@
 #include "foveal/core/gaze_log_stats.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <map>
 
 namespace foveal {
@@ -25,6 +27,7 @@ Result<GazeLogStats> compute_gaze_log_stats(const std::string& path) {
   InvalidRun run;
   TimeNs run_start_t = 0;
   GazeSample s;
+  Pose first_head;
   std::vector<std::int64_t> intervals_sample;  // bounded reservoir for the rate estimate
 
   for (;;) {
@@ -62,6 +65,13 @@ Result<GazeLogStats> compute_gaze_log_stats(const std::string& path) {
       } else {
         ++run.samples;
       }
+    }
+    if (s.head.valid) {
+      if (st.head_pose_samples++ == 0) first_head = s.head.pose;
+      const Pose moved = relative_to(first_head, s.head.pose);
+      const double turn = 2.0 * std::acos(std::min(1.0, std::abs(static_cast<double>(moved.orientation.w)))) * 180.0 / std::numbers::pi;
+      st.head_max_turn_deg = std::max(st.head_max_turn_deg, turn);
+      st.head_max_travel_m = std::max(st.head_max_travel_m, static_cast<double>(glm::length(s.head.pose.position_m - first_head.position_m)));
     }
     prev_t = s.t_ns;
     ++st.samples;

@@ -29,16 +29,19 @@ Result<GazeLogWriter> GazeLogWriter::create(const std::string& path, const GazeL
   for (const auto& [k, v] : header.meta)
     if (k.empty() || k.find_first_of("=\n\r") != std::string::npos || v.find_first_of("\n\r") != std::string::npos)
       return bad_input(path + ": header key '" + k + "' or its value has a forbidden character");
+  if (header.version != kGazeLogV1 && header.version != kGazeLogV2)
+    return Error{ErrorKind::unsupported, path + ": format version v" + std::to_string(header.version) +
+                                             " cannot be written (this build writes v1 and v2)"};
   auto f = AtomicFile::create(path);
   if (!f) return f.error();
-  GazeLogWriter w(std::move(f.value()));
-  std::string head = std::string(kGazeLogMagic) + std::to_string(kGazeLogVersion) + "\n";
+  GazeLogWriter w(std::move(f.value()), header.has_head_pose());
+  std::string head = std::string(kGazeLogMagic) + std::to_string(header.version) + "\n";
   char rate[32];
   auto [p, ec] = std::to_chars(rate, rate + sizeof rate, header.rate_hz);
   (void)ec;
   head += "# rate_hz=" + std::string(rate, p) + "\n";
   for (const auto& [k, v] : header.meta) head += "# " + k + "=" + v + "\n";
-  const auto& cols = gaze_log_columns();
+  const auto& cols = gaze_log_columns(header.version);
   for (std::size_t i = 0; i < cols.size(); ++i) head += (i ? "," : "") + cols[i];
   head += "\n";
   w.file_.write(head);
@@ -96,6 +99,20 @@ Status GazeLogWriter::write(const GazeSample& s) {
   if (!ok)
     return bad_input(file_.path() + ": sample " + std::to_string(samples_ + 1) +
                      ": a field marked valid is NaN or infinite");
+  if (s.head.valid && !head_)
+    return bad_input(file_.path() + ": sample " + std::to_string(samples_ + 1) +
+                     ": has a head pose, but a v1 log has no head-pose columns (write v2)");
+  if (head_) {
+    const Pose& h = s.head.pose;
+    row_ += s.head.valid ? ",1" : ",0";
+    bool finite = true;
+    for (float v : {h.position_m.x, h.position_m.y, h.position_m.z, h.orientation.w, h.orientation.x, h.orientation.y,
+                    h.orientation.z})
+      finite = put(s.head.valid, v) && finite;
+    if (!finite || (s.head.valid && !is_unit(h.orientation)))
+      return bad_input(file_.path() + ": sample " + std::to_string(samples_ + 1) +
+                       ": the head pose is not finite or its orientation is not a unit quaternion");
+  }
   row_ += '\n';
   file_.write(row_);
   last_t_ = last_row_t_ = s.t_ns;

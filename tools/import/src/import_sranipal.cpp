@@ -1,5 +1,10 @@
+#include <array>
 #include <cmath>
+#include <numbers>
+#include <optional>
 #include <string>
+
+#include <glm/gtc/quaternion.hpp>
 
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/import/importers.hpp"
@@ -75,6 +80,55 @@ Status read_eye(const TableReader& t, const EyeColumns& c, EyeSample& e) {
   return {};
 }
 
+// The headset pose columns, all or none (older exports have none).
+constexpr const char* kHelmetColumns[6] = {"helmet_pos_x", "helmet_pos_y", "helmet_pos_z",
+                                           "helmet_rot_x", "helmet_rot_y", "helmet_rot_z"};
+
+Result<std::optional<std::array<std::size_t, 6>>> helmet_columns(const TableReader& t) {
+  std::array<std::size_t, 6> c{};
+  int found = 0;
+  for (int i = 0; i < 6; ++i) {
+    const long col = t.find_column(kHelmetColumns[i]);
+    if (col >= 0) c[i] = static_cast<std::size_t>(col), ++found;
+  }
+  if (found == 0) return std::optional<std::array<std::size_t, 6>>{};
+  for (int i = 0; i < 6 && found < 6; ++i)
+    if (t.find_column(kHelmetColumns[i]) < 0)
+      return bad_input(t.path() + ": column '" + kHelmetColumns[i] + "' is missing (the file has other helmet_* columns)");
+  return std::optional<std::array<std::size_t, 6>>{c};
+}
+
+// The recording application's (Unity's) world frame is left-handed, x right, y up,
+// +z forward; foveal's is right-handed, -z forward: z flips. Its Euler angles (degrees)
+// rotate about z, then x, then y (R = Ry·Rx·Rz); flipping z reverses the sense of the
+// x and y rotations, so in foveal's frame R = Ry(-y)·Rx(-x)·Rz(z) (docs/importers.md).
+Pose pose_from_unity(const double pos[3], const double euler_deg[3]) {
+  constexpr double kRad = std::numbers::pi / 180.0;
+  const glm::dquat q = glm::angleAxis(-euler_deg[1] * kRad, glm::dvec3(0, 1, 0)) *
+                       glm::angleAxis(-euler_deg[0] * kRad, glm::dvec3(1, 0, 0)) *
+                       glm::angleAxis(euler_deg[2] * kRad, glm::dvec3(0, 0, 1));
+  Pose p;
+  p.position_m = glm::vec3(glm::dvec3(pos[0], pos[1], -pos[2]));
+  p.orientation = glm::quat(glm::normalize(q.w < 0 ? -q : q));  // one sign per rotation: w >= 0
+  return p;
+}
+
+Status read_head(const TableReader& t, const std::array<std::size_t, 6>& c, HeadPose& h) {
+  double v[6];
+  for (int i = 0; i < 6; ++i) {
+    auto f = t.number<double>(c[i]);
+    if (!f) return f.error();
+    // A room-scale tracker: anything beyond a kilometre (or a million degrees) is not a
+    // pose, and would overflow the log's floats.
+    if (!(std::abs(*f) <= (i < 3 ? 1e3 : 1e6)))
+      return t.field_error(c[i], std::string(t.field(c[i])) + (i < 3 ? " m" : " degrees") + " is out of range");
+    v[i] = *f;
+  }
+  h.valid = true;
+  h.pose = pose_from_unity(v, v + 3);
+  return {};
+}
+
 }  // namespace
 
 Result<ImportSummary> import_sranipal(const std::string& in, const std::string& out) {
@@ -88,7 +142,11 @@ Result<ImportSummary> import_sranipal(const std::string& in, const std::string& 
   auto right = eye_columns(t, 'R');
   if (!right) return right.error();
 
+  auto helmet = helmet_columns(t);
+  if (!helmet) return helmet.error();
+
   GazeLogHeader header;
+  header.version = *helmet ? kGazeLogV2 : kGazeLogV1;
   header.rate_hz = 120.0;  // the Vive Pro Eye's nominal rate
   const auto slash = in.find_last_of('/');
   header.meta["source"] = "sranipal:" + (slash == std::string::npos ? in : in.substr(slash + 1));
@@ -97,6 +155,7 @@ Result<ImportSummary> import_sranipal(const std::string& in, const std::string& 
 
   ImportSummary sum;
   sum.format = "sranipal";
+  sum.head_pose = helmet->has_value();
   sum.rate_hz = header.rate_hz;
   std::int64_t first_tick = 0, last_tick = 0;
   for (;;) {
@@ -118,6 +177,8 @@ Result<ImportSummary> import_sranipal(const std::string& in, const std::string& 
       return t.field_error(*time_col, std::to_string(*tick) + " is too far from the first row's time");
     if (Status st = read_eye(t, *left, s.eye(Eye::left)); !st) return st.error();
     if (Status st = read_eye(t, *right, s.eye(Eye::right)); !st) return st.error();
+    if (*helmet)
+      if (Status st = read_head(t, **helmet, s.head); !st) return st.error();
     for (int e = 0; e < 2; ++e) sum.invalid[e] += s.eyes[e].has(kValidDirection) ? 0 : 1;
     if (Status st = writer->write(s); !st) return st.error();
     ++sum.rows;

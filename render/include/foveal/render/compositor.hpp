@@ -14,6 +14,7 @@
 
 #include "foveal/core/display_model.hpp"
 #include "foveal/core/error.hpp"
+#include "foveal/core/pose.hpp"
 #include "foveal/image/foveation_plan.hpp"
 #include "foveal/image/image.hpp"
 #include "foveal/render/gl.hpp"
@@ -27,6 +28,16 @@ struct Scene;
 struct FrameParams {
   Method method = Method::rmfr;
   std::array<EyeFoveation, 2> eyes{};  ///< indexed by Eye
+  /// The head's pose relative to where the scene's view puts it (docs/scenes.md,
+  /// "Camera"): the camera is the scene's head_to_world composed with this pose, the
+  /// position in metres (scaled by the scene's units_per_meter). The identity (default)
+  /// is the scene's view exactly. A replay passes PoseAt::relative, the pose relative to
+  /// the recording's first pose; a non-unit orientation is renormalised, a non-finite
+  /// pose or a zero quaternion is bad_input.
+  Pose head{};
+  /// Inter-pupillary distance, mm (the user profile's). 0: the display model's.
+  /// Anything else outside (0, 200] or not finite is bad_input.
+  double ipd_mm = 0.0;
 };
 
 /// EFR: the dominant eye at sigma_d, the other at sigma_nd.
@@ -68,8 +79,8 @@ class Compositor {
   Compositor& operator=(Compositor&&) noexcept;
   ~Compositor();
 
-  /// Renders one frame into the output and waits for it. σ < 1 or f <= 0 (or not finite)
-  /// are bad_input; transformed buffers are (re)allocated when an eye's w×h changes.
+  /// Renders one frame into the output and waits for it. σ < 1 or f <= 0 (or not finite),
+  /// a bad head pose or IPD (FrameParams) are bad_input; transformed buffers are (re)allocated when an eye's w×h changes.
   Result<PassTimes> render(const Scene& scene, const FrameParams& params);
 
   /// The output as 8-bit sRGB, top row first. With float_output, the float pixels

@@ -1,5 +1,6 @@
 #pragma once
-// The native gaze log, format v1 (docs/gaze-log.md): versioned, human-readable CSV.
+// The native gaze log, formats v1 and v2 (docs/gaze-log.md): versioned, human-readable
+// CSV. v2 is v1 plus the head-pose columns.
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -15,25 +16,32 @@
 
 namespace foveal {
 
-constexpr int kGazeLogVersion = 1;
+constexpr int kGazeLogV1 = 1;  ///< gaze only
+constexpr int kGazeLogV2 = 2;  ///< gaze and the head pose (head_valid, head_x_m, ..., head_qz)
 /// Timestamps are in [-2^62, 2^62) ns (±146 years), so the difference of any two of
 /// them (durations, gaps, replay offsets) fits in an int64 without wrapping.
 constexpr std::int64_t kMaxGazeLogTimeNs = std::int64_t{1} << 62;
 constexpr std::string_view kGazeLogMagic = "# foveal-gaze-log v";
 
 struct GazeLogHeader {
-  int version = kGazeLogVersion;
+  /// What the reader found; what the writer writes. A writer writes v2 only when asked
+  /// (a source with head poses), so pose-free logs stay v1, readable by older builds.
+  int version = kGazeLogV1;
   double rate_hz = 0;  ///< nominal sample rate, > 0
   /// Further "# key=value" lines (source, device, start_utc, ...), kept in order of key.
   std::map<std::string, std::string> meta;
+
+  bool has_head_pose() const { return version >= kGazeLogV2; }
 };
 
-/// The v1 column names, in file order.
-const std::vector<std::string>& gaze_log_columns();
+/// The column names of format `version` (1 or 2), in file order: v2 appends the eight
+/// head-pose columns to v1's 26.
+const std::vector<std::string>& gaze_log_columns(int version = kGazeLogV1);
 
-/// Streams a native gaze log. Every row is checked: field count, numbers, NaN/Inf,
-/// validity bits against empty fields, strictly increasing timestamps. Errors name
-/// file:line: column.
+/// Streams a native gaze log, v1 or v2. Every row is checked: field count, numbers,
+/// NaN/Inf, validity bits against empty fields, strictly increasing timestamps, and (v2)
+/// a unit head quaternion (is_unit). Errors name file:line: column. Samples of a v1 log
+/// have `head.valid == false`; stored head values are returned exactly as written.
 class GazeLogReader {
  public:
   static Result<GazeLogReader> open(const std::string& path);
@@ -71,10 +79,13 @@ Result<std::vector<GazeSample>> read_gaze_log(const std::string& path, GazeLogHe
 
 /// Writes a native gaze log atomically: nothing appears at `path` until commit().
 /// Values are written in their shortest round-trip form, so reading back is bit-exact.
+/// The format is `header.version`: v2 writes each sample's head pose, v1 refuses a
+/// sample that carries one (rather than dropping it silently).
 class GazeLogWriter {
  public:
   static Result<GazeLogWriter> create(const std::string& path, const GazeLogHeader& header);
-  /// Rejects non-increasing timestamps and non-finite valid fields.
+  /// Rejects non-increasing timestamps, non-finite valid fields, a valid head pose whose
+  /// orientation is not a unit quaternion, and (v1) any valid head pose.
   Status write(const GazeSample& s);
   /// A marker row: its time may not be earlier than the row before it (sample or marker).
   Status mark(const GazeMarker& m);
@@ -82,8 +93,9 @@ class GazeLogWriter {
   std::uint64_t samples_written() const { return samples_; }
 
  private:
-  explicit GazeLogWriter(AtomicFile f) : file_(std::move(f)) {}
+  GazeLogWriter(AtomicFile f, bool head) : file_(std::move(f)), head_(head) {}
   AtomicFile file_;
+  bool head_ = false;
   std::string row_;
   std::uint64_t samples_ = 0;
   TimeNs last_t_ = 0;

@@ -30,6 +30,11 @@ struct GazeLogStats {
   double longest_gap_at_s = 0;
   std::vector<InvalidRun> invalid_runs;
   std::uint64_t blinks = 0;
+  /// v2 logs: samples with a head pose, and how far the head got from its first pose
+  /// (the largest rotation angle, degrees; the largest distance, metres).
+  std::uint64_t head_pose_samples = 0;
+  double head_max_turn_deg = 0;
+  double head_max_travel_m = 0;
 };
 
 /// Classifies a run by duration (thresholds documented in docs/gaze-log.md).

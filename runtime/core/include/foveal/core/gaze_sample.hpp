@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "foveal/core/clock.hpp"
+#include "foveal/core/pose.hpp"
 
 namespace foveal {
 
@@ -33,11 +34,13 @@ struct EyeSample {
   bool operator==(const EyeSample&) const = default;
 };
 
-/// One tracker frame. `combined` uses only direction and origin.
+/// One tracker frame. `combined` uses only direction and origin. `head` is the head
+/// pose at `t_ns` when the source knows it (a log with head-pose columns), else invalid.
 struct GazeSample {
   TimeNs t_ns = 0;  ///< CLOCK_MONOTONIC of the runtime (or the log's own time base in files)
   std::array<EyeSample, 2> eyes{};
   EyeSample combined{};
+  HeadPose head{};
 
   EyeSample& eye(Eye e) { return eyes[static_cast<std::size_t>(e)]; }
   const EyeSample& eye(Eye e) const { return eyes[static_cast<std::size_t>(e)]; }

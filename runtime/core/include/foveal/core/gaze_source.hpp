@@ -17,6 +17,9 @@ struct SourceInfo {
   double nominal_rate_hz = 0; ///< what the device/log claims
   std::uint16_t vendor_id = 0;
   std::uint16_t product_id = 0;
+  /// The samples carry head poses (GazeSample::head): a replayed v2 log, later an HMD
+  /// driver. Their times are the samples' (the runtime clock, re-based like the gaze).
+  bool head_pose = false;
 };
 
 /// What next() produced. Not an error channel for device data: malformed reports are
