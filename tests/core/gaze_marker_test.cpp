@@ -80,6 +80,30 @@ TEST(GazeMarkers, SurviveWriteThenReadAndLeaveTheSamplesAlone) {
   EXPECT_EQ(stripped, test::read_file(d.path("p.csv")));
 }
 
+TEST(GazeMarkers, AreTheSameInV2Logs) {
+  test::TempDir d;
+  GazeLogHeader h;
+  h.rate_hz = 120;
+  h.version = kGazeLogV2;
+  std::vector<GazeSample> samples = some_samples(3);
+  samples[1].head.valid = true;
+  samples[1].head.pose.position_m = {0.1f, 1.2f, -0.3f};
+  auto w = GazeLogWriter::create(d.path("v2.csv"), h);
+  ASSERT_TRUE(w);
+  ASSERT_TRUE(w->write(samples[0]));
+  ASSERT_TRUE(w->mark({1, "in a v2 log"}));
+  ASSERT_TRUE(w->write(samples[1]));
+  ASSERT_TRUE(w->write(samples[2]));
+  ASSERT_TRUE(w->commit());
+  std::vector<GazeMarker> marks;
+  GazeLogHeader back;
+  auto got = read_gaze_log(d.path("v2.csv"), &back, &marks);
+  ASSERT_TRUE(got) << got.error().message;
+  EXPECT_EQ(back.version, kGazeLogV2);
+  EXPECT_EQ(*got, samples);
+  EXPECT_EQ(marks, (std::vector<GazeMarker>{{1, "in a v2 log"}}));
+}
+
 TEST(GazeMarkers, TheWriterKeepsRowsInTimeOrder) {
   test::TempDir d;
   GazeLogHeader h;
@@ -123,6 +147,11 @@ TEST(GazeMarkers, BadMarkerRowsNameTheLineAndColumn) {
   EXPECT_EQ(error_of(row0 + "#mark,150,x\n" + row1), p + ":6: t_ns: 100 is earlier than the marker before it (150)");
   EXPECT_EQ(error_of(row0 + "#mark,50,cut"), p + ":5: truncated: the file ends inside this marker row");
   EXPECT_EQ(error_of("#mark,50,only a marker\n"), p + ": no samples: the log has a header only");
+  // A streaming reader keeps a bounded number of markers.
+  std::string many = row0;
+  for (std::size_t i = 0; i <= kMaxGazeLogMarkers; ++i) many += "#mark,1,m\n";
+  EXPECT_EQ(error_of(many + row1), p + ":" + std::to_string(4 + kMaxGazeLogMarkers + 1) + ": more than " +
+                                        std::to_string(kMaxGazeLogMarkers) + " markers; a gaze log holds at most that many");
 }
 
 }  // namespace

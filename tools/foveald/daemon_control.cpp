@@ -170,7 +170,9 @@ nlohmann::json DaemonApp::handle(const nlohmann::json& req) {
     if (text == req.end() || !text->is_string()) return error_reply("mark: expected \"text\": a string");
     if (Status s = check_marker_text(text->get<std::string>()); !s) return error_reply(s.error().message);
     const TimeNs now = monotonic_now_ns();
-    markers_.push({now, text->get<std::string>()});
+    if (!markers_.push({now, text->get<std::string>()}))
+      return error_reply("mark: " + std::to_string(cli::MarkerQueue::kMaxWaiting) +
+                         " markers wait for the next sample already; refused");
     return {{"ok", true}, {"t_ns", now}, {"markers", markers_.pushed()}};
   }
   return error_reply("unknown request '" + cmd + "' (status, fovea, profiles, use, set, pause, resume, mark)");

@@ -132,6 +132,9 @@ Status GazeLogReader::read_marker(const LineReader::Line& line) {
   if (any_row && m->t_ns < before)
     return bad_input(where(path(), line.number) + ": t_ns: marker time " + std::to_string(m->t_ns) +
                      " is earlier than the row before it (" + std::to_string(before) + ")");
+  if (markers_.size() >= kMaxGazeLogMarkers)
+    return bad_input(where(path(), line.number) + ": more than " + std::to_string(kMaxGazeLogMarkers) +
+                     " markers; a gaze log holds at most that many");
   markers_.push_back(std::move(m.value()));
   return {};
 }

@@ -17,6 +17,9 @@ struct GazeMarker {
 
 constexpr std::string_view kMarkerRowPrefix = "#mark,";
 constexpr std::size_t kMaxMarkerBytes = 256;
+/// A reader keeps at most this many markers of a log (about 26 MB): a crafted file of
+/// marker rows cannot make a streaming reader grow without bound.
+constexpr std::size_t kMaxGazeLogMarkers = 100'000;
 
 /// 1 to kMaxMarkerBytes bytes, no control characters (the text is the rest of a CSV row:
 /// commas are fine, line ends are not). The message starts "mark: ".

@@ -16,12 +16,18 @@ using TraceMarker = GazeMarker;
 
 class MarkerQueue {
  public:
-  /// Any thread.
-  void push(TraceMarker m) {
+  /// Markers that may wait for the gaze thread (paused, or no device yet): a client
+  /// that floods marks is refused past this rather than growing the daemon's memory.
+  static constexpr std::size_t kMaxWaiting = 10'000;
+
+  /// Any thread. False (and nothing queued) when kMaxWaiting markers wait already.
+  bool push(TraceMarker m) {
     std::lock_guard lock(mutex_);
+    if (queue_.size() >= kMaxWaiting) return false;
     queue_.push_back(std::move(m));
     waiting_.store(queue_.size(), std::memory_order_release);
     ++pushed_;
+    return true;
   }
   /// The markers stamped at or before t_ns, oldest first. Costs one atomic load when none wait.
   std::vector<TraceMarker> take_until(TimeNs t_ns) {
