@@ -1,24 +1,25 @@
 // glTF 2.0 through tinygltf: node hierarchy, indexed and non-indexed triangle lists,
-// metal-roughness materials, KHR_materials_unlit, mipmapped textures.
+// vertex colours and two UV sets, mipmapped textures. Extensions: gltf_extensions.cpp;
+// compressed and sparse data: gltf_decode.hpp; materials: gltf_materials.cpp.
 #include <tiny_gltf.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <map>
-#include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "gltf_decode.hpp"
+#include "gltf_extensions.hpp"
+#include "gltf_materials.hpp"
 #include "scene_internal.hpp"
 
 namespace foveal::render::detail {
 
 namespace {
-
-const std::set<std::string> kSupportedRequired = {"KHR_materials_unlit"};
 
 // Reads accessor `index` as `n` floats per element (normalised integers scaled to [0, 1]
 // or [-1, 1] as the spec says).
@@ -194,31 +195,11 @@ class Builder {
   }
 
   Status materials() {
-    for (const tinygltf::Material& gm : m_.materials) {
-      Material mat;
-      const auto& pbr = gm.pbrMetallicRoughness;
-      for (int i = 0; i < 4; ++i) mat.base_color[i] = static_cast<float>(pbr.baseColorFactor[static_cast<std::size_t>(i)]);
-      mat.metallic = static_cast<float>(pbr.metallicFactor);
-      mat.roughness = static_cast<float>(pbr.roughnessFactor);
-      for (int i = 0; i < 3 && i < static_cast<int>(gm.emissiveFactor.size()); ++i)
-        mat.emissive[i] = static_cast<float>(gm.emissiveFactor[static_cast<std::size_t>(i)]);
-      mat.normal_scale = static_cast<float>(gm.normalTexture.scale);
-      mat.occlusion_strength = static_cast<float>(gm.occlusionTexture.strength);
-      mat.double_sided = gm.doubleSided;
-      if (gm.alphaMode == "MASK") mat.alpha_cutoff = static_cast<float>(gm.alphaCutoff);
-      mat.unlit = gm.extensions.count("KHR_materials_unlit") > 0;
-      auto tex = [&](int index, bool srgb, int& out) -> Status {
-        auto r = texture(index, srgb);
-        if (!r) return r.error();
-        out = *r;
-        return {};
-      };
-      if (Status s = tex(pbr.baseColorTexture.index, true, mat.base_color_tex); !s) return s;
-      if (Status s = tex(pbr.metallicRoughnessTexture.index, false, mat.metal_rough_tex); !s) return s;
-      if (Status s = tex(gm.normalTexture.index, false, mat.normal_tex); !s) return s;
-      if (Status s = tex(gm.occlusionTexture.index, false, mat.occlusion_tex); !s) return s;
-      if (Status s = tex(gm.emissiveTexture.index, true, mat.emissive_tex); !s) return s;
-      s_.materials.push_back(mat);
+    const TextureUploader upload = [this](int index, bool srgb) { return texture(index, srgb); };
+    for (std::size_t i = 0; i < m_.materials.size(); ++i) {
+      auto mat = read_material(m_.materials[i], upload, path_ + ": material " + std::to_string(i), s_.warnings);
+      if (!mat) return mat.error();
+      s_.materials.push_back(*mat);
     }
     return {};
   }
@@ -231,13 +212,16 @@ class Builder {
     for (std::size_t pi = 0; pi < gm.primitives.size(); ++pi) {
       const tinygltf::Primitive& gp = gm.primitives[pi];
       const std::string where = path_ + ": mesh " + std::to_string(index) + " primitive " + std::to_string(pi);
-      if (gp.mode != TINYGLTF_MODE_TRIANGLES && gp.mode != -1) continue;  // points and lines are not drawn
+      if (gp.mode != TINYGLTF_MODE_TRIANGLES && gp.mode != -1) {
+        warn_once(path_ + ": primitives other than triangle lists (points, lines, strips, fans) are not drawn");
+        continue;
+      }
       auto pos_it = gp.attributes.find("POSITION");
       if (pos_it == gp.attributes.end()) return bad_input(where + ": no POSITION");
       auto pos = read_floats(m_, pos_it->second, 3, where + " POSITION");
       if (!pos) return pos.error();
       const std::size_t n = pos->size() / 3;
-      std::vector<Vertex> v(n, Vertex{{0, 0, 0}, {0, 0, 0}, {0, 0}, {1, 0, 0, 1}});
+      std::vector<Vertex> v(n, Vertex{{0, 0, 0}, {0, 0, 0}, {0, 0}, {1, 0, 0, 1}, {0, 0}, {1, 1, 1, 1}});
       for (std::size_t i = 0; i < n; ++i) std::memcpy(v[i].position, &(*pos)[i * 3], 12);
       std::vector<std::uint32_t> idx;
       if (gp.indices >= 0) {
@@ -266,9 +250,19 @@ class Builder {
       if (!has_uv) return has_uv.error();
       auto has_t = copy("TANGENT", 4, &Vertex::tangent);
       if (!has_t) return has_t.error();
+      auto has_uv1 = copy("TEXCOORD_1", 2, &Vertex::uv1);
+      if (!has_uv1) return has_uv1.error();
+      const bool color_vec3 = gp.attributes.count("COLOR_0") &&
+                              m_.accessors.at(static_cast<std::size_t>(gp.attributes.at("COLOR_0"))).type == TINYGLTF_TYPE_VEC3;
+      auto has_color = copy("COLOR_0", color_vec3 ? 3 : 4, &Vertex::color);  // alpha stays 1 for vec3
+      if (!has_color) return has_color.error();
       if (!*has_n) generate_normals(v, idx);
       if (!*has_t) generate_tangents(v, idx);
       const int material = gp.material >= 0 && gp.material < static_cast<int>(s_.materials.size()) ? gp.material : -1;
+      if (!*has_uv1 && material >= 0 && reads_uv1(s_.materials[static_cast<std::size_t>(material)])) {
+        warn_once(where + ": a texture reads TEXCOORD_1, which the primitive lacks; TEXCOORD_0 is used");
+        for (Vertex& x : v) std::memcpy(x.uv1, x.uv, sizeof x.uv);
+      }
       s_.primitives.push_back(upload_primitive(v, idx, material));
       s_.triangles += idx.size() / 3;
       out.push_back(static_cast<int>(s_.primitives.size()) - 1);
@@ -309,9 +303,18 @@ class Builder {
   }
 
   bool camera_found() const { return camera_found_; }
+  void warn_once(const std::string& w) {
+    if (std::find(s_.warnings.begin(), s_.warnings.end(), w) == s_.warnings.end()) s_.warnings.push_back(w);
+  }
   bool empty_bounds() const { return !have_bounds_; }
 
  private:
+  static bool reads_uv1(const Material& m) {
+    const int tex[] = {m.base_color_tex, m.metal_rough_tex, m.normal_tex, m.occlusion_tex, m.emissive_tex};
+    for (std::size_t i = 0; i < m.uv.size(); ++i)
+      if (tex[i] >= 0 && m.uv[i].set == 1) return true;
+    return false;
+  }
   static std::pair<glm::vec3, glm::vec3> minmax(const std::vector<Vertex>& v) {
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (const Vertex& x : v) lo = glm::min(lo, glm::make_vec3(x.position)), hi = glm::max(hi, glm::make_vec3(x.position));
@@ -344,12 +347,15 @@ Result<Scene> load_gltf_scene(const std::string& path) {
     while (!err.empty() && err.back() == '\n') err.pop_back();
     return bad_input(path + ": cannot load glTF: " + (err.empty() ? "unknown error" : err));
   }
-  for (const std::string& ext : model.extensionsRequired)
-    if (!kSupportedRequired.count(ext))
-      return Error{ErrorKind::unsupported, path + ": requires extension " + ext + ", which foveal does not support (supported: KHR_materials_unlit)"};
-
   Scene scene;
   scene.name = path;
+  for (std::size_t a = 0, b; a < warn.size(); a = b + 1) {  // tinygltf's, one per line
+    b = warn.find('\n', a);
+    if (b == std::string::npos) b = warn.size();
+    if (b > a) scene.warnings.push_back(path + ": " + warn.substr(a, b - a));
+  }
+  if (Status s = check_gltf_extensions(model, path, scene.warnings); !s) return s.error();
+  if (Status s = decode_gltf_model(model, path); !s) return s.error();
   Builder b(model, path, scene);
   if (Status s = b.materials(); !s) return s.error();
   const int root = model.defaultScene >= 0 ? model.defaultScene : 0;

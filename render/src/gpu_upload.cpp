@@ -24,6 +24,8 @@ Primitive upload_primitive(const std::vector<Vertex>& vertices, const std::vecto
   attrib(1, 3, offsetof(Vertex, normal));
   attrib(2, 2, offsetof(Vertex, uv));
   attrib(3, 4, offsetof(Vertex, tangent));
+  attrib(4, 2, offsetof(Vertex, uv1));
+  attrib(5, 4, offsetof(Vertex, color));
   p.index_count = static_cast<int>(indices.size());
   p.material = material;
   return p;

@@ -12,6 +12,8 @@ struct Vertex {
   float normal[3];
   float uv[2];
   float tangent[4];
+  float uv1[2];
+  float color[4];  ///< COLOR_0, white when absent
 };
 
 /// Uploads a triangle list into a Primitive with its vertex array set up.

@@ -2,10 +2,12 @@
 // What the compositor draws: GPU meshes and materials from a glTF 2.0 file, or one of
 // the built-in screen-space patterns (`pattern:NAME`). Loading needs a current GL
 // context; a Scene must be destroyed while it is current. Not thread-safe.
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -21,8 +23,19 @@ struct Bounds {
   float radius() const;  ///< half the diagonal
 };
 
+/// Which texture coordinates a material texture reads, and how they are transformed
+/// (KHR_texture_transform: uv' = matrix * (uv, 1)).
+struct TextureUv {
+  glm::mat3 matrix{1.0f};
+  int set = 0;  ///< 0: TEXCOORD_0, 1: TEXCOORD_1
+};
+
 /// glTF 2.0 metal-roughness material. Texture indices point into Scene::textures (-1: none).
+/// A KHR_materials_pbrSpecularGlossiness material keeps its diffuse factor and texture in
+/// base_color, its specular-glossiness texture in metal_rough_tex, and is converted to
+/// metal-roughness per fragment (docs/scenes.md).
 struct Material {
+  enum Slot { base_color_slot, metal_rough_slot, normal_slot, occlusion_slot, emissive_slot, slot_count };
   glm::vec4 base_color{1.0f};
   float metallic = 1.0f, roughness = 1.0f;
   glm::vec3 emissive{0.0f};
@@ -31,9 +44,14 @@ struct Material {
   bool unlit = false;          ///< KHR_materials_unlit
   bool double_sided = false;
   int base_color_tex = -1, metal_rough_tex = -1, normal_tex = -1, occlusion_tex = -1, emissive_tex = -1;
+  std::array<TextureUv, slot_count> uv{};  ///< per texture, indexed by Slot
+  bool spec_gloss = false;                 ///< KHR_materials_pbrSpecularGlossiness
+  glm::vec3 specular{1.0f};                ///< its specularFactor
+  float glossiness = 1.0f;                 ///< its glossinessFactor
 };
 
-/// One indexed triangle list with interleaved vertices (position, normal, uv, tangent).
+/// One indexed triangle list with interleaved vertices (position, normal, uv, tangent,
+/// second uv, colour).
 struct Primitive {
   gl::VertexArray vao;
   gl::Buffer vertices, indices;
@@ -72,6 +90,7 @@ struct Scene {
   std::size_t triangles = 0;
   std::size_t texture_bytes = 0;  ///< GPU memory of the textures, mip levels included
   std::optional<Pattern> pattern;
+  std::vector<std::string> warnings;  ///< what the file uses that is ignored, once each
 
   bool is_pattern() const { return pattern.has_value(); }
 };
