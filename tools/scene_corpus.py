@@ -90,18 +90,19 @@ def main():
     ap.add_argument("--timeout", type=float, default=300)
     a = ap.parse_args()
 
-    models = []
+    models = []  # (name in the table, path): the path under its folder, named by the folder
     for d in a.dirs:
+        d = os.path.abspath(d)
         for root, _, files in os.walk(d):
-            models += [os.path.join(root, f) for f in files if f.lower().endswith((".gltf", ".glb"))]
+            models += [(os.path.join(os.path.basename(d), os.path.relpath(os.path.join(root, f), d)), os.path.join(root, f))
+                       for f in files if f.lower().endswith((".gltf", ".glb"))]
     models.sort()
 
     print("| model | result | warnings | s |")
     print("|---|---|---|---|")
     counts = {"loaded": 0, "refused": 0, "incomplete": 0}
     renderer = None
-    for path in models:
-        name = os.path.relpath(path, os.path.commonpath(a.dirs) if len(a.dirs) > 1 else a.dirs[0])
+    for name, path in models:
         missing = missing_files(path)
         if missing:
             counts["incomplete"] += 1

@@ -14,6 +14,7 @@
 
 #include "gltf_decode.hpp"
 #include "gltf_extensions.hpp"
+#include "gltf_json_fixups.hpp"
 #include "gltf_materials.hpp"
 #include "scene_internal.hpp"
 
@@ -339,14 +340,8 @@ class Builder {
 
 Result<Scene> load_gltf_scene(const std::string& path) {
   tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path) : loader.LoadASCIIFromFile(&model, &err, &warn, path);
-  if (!ok) {
-    while (!err.empty() && err.back() == '\n') err.pop_back();
-    return bad_input(path + ": cannot load glTF: " + (err.empty() ? "unknown error" : err));
-  }
+  std::string warn;
+  if (Status s = load_tinygltf(model, path, warn); !s) return s.error();
   Scene scene;
   scene.name = path;
   for (std::size_t a = 0, b; a < warn.size(); a = b + 1) {  // tinygltf's, one per line
