@@ -4,11 +4,16 @@
 // difference the README describes.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 
 #include <nlohmann/json.hpp>
+
+#include <meshoptimizer.h>
 
 #include "gl_support.hpp"
 #include "test_support.hpp"
@@ -93,6 +98,72 @@ TEST(GltfFeatures, TextureTransformShowsTheCorrectMarks) {
   EXPECT_GT(blue_ok, 2000);
   EXPECT_GT(cyan_ok, 2000);
   EXPECT_LT(image::psnr(ok, off), 25.0);
+}
+
+// README: in the rotation quad the arrow points to the green marker; red means the
+// rotation went the wrong way, yellow that it was not applied. Measured as the distance
+// in pixels from the arrow (black) to each marker inside the bottom-left quad; with the
+// rotation negated in the file the arrow must point to red instead (so the check can fail).
+TEST(GltfFeatures, TextureTransformRotatesTheRightWay) {
+  ASSERT_TRUE(test::gl_ready());
+  struct Distances { double green, red, yellow; };
+  auto distances = [](const image::Image& img) {
+    // The model's bounding box in the left eye, then the left 2/5 of its bottom half.
+    const std::uint8_t* bg = img.at(0, 0);
+    int x0 = img.width, x1 = -1, y0 = img.height, y1 = -1;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width / 2; ++x) {
+        const std::uint8_t* p = img.at(x, y);
+        if (std::abs(p[0] - bg[0]) + std::abs(p[1] - bg[1]) + std::abs(p[2] - bg[2]) > 30)
+          x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      }
+    std::vector<std::array<int, 2>> black, green, red, yel;
+    for (int y = (y0 + y1) / 2 + (y1 - y0) / 10; y <= y1; ++y)  // below the green "U" tile
+      for (int x = x0; x <= x0 + (x1 - x0) * 2 / 5; ++x) {
+        const std::uint8_t* p = img.at(x, y);
+        const int r = p[0], g = p[1], b = p[2];
+        if (r < 50 && g < 50 && b < 50) {
+          if (x <= x0 + (x1 - x0) / 3) black.push_back({x, y});  // the scale quad's arrow starts beyond
+        }
+        else if (g > 120 && r < 80 && b < 80) green.push_back({x, y});
+        else if (r > 150 && g < 80 && b < 80) red.push_back({x, y});
+        else if (yellow(r, g, b)) yel.push_back({x, y});
+      }
+    // The arrow is the largest 8-connected black blob (markers have dark outlines too).
+    std::vector<std::array<int, 2>> arrow;
+    std::vector<bool> used(black.size(), false);
+    for (std::size_t seed = 0; seed < black.size(); ++seed) {
+      if (used[seed]) continue;
+      std::vector<std::array<int, 2>> blob{black[seed]};
+      used[seed] = true;
+      for (std::size_t k = 0; k < blob.size(); ++k)
+        for (std::size_t j = 0; j < black.size(); ++j)
+          if (!used[j] && std::abs(black[j][0] - blob[k][0]) <= 1 && std::abs(black[j][1] - blob[k][1]) <= 1)
+            used[j] = true, blob.push_back(black[j]);
+      if (blob.size() > arrow.size()) arrow = blob;
+    }
+    auto nearest = [&](const std::vector<std::array<int, 2>>& marker) {
+      double best = 1e9;
+      for (const auto& a : arrow)
+        for (const auto& m : marker) best = std::min(best, std::hypot(a[0] - m[0], a[1] - m[1]));
+      return best;
+    };
+    return Distances{nearest(green), nearest(red), nearest(yel)};
+  };
+  const std::string model = khronos("TextureTransformTest");
+  const Distances ok = distances(render_model(model));
+  EXPECT_LT(ok.green, 6.0);
+  EXPECT_GT(ok.red, 3 * ok.green + 8) << "arrow to red marker";
+  EXPECT_GT(ok.yellow, 3 * ok.green + 8) << "arrow to yellow marker";
+  test::TempDir d;
+  const Distances wrong = distances(render_model(edited(d, model, [](json& j) {
+    json& t = j["materials"][3]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"];
+    t["rotation"] = -t["rotation"].get<double>();
+  })));
+  EXPECT_LT(wrong.red, wrong.green) << "negated rotation: the arrow should point to red";
+  EXPECT_LT(wrong.red, wrong.yellow) << "negated rotation: the arrow should point to red";
+  std::printf("arrow to green/red/yellow: %.1f %.1f %.1f px; negated: %.1f %.1f %.1f px\n", ok.green, ok.red, ok.yellow,
+              wrong.green, wrong.red, wrong.yellow);
 }
 
 // README: every input (base colour, emission, normal, metal-rough, occlusion) is
@@ -239,4 +310,180 @@ TEST(GltfFeatures, IgnoredExtensionsAreNamedOnce) {
   int clearcoat = 0;
   for (const std::string& w : s->warnings) clearcoat += w.find("KHR_materials_clearcoat") != std::string::npos;
   EXPECT_EQ(clearcoat, 1);
+}
+
+namespace {
+
+// A unit quad facing +z (the framing camera's view) with `material`, written to
+// DIR/NAME.gltf + NAME.bin; `extra` adds attributes as (name, accessor JSON, bytes).
+struct ExtraAttribute {
+  std::string name;
+  json accessor;  // componentType, type, normalized
+  std::vector<unsigned char> bytes;
+};
+
+template <class T>
+void append(std::vector<unsigned char>& out, const std::vector<T>& v) {
+  const auto* p = reinterpret_cast<const unsigned char*>(v.data());
+  out.insert(out.end(), p, p + v.size() * sizeof(T));
+  while (out.size() % 4) out.push_back(0);
+}
+
+const std::vector<float> kQuadPositions = {-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0.5f, 0.5f, 0, -0.5f, 0.5f, 0};
+const std::vector<float> kQuadNormals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+const std::vector<std::uint16_t> kQuadIndices = {0, 1, 2, 0, 2, 3};
+
+std::string quad(test::TempDir& d, const std::string& name, const json& material, const std::vector<ExtraAttribute>& extra = {}) {
+  std::vector<unsigned char> bin;
+  json views = json::array(), accessors = json::array();
+  auto add = [&](const std::vector<unsigned char>& bytes, json accessor) {
+    views.push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes.size()}});
+    bin.insert(bin.end(), bytes.begin(), bytes.end());
+    while (bin.size() % 4) bin.push_back(0);
+    accessor["bufferView"] = views.size() - 1;
+    accessors.push_back(accessor);
+    return accessors.size() - 1;
+  };
+  auto bytes = [](const auto& v) {
+    std::vector<unsigned char> b;
+    append(b, v);
+    return b;
+  };
+  json attributes = {
+      {"POSITION", add(bytes(kQuadPositions), {{"componentType", 5126}, {"type", "VEC3"}, {"count", 4}, {"min", {-0.5, -0.5, 0}}, {"max", {0.5, 0.5, 0}}})},
+      {"NORMAL", add(bytes(kQuadNormals), {{"componentType", 5126}, {"type", "VEC3"}, {"count", 4}})}};
+  for (const ExtraAttribute& e : extra) {
+    json a = e.accessor;
+    a["count"] = 4;
+    attributes[e.name] = add(e.bytes, a);
+  }
+  const auto indices = add(bytes(kQuadIndices), {{"componentType", 5123}, {"type", "SCALAR"}, {"count", 6}});
+  json j = {{"asset", {{"version", "2.0"}}},
+            {"scene", 0},
+            {"scenes", {{{"nodes", {0}}}}},
+            {"nodes", {{{"mesh", 0}}}},
+            {"meshes", {{{"primitives", {{{"attributes", attributes}, {"indices", indices}, {"material", 0}}}}}}},
+            {"materials", {material}},
+            {"accessors", accessors},
+            {"bufferViews", views},
+            {"buffers", {{{"uri", name + ".bin"}, {"byteLength", bin.size()}}}}};
+  if (material.contains("extensions"))
+    for (auto& [ext, v] : material["extensions"].items()) j["extensionsUsed"].push_back(ext);
+  test::write_file(d.path(name + ".bin"), std::string(bin.begin(), bin.end()));
+  test::write_file(d.path(name + ".gltf"), j.dump());
+  return d.path(name + ".gltf");
+}
+
+}  // namespace
+
+// docs/scenes.md's conversion: a spec-gloss dielectric (specular 0.04) and a spec-gloss
+// metal (no diffuse, coloured specular) render as their metal-roughness twins.
+TEST(GltfFeatures, SpecularGlossinessRendersAsItsMetalRoughnessTwin) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir d;
+  auto sg = [](json diffuse, json specular, double gloss) {
+    return json{{"extensions", {{"KHR_materials_pbrSpecularGlossiness",
+                                 {{"diffuseFactor", diffuse}, {"specularFactor", specular}, {"glossinessFactor", gloss}}}}}};
+  };
+  auto mr = [](json base, double metallic, double roughness) {
+    return json{{"pbrMetallicRoughness", {{"baseColorFactor", base}, {"metallicFactor", metallic}, {"roughnessFactor", roughness}}}};
+  };
+  const image::Image dielectric = render_model(quad(d, "mr0", mr({0.8, 0.3, 0.2, 1}, 0.0, 0.4)));
+  EXPECT_GT(image::psnr(dielectric, render_model(quad(d, "sg0", sg({0.8, 0.3, 0.2, 1}, {0.04, 0.04, 0.04}, 0.6)))), 45.0);
+  const image::Image metal = render_model(quad(d, "mr1", mr({0.9, 0.6, 0.3, 1}, 1.0, 0.3)));
+  EXPECT_GT(image::psnr(metal, render_model(quad(d, "sg1", sg({0, 0, 0, 1}, {0.9, 0.6, 0.3}, 0.7)))), 45.0);
+  EXPECT_LT(image::psnr(dielectric, metal), 30.0);  // the two cases do differ
+}
+
+// COLOR_0 as float vec3, normalised ubyte vec4 and normalised ushort vec3 all multiply the
+// base colour alike.
+TEST(GltfFeatures, VertexColourTypesAgree) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir d;
+  const json white = {{"pbrMetallicRoughness", {{"metallicFactor", 0.0}}}};
+  std::vector<float> f;
+  std::vector<std::uint8_t> u8;
+  std::vector<std::uint16_t> u16;
+  for (int v = 0; v < 4; ++v) {
+    f.insert(f.end(), {0.2f, 0.6f, 1.0f});
+    u8.insert(u8.end(), {51, 153, 255, 255});
+    u16.insert(u16.end(), {13107, 39321, 65535});
+  }
+  std::vector<unsigned char> bf, b8, b16;
+  append(bf, f), append(b8, u8), append(b16, u16);
+  const image::Image plain = render_model(quad(d, "plain", white));
+  const image::Image as_float = render_model(quad(d, "float", white, {{"COLOR_0", {{"componentType", 5126}, {"type", "VEC3"}}, bf}}));
+  EXPECT_LT(image::psnr(plain, as_float), 30.0) << "the colour changes the picture";
+  EXPECT_GT(image::psnr(as_float, render_model(quad(d, "u8", white, {{"COLOR_0", {{"componentType", 5121}, {"type", "VEC4"}, {"normalized", true}}, b8}}))), 48.0);
+  EXPECT_GT(image::psnr(as_float, render_model(quad(d, "u16", white, {{"COLOR_0", {{"componentType", 5123}, {"type", "VEC3"}, {"normalized", true}}, b16}}))), 48.0);
+}
+
+// EXT_meshopt_compression (encoded here with meshoptimizer): the quad with its vertices
+// and indices compressed, and a fallback buffer without data as gltfpack writes it,
+// renders exactly as the plain quad.
+TEST(GltfFeatures, MeshoptCompressedQuadMatchesThePlainOne) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir d;
+  const json material = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.7, 0.5, 0.2, 1}}, {"metallicFactor", 0.0}}}};
+  std::vector<float> interleaved;
+  for (int v = 0; v < 4; ++v)
+    for (const auto* src : {&kQuadPositions, &kQuadNormals})
+      interleaved.insert(interleaved.end(), src->begin() + v * 3, src->begin() + v * 3 + 3);
+  std::vector<unsigned char> packed(meshopt_encodeVertexBufferBound(4, 24));
+  packed.resize(meshopt_encodeVertexBuffer(packed.data(), packed.size(), interleaved.data(), 4, 24));
+  const std::size_t vertex_bytes = packed.size();
+  const std::vector<unsigned> idx(kQuadIndices.begin(), kQuadIndices.end());
+  std::vector<unsigned char> packed_idx(meshopt_encodeIndexBufferBound(6, 4));
+  packed_idx.resize(meshopt_encodeIndexBuffer(packed_idx.data(), packed_idx.size(), idx.data(), 6));
+  while (packed.size() % 4) packed.push_back(0);
+  const std::size_t index_at = packed.size();
+  packed.insert(packed.end(), packed_idx.begin(), packed_idx.end());
+  test::write_file(d.path("c.bin"), std::string(packed.begin(), packed.end()));
+  auto ext = [](std::size_t offset, std::size_t length, int stride, int count, const char* mode) {
+    return json{{"EXT_meshopt_compression", {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}, {"byteStride", stride},
+                                             {"count", count}, {"mode", mode}}}};
+  };
+  const json j = {
+      {"asset", {{"version", "2.0"}}},
+      {"extensionsUsed", {"EXT_meshopt_compression"}},
+      {"extensionsRequired", {"EXT_meshopt_compression"}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}}}, {"indices", 2}, {"material", 0}}}}}}},
+      {"materials", {material}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"type", "VEC3"}, {"count", 4}, {"min", {-0.5, -0.5, 0}}, {"max", {0.5, 0.5, 0}}},
+        {{"bufferView", 0}, {"byteOffset", 12}, {"componentType", 5126}, {"type", "VEC3"}, {"count", 4}},
+        {{"bufferView", 1}, {"componentType", 5123}, {"type", "SCALAR"}, {"count", 6}}}},
+      {"bufferViews",
+       {{{"buffer", 1}, {"byteLength", 96}, {"byteStride", 24}, {"extensions", ext(0, vertex_bytes, 24, 4, "ATTRIBUTES")}},
+        {{"buffer", 1}, {"byteOffset", 96}, {"byteLength", 12}, {"extensions", ext(index_at, packed_idx.size(), 2, 6, "TRIANGLES")}}}},
+      {"buffers",
+       {{{"uri", "c.bin"}, {"byteLength", packed.size()}},
+        {{"byteLength", 108}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}}}};
+  test::write_file(d.path("meshopt.gltf"), j.dump());
+  const image::Image plain = render_model(quad(d, "plain", material));
+  EXPECT_EQ(image::max_abs_diff(plain, render_model(d.path("meshopt.gltf"))), 0);
+
+  json corrupt = j;  // compressed stream cut short: a clear error naming the view
+  corrupt["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["byteLength"] = 5;
+  test::write_file(d.path("corrupt.gltf"), corrupt.dump());
+  auto s = render::load_scene(d.path("corrupt.gltf"));
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.error().kind, ErrorKind::bad_input);
+  EXPECT_NE(s.error().message.find("corrupt.gltf: buffer view 0 (EXT_meshopt_compression)"), std::string::npos) << s.error().message;
+}
+
+// Sparse data that points outside its accessor is refused with the accessor named.
+TEST(GltfFeatures, BadSparseIndicesAreRefused) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir d;
+  const std::string path = edited(d, khronos("SimpleSparseAccessor"), [](json& j) {
+    for (json& a : j["accessors"])
+      if (a.contains("sparse")) a["count"] = 2;  // the sparse indices reach 8
+  });
+  auto s = render::load_scene(path);
+  ASSERT_FALSE(s);
+  EXPECT_NE(s.error().message.find("(sparse)"), std::string::npos) << s.error().message;
 }
