@@ -16,6 +16,7 @@
 #include "gltf_extensions.hpp"
 #include "gltf_json_fixups.hpp"
 #include "gltf_materials.hpp"
+#include "gltf_topology.hpp"
 #include "scene_internal.hpp"
 
 namespace foveal::render::detail {
@@ -213,8 +214,9 @@ class Builder {
     for (std::size_t pi = 0; pi < gm.primitives.size(); ++pi) {
       const tinygltf::Primitive& gp = gm.primitives[pi];
       const std::string where = path_ + ": mesh " + std::to_string(index) + " primitive " + std::to_string(pi);
-      if (gp.mode != TINYGLTF_MODE_TRIANGLES && gp.mode != -1) {
-        warn_once(path_ + ": primitives other than triangle lists (points, lines, strips, fans) are not drawn");
+      const int mode = gp.mode == -1 ? TINYGLTF_MODE_TRIANGLES : gp.mode;
+      if (!is_triangle_mode(mode)) {
+        warn_once(path_ + ": points and lines are not drawn");
         continue;
       }
       auto pos_it = gp.attributes.find("POSITION");
@@ -235,7 +237,7 @@ class Builder {
         idx.resize(n);
         for (std::size_t i = 0; i < n; ++i) idx[i] = static_cast<std::uint32_t>(i);
       }
-      idx.resize(idx.size() / 3 * 3);
+      idx = triangle_list(mode, idx);
       auto copy = [&](const char* name, int comps, auto member) -> Result<bool> {
         auto it = gp.attributes.find(name);
         if (it == gp.attributes.end()) return false;

@@ -333,7 +333,8 @@ const std::vector<float> kQuadPositions = {-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0.5f
 const std::vector<float> kQuadNormals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
 const std::vector<std::uint16_t> kQuadIndices = {0, 1, 2, 0, 2, 3};
 
-std::string quad(test::TempDir& d, const std::string& name, const json& material, const std::vector<ExtraAttribute>& extra = {}) {
+std::string quad(test::TempDir& d, const std::string& name, const json& material, const std::vector<ExtraAttribute>& extra = {},
+                 const std::vector<std::uint16_t>& quad_indices = kQuadIndices, int mode = 4) {
   std::vector<unsigned char> bin;
   json views = json::array(), accessors = json::array();
   auto add = [&](const std::vector<unsigned char>& bytes, json accessor) {
@@ -357,12 +358,12 @@ std::string quad(test::TempDir& d, const std::string& name, const json& material
     a["count"] = 4;
     attributes[e.name] = add(e.bytes, a);
   }
-  const auto indices = add(bytes(kQuadIndices), {{"componentType", 5123}, {"type", "SCALAR"}, {"count", 6}});
+  const auto indices = add(bytes(quad_indices), {{"componentType", 5123}, {"type", "SCALAR"}, {"count", quad_indices.size()}});
   json j = {{"asset", {{"version", "2.0"}}},
             {"scene", 0},
             {"scenes", {{{"nodes", {0}}}}},
             {"nodes", {{{"mesh", 0}}}},
-            {"meshes", {{{"primitives", {{{"attributes", attributes}, {"indices", indices}, {"material", 0}}}}}}},
+            {"meshes", {{{"primitives", {{{"attributes", attributes}, {"indices", indices}, {"material", 0}, {"mode", mode}}}}}}},
             {"materials", {material}},
             {"accessors", accessors},
             {"bufferViews", views},
@@ -486,4 +487,17 @@ TEST(GltfFeatures, BadSparseIndicesAreRefused) {
   auto s = render::load_scene(path);
   ASSERT_FALSE(s);
   EXPECT_NE(s.error().message.find("(sparse)"), std::string::npos) << s.error().message;
+}
+
+// Triangle strips and fans draw the same quad, facing the same way, as the list (the
+// material is double-sided, so a back-facing triangle would be shaded with the normal flipped).
+TEST(GltfFeatures, StripsAndFansDrawLikeLists) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir d;
+  const json material = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.3, 0.6, 0.9, 1}}, {"metallicFactor", 0.0}}},
+                         {"doubleSided", true}};
+  const image::Image list = render_model(quad(d, "list", material));
+  // The strip splits the quad along the other diagonal: only pixels on it may differ.
+  EXPECT_GT(image::psnr(list, render_model(quad(d, "strip", material, {}, {0, 1, 3, 2}, 5))), 50.0);
+  EXPECT_EQ(image::max_abs_diff(list, render_model(quad(d, "fan", material, {}, {0, 1, 2, 3}, 6))), 0);
 }
