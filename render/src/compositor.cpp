@@ -115,13 +115,20 @@ class PassTimer {
 
 }  // namespace
 
-// The mapping uniforms of shaders/common/mapping.glsl for one eye's plan.
 // The MAPPING variant of the mapping-dependent programs (shaders/common/mapping.glsl).
-std::size_t mapping_index(const EyePlan& plan) {
-  if (plan.method == Method::kfr) return 1;
-  return plan.layers.empty() ? 0 : 2;
+// A method without one is an error, never another method's kernel.
+Result<std::size_t> mapping_index(const EyePlan& plan) {
+  switch (plan.method) {
+    case Method::full:
+    case Method::rmfr: return std::size_t{0};
+    case Method::kfr: return std::size_t{1};
+    case Method::hyperbolic:
+    case Method::linear: return std::size_t{2};
+  }
+  return bad_input("no mapping for foveation method " + std::to_string(static_cast<int>(plan.method)));
 }
 
+// The mapping uniforms of shaders/common/mapping.glsl for one eye's plan.
 void set_mapping(GLuint p, const EyePlan& plan, glm::vec2 texture_size) {
   const bool full = plan.method == Method::full;
   set(p, "u_buffer_size", glm::vec2(plan.buffer_w, plan.buffer_h));
@@ -366,7 +373,9 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
 
     // Mapping: G-buffer -> reduced G-buffer.
     glBindFramebuffer(GL_FRAMEBUFFER, tg.fbo.id());
-    const std::size_t variant = mapping_index(plan);
+    const auto mapping = mapping_index(plan);
+    if (!mapping) return mapping.error();
+    const std::size_t variant = *mapping;
     const GLuint mp = m.map_progs[variant].id();
     glUseProgram(mp);
     set_mapping(mp, plan, texture_size);

@@ -36,7 +36,8 @@ int new_accessor(tinygltf::Model& m, const tinygltf::Accessor& like, int compone
   return static_cast<int>(m.accessors.size()) - 1;
 }
 
-Status decode_primitive(tinygltf::Model& m, tinygltf::Primitive& p, const tinygltf::Value& ext, const std::string& where) {
+Status decode_primitive(tinygltf::Model& m, tinygltf::Primitive& p, const tinygltf::Value& ext, const std::string& where,
+                        DecodeBudget& budget) {
   if (!ext.Has("bufferView") || !ext.Get("bufferView").IsNumber() || !ext.Has("attributes") || !ext.Get("attributes").IsObject())
     return bad_input(where + ": KHR_draco_mesh_compression needs bufferView and attributes");
   const int view = static_cast<int>(ext.Get("bufferView").GetNumberAsDouble());
@@ -52,6 +53,8 @@ Status decode_primitive(tinygltf::Model& m, tinygltf::Primitive& p, const tinygl
   const std::unique_ptr<draco::Mesh> mesh = std::move(decoded).value();
   const std::uint32_t points = mesh->num_points();
   if (std::size_t{points} * 16 > kMaxDecodedBytes || mesh->num_faces() * 12 > kMaxDecodedBytes) return bad_input(where + ": Draco mesh is too large");
+  if (Status s = budget.take(mesh->num_faces() * 12 + std::size_t{points} * 16 * ext.Get("attributes").Size(), where + " (Draco)"); !s)
+    return s;
 
   if (p.indices >= 0 || mesh->num_faces() > 0) {
     std::vector<unsigned char> bytes(mesh->num_faces() * 3 * 4);
@@ -93,7 +96,7 @@ Status decode_primitive(tinygltf::Model& m, tinygltf::Primitive& p, const tinygl
 
 }  // namespace
 
-Status decode_draco_primitives(tinygltf::Model& m, const std::string& path) {
+Status decode_draco_primitives(tinygltf::Model& m, const std::string& path, DecodeBudget& budget) {
   for (std::size_t mi = 0; mi < m.meshes.size(); ++mi)
     for (std::size_t pi = 0; pi < m.meshes[mi].primitives.size(); ++pi) {
       tinygltf::Primitive& p = m.meshes[mi].primitives[pi];
@@ -101,7 +104,7 @@ Status decode_draco_primitives(tinygltf::Model& m, const std::string& path) {
       if (it == p.extensions.end()) continue;
       const tinygltf::Value ext = it->second;
       const std::string where = path + ": mesh " + std::to_string(mi) + " primitive " + std::to_string(pi);
-      if (Status s = decode_primitive(m, p, ext, where); !s) return s;
+      if (Status s = decode_primitive(m, p, ext, where, budget); !s) return s;
     }
   return {};
 }

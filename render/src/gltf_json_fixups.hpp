@@ -1,18 +1,20 @@
 #pragma once
-// Loads a .gltf/.glb into tinygltf (KTX2 images left undecoded), first mending what tinygltf 2.7 (built without Draco)
-// refuses although the extensions allow it: index accessors of Draco primitives without
-// a buffer view, and meshopt fallback buffers without data. The mended parts are never
-// read: gltf_decode.hpp replaces them.
+// What tinygltf 2.7 (built without Draco) refuses although the extensions allow it:
+// index accessors of Draco primitives without a buffer view, and meshopt fallback
+// buffers without data. Both get placeholders in the JSON before tinygltf parses it;
+// the placeholders are never read (gltf_decode.hpp replaces those parts).
 #include <string>
+#include <string_view>
 
-#include <tiny_gltf.h>
-
-#include "foveal/core/error.hpp"
+#include <nlohmann/json.hpp>
 
 namespace foveal::render::detail {
 
-/// tinygltf's load of `path`, with the fix-ups when the file uses either extension;
-/// `warn` gets tinygltf's warnings.
-Status load_tinygltf(tinygltf::Model& model, const std::string& path, std::string& warn);
+/// Adds the placeholders to `root` (a checked glTF JSON); true when it changed anything.
+/// A .glb's first buffer without a uri is its BIN chunk and stays as it is.
+bool mend_for_tinygltf(nlohmann::json& root, bool binary);
+
+/// `glb` (a .glb whose JSON chunk was already checked) with its JSON chunk replaced.
+std::string glb_with_json(std::string_view glb, std::string_view json_chunk, const std::string& new_json);
 
 }  // namespace foveal::render::detail

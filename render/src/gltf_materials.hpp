@@ -8,7 +8,8 @@
 
 #include <tiny_gltf.h>
 
-#include "foveal/render/scene.hpp"
+#include "foveal/core/error.hpp"
+#include "foveal/render/scene_types.hpp"
 
 namespace foveal::render::detail {
 

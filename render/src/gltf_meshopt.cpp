@@ -24,7 +24,8 @@ Result<std::size_t> count_field(const tinygltf::Value& v, const char* key, bool 
   return static_cast<std::size_t>(x.GetNumberAsDouble());
 }
 
-Status decode_view(tinygltf::Model& m, std::size_t index, const tinygltf::Value& ext, const std::string& path) {
+Status decode_view(tinygltf::Model& m, std::size_t index, const tinygltf::Value& ext, const std::string& path,
+                   DecodeBudget& budget) {
   const std::string where = path + ": buffer view " + std::to_string(index) + " (EXT_meshopt_compression)";
   auto buffer = count_field(ext, "buffer", true, where);
   auto offset = count_field(ext, "byteOffset", false, where);
@@ -39,6 +40,7 @@ Status decode_view(tinygltf::Model& m, std::size_t index, const tinygltf::Value&
   if (*count > kMaxDecodedBytes / *stride) return bad_input(where + ": count " + std::to_string(*count) + " is too large");
   auto src = buffer_span(m, static_cast<int>(*buffer), *offset, *length, where);
   if (!src) return src.error();
+  if (Status s = budget.take(*count * *stride, where); !s) return s;
   std::vector<unsigned char> out(*count * *stride);
   int rc = 0;
   if (mode == "ATTRIBUTES") rc = meshopt_decodeVertexBuffer(out.data(), *count, *stride, *src, *length);
@@ -73,12 +75,12 @@ Status decode_view(tinygltf::Model& m, std::size_t index, const tinygltf::Value&
 
 }  // namespace
 
-Status decode_meshopt_views(tinygltf::Model& m, const std::string& path) {
+Status decode_meshopt_views(tinygltf::Model& m, const std::string& path, DecodeBudget& budget) {
   for (std::size_t i = 0; i < m.bufferViews.size(); ++i) {
     auto it = m.bufferViews[i].extensions.find("EXT_meshopt_compression");
     if (it == m.bufferViews[i].extensions.end()) continue;
     const tinygltf::Value ext = it->second;  // a copy: the map entry is erased on success
-    if (Status s = decode_view(m, i, ext, path); !s) return s;
+    if (Status s = decode_view(m, i, ext, path, budget); !s) return s;
   }
   return {};
 }

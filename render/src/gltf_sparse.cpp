@@ -7,7 +7,7 @@ namespace foveal::render::detail {
 
 namespace {
 
-Status densify(tinygltf::Model& m, std::size_t index, const std::string& path) {
+Status densify(tinygltf::Model& m, std::size_t index, const std::string& path, DecodeBudget& budget) {
   tinygltf::Accessor& a = m.accessors[index];
   const std::string where = path + ": accessor " + std::to_string(index) + " (sparse)";
   const int comps = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
@@ -15,6 +15,7 @@ Status densify(tinygltf::Model& m, std::size_t index, const std::string& path) {
   if (comps <= 0 || csize <= 0) return bad_input(where + ": bad type or component type");
   const std::size_t elem = static_cast<std::size_t>(comps) * static_cast<std::size_t>(csize);
   if (a.count > kMaxDecodedBytes / elem) return bad_input(where + ": count " + std::to_string(a.count) + " is too large");
+  if (Status s = budget.take(a.count * elem, where); !s) return s;
   std::vector<unsigned char> dense(a.count * elem, 0);
   if (a.bufferView >= 0 && a.count > 0) {
     const tinygltf::BufferView& v = m.bufferViews.at(static_cast<std::size_t>(a.bufferView));
@@ -51,10 +52,10 @@ Status densify(tinygltf::Model& m, std::size_t index, const std::string& path) {
 
 }  // namespace
 
-Status densify_sparse_accessors(tinygltf::Model& m, const std::string& path) {
+Status densify_sparse_accessors(tinygltf::Model& m, const std::string& path, DecodeBudget& budget) {
   for (std::size_t i = 0; i < m.accessors.size(); ++i)
     if (m.accessors[i].sparse.isSparse)
-      if (Status s = densify(m, i, path); !s) return s;
+      if (Status s = densify(m, i, path, budget); !s) return s;
   return {};
 }
 

@@ -5,27 +5,27 @@
 
 namespace foveal::render::detail {
 
-Primitive upload_primitive(const std::vector<Vertex>& vertices, const std::vector<std::uint32_t>& indices, int material) {
+Primitive upload_primitive(const std::vector<GltfVertex>& vertices, const std::vector<std::uint32_t>& indices, int material) {
   Primitive p;
   p.vertices = gl::Buffer::create();
   p.indices = gl::Buffer::create();
-  glNamedBufferStorage(p.vertices.id(), static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)), vertices.data(), 0);
+  glNamedBufferStorage(p.vertices.id(), static_cast<GLsizeiptr>(vertices.size() * sizeof(GltfVertex)), vertices.data(), 0);
   glNamedBufferStorage(p.indices.id(), static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(), 0);
   p.vao = gl::VertexArray::create();
   const GLuint vao = p.vao.id();
-  glVertexArrayVertexBuffer(vao, 0, p.vertices.id(), 0, sizeof(Vertex));
+  glVertexArrayVertexBuffer(vao, 0, p.vertices.id(), 0, sizeof(GltfVertex));
   glVertexArrayElementBuffer(vao, p.indices.id());
   auto attrib = [vao](GLuint loc, GLint n, std::size_t offset) {
     glEnableVertexArrayAttrib(vao, loc);
     glVertexArrayAttribFormat(vao, loc, n, GL_FLOAT, GL_FALSE, static_cast<GLuint>(offset));
     glVertexArrayAttribBinding(vao, loc, 0);
   };
-  attrib(0, 3, offsetof(Vertex, position));
-  attrib(1, 3, offsetof(Vertex, normal));
-  attrib(2, 2, offsetof(Vertex, uv));
-  attrib(3, 4, offsetof(Vertex, tangent));
-  attrib(4, 2, offsetof(Vertex, uv1));
-  attrib(5, 4, offsetof(Vertex, color));
+  attrib(0, 3, offsetof(GltfVertex, position));
+  attrib(1, 3, offsetof(GltfVertex, normal));
+  attrib(2, 2, offsetof(GltfVertex, uv));
+  attrib(3, 4, offsetof(GltfVertex, tangent));
+  attrib(4, 2, offsetof(GltfVertex, uv1));
+  attrib(5, 4, offsetof(GltfVertex, color));
   p.index_count = static_cast<int>(indices.size());
   p.material = material;
   return p;

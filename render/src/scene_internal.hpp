@@ -3,21 +3,13 @@
 #include <string>
 #include <vector>
 
+#include "foveal/render/gltf_loader.hpp"
 #include "foveal/render/scene.hpp"
 
 namespace foveal::render::detail {
 
-struct Vertex {
-  float position[3];
-  float normal[3];
-  float uv[2];
-  float tangent[4];
-  float uv1[2];
-  float color[4];  ///< COLOR_0, white when absent
-};
-
 /// Uploads a triangle list into a Primitive with its vertex array set up.
-Primitive upload_primitive(const std::vector<Vertex>& vertices, const std::vector<std::uint32_t>& indices, int material);
+Primitive upload_primitive(const std::vector<GltfVertex>& vertices, const std::vector<std::uint32_t>& indices, int material);
 
 /// An RGBA8 texture with a full mip chain, trilinear and anisotropic filtering.
 gl::Texture upload_rgba8(const std::uint8_t* rgba, int width, int height, bool srgb, GLenum wrap_s, GLenum wrap_t,

@@ -32,8 +32,9 @@ ivec2 clamp_pixel(vec2 p) { return clamp(ivec2(floor(p)), ivec2(0), ivec2(u_scre
 // The screen pixel whose G-buffer sample fills `texel`.
 ivec2 source_pixel(ivec2 texel) {
 #if MAPPING == MAPPING_KFR
+  // The authors' pass 1: r = exp(L·u^(1/α)) (twin of image/kfr_mapping.hpp).
   vec2 uv = (vec2(texel) + 0.5) / u_buffer_size;
-  float r = exp(u_kfr.x * pow(uv.x, u_kfr.y));
+  float r = exp(u_kfr.x * pow(uv.x, 1.0 / u_kfr.y));
   float theta = 2.0 * PI_F * uv.y;
   return clamp_pixel(u_fovea * u_screen_size + r * vec2(cos(theta), sin(theta)));
 #elif MAPPING == MAPPING_LAYERS
@@ -67,7 +68,7 @@ vec4 resolve(sampler2D reduced, vec2 p) {
 #if MAPPING == MAPPING_KFR
   vec2 d = p - u_fovea * u_screen_size;
   float r = max(length(d), 1.0);
-  float u = pow(log(r) / u_kfr.x, 1.0 / u_kfr.y);
+  float u = pow(log(r) / u_kfr.x, u_kfr.y);  // the authors' pass 2: u = (ln r / L)^α
   float v = fract(atan(d.y, d.x) / (2.0 * PI_F));  // the sampler repeats in v: no seam
   return texture(reduced, vec2(u, v) * u_buffer_size / u_texture_size);
 #elif MAPPING == MAPPING_LAYERS

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <unistd.h>
 
+#include "foveal/core/display_model.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/core/gaze_log_stats.hpp"
 #ifdef FOVEAL_HAVE_HID
@@ -19,6 +20,10 @@
 #include "foveal/drivers/usb/psvr2_gaze_packet.hpp"
 #endif
 #include "foveal/import/importers.hpp"
+#ifdef FOVEAL_HAVE_GLTF
+#include "foveal/render/gltf_loader.hpp"
+#include "foveal/render/view_file.hpp"
+#endif
 #include "foveal/runtime/control_server.hpp"
 #include "foveal/runtime/profile.hpp"
 #include "fuzz_file.hpp"
@@ -131,5 +136,74 @@ inline int control(const std::uint8_t* data, std::size_t size) {
   server->poll(0, handler);  // sees the hang-up
   return 0;
 }
+
+// Display models and view files: a clean error or a model that validates (a view pose
+// that is finite), never a crash. The first byte picks the parser.
+inline int display(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  MemFile f(data + 1, size - 1);
+  if (data[0] & 1) {
+#ifdef FOVEAL_HAVE_GLTF
+    auto v = foveal::render::read_view_file(f.path());
+    if (v)
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+          if (!std::isfinite(v->head_to_world[c][r])) std::abort();  // accepted means usable
+#endif
+    return 0;
+  }
+  auto m = foveal::DisplayModel::load(f.path());
+  if (m && !m->validate("fuzz")) std::abort();  // loaded means valid
+  return 0;
+}
+
+#ifdef FOVEAL_HAVE_GLTF
+// glTF bytes through foveal's loader (tinygltf + the checks), CPU only, no external
+// files: a clean error or triangles whose indices are in range and whose positions are
+// finite, textures within the limits.
+class CheckingSink : public foveal::render::GltfSink {
+ public:
+  explicit CheckingSink(const foveal::render::GltfLimits& l) : limits_(l) {}
+  int add_texture(const foveal::render::GltfTexture& t) override {
+    if (!t.rgba || t.width <= 0 || t.height <= 0 || t.width > limits_.max_texture_size || t.height > limits_.max_texture_size)
+      std::abort();
+    (void)t.rgba[static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height) * 4 - 1];  // readable to the end
+    return textures++;
+  }
+  int add_primitive(const std::vector<foveal::render::GltfVertex>& v, const std::vector<std::uint32_t>& idx, int) override {
+    if (idx.size() % 3 != 0) std::abort();
+    for (std::uint32_t i : idx)
+      if (i >= v.size()) std::abort();
+    for (const auto& x : v)
+      for (float p : x.position)
+        if (!std::isfinite(p)) std::abort();
+    return primitives++;
+  }
+  int textures = 0, primitives = 0;
+
+ private:
+  foveal::render::GltfLimits limits_;
+};
+
+inline int gltf(const std::uint8_t* data, std::size_t size) {
+  foveal::render::GltfLimits limits;
+  limits.external_files = false;
+  limits.max_texture_size = 4096;
+  limits.max_image_bytes = std::size_t{16} << 20;
+  limits.max_decoded_bytes = std::size_t{64} << 20;
+  CheckingSink sink(limits);
+  auto s = foveal::render::load_gltf_bytes(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.gltf",
+                                           "/nonexistent", limits, sink);
+  if (!s) return 0;
+  for (const auto& d : s->draws)
+    if (d.primitive < 0 || d.primitive >= sink.primitives) std::abort();
+  for (const auto& m : s->materials)
+    for (int t : {m.base_color_tex, m.metal_rough_tex, m.normal_tex, m.occlusion_tex, m.emissive_tex})
+      if (t < -1 || t >= sink.textures) std::abort();
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(s->bounds.min[i]) || !std::isfinite(s->bounds.max[i])) std::abort();
+  return 0;
+}
+#endif
 
 }  // namespace foveal::fuzz

@@ -36,6 +36,10 @@ TEST(FuzzRegressions, GazeLog) { replay("gaze_log", fuzz::gaze_log); }
 TEST(FuzzRegressions, Import) { replay("import", fuzz::import); }
 TEST(FuzzRegressions, Profile) { replay("profile", fuzz::profile); }
 TEST(FuzzRegressions, Control) { replay("control", fuzz::control); }
+TEST(FuzzRegressions, Display) { replay("display", fuzz::display); }
+#ifdef FOVEAL_HAVE_GLTF
+TEST(FuzzRegressions, Gltf) { replay("gltf", fuzz::gltf); }
+#endif
 #ifdef FOVEAL_HAVE_HID
 TEST(FuzzRegressions, Hid) { replay("hid", fuzz::hid); }
 #endif

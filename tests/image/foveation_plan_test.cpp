@@ -115,3 +115,23 @@ TEST(FoveationPlan, RejectsBadLevels) {
   EXPECT_FALSE(parse_method("foo"));
   EXPECT_EQ(*parse_method("hyperbolic"), Method::hyperbolic);
 }
+
+TEST(FoveationPlan, UnknownMethodsAreErrorsNamingTheKnownOnes) {
+  EXPECT_EQ(method_names_joined(","), "full,rmfr,kfr,hyperbolic,linear");
+  ASSERT_EQ(method_names().size(), all_methods().size());
+  for (std::size_t i = 0; i < all_methods().size(); ++i) {
+    EXPECT_EQ(method_names()[i], method_name(all_methods()[i]));
+    EXPECT_EQ(*parse_method(method_names()[i]), all_methods()[i]);
+  }
+  auto bad = parse_method("RMFR");
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("'RMFR' (full, rmfr, kfr, hyperbolic, linear)"), std::string::npos) << bad.error().message;
+  // An enum value from elsewhere (a cast, a newer peer) plans nothing, at any level.
+  const Method unknown = static_cast<Method>(42);
+  EXPECT_FALSE(is_method(unknown));
+  for (double sigma : {1.0, 2.6}) {
+    auto p = plan_eye(unknown, at(sigma, 0.5, 0.5), kW, kH, kVive);
+    ASSERT_FALSE(p);
+    EXPECT_NE(p.error().message.find("unknown foveation method 42"), std::string::npos) << p.error().message;
+  }
+}

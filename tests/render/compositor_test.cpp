@@ -2,8 +2,10 @@
 // border and corner, the dominant eye's half is the sharper one, memory stays bounded.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
+#include "foveal/image/kfr_mapping.hpp"
 #include "gl_support.hpp"
 #include "test_support.hpp"
 
@@ -68,6 +70,27 @@ TEST(Compositor, EveryMethodIsFiniteWithTheFoveaOnEveryBorderAndCorner) {
     }
 }
 
+TEST(Compositor, KfrSamplesInTheDirectionOfTheAuthorsShaders) {
+  // Every texel KFR lights is the full frame's pixel at the texel's source, so the CPU
+  // simulation from the reference formulas (image/kfr_mapping.hpp, pinned by
+  // tests/image/kfr_mapping_test.cpp) predicts the compositor's image. The opposite
+  // direction crowds the buffer around the fovea and misses the prediction by > 15 dB.
+  ASSERT_TRUE(test::gl_ready());
+  render::Compositor c = test::make_compositor(kW, kH);
+  render::Scene s = test::scene("pattern:noise");
+  const image::Image full = test::render_frame(c, s, test::frame(Method::full, 1.0));
+  const int w = c.eye_width();
+  for (const auto& p : {std::array<double, 3>{2.6, 0.5, 0.5}, std::array<double, 3>{2.0, 0.3, 0.7}, std::array<double, 3>{3.0, 0.9, 0.1}}) {
+    const image::Image kfr = test::render_frame(c, s, test::frame(Method::kfr, p[0], p[1], p[2]));
+    for (Eye e : kEyes) {
+      const image::Rect half{e == Eye::left ? 0 : w, 0, w, kH};
+      const image::Image predicted = image::simulate_kfr(image::crop(full, half), p[0], 4.0, p[1], p[2]);
+      EXPECT_GT(image::psnr(image::crop(kfr, half), predicted), 35.0)
+          << eye_name(e) << " eye, sigma " << p[0] << ", fovea " << p[1] << "," << p[2];
+    }
+  }
+}
+
 TEST(Compositor, MethodsAtEqualCostAreSharperAtTheFoveaThanAway) {
   ASSERT_TRUE(test::gl_ready());
   render::Compositor c = test::make_compositor(kW, kH);
@@ -93,6 +116,18 @@ TEST(Compositor, NonFiniteFoveaFallsBackToTheCentre) {
   EXPECT_EQ(image::max_abs_diff(centred, nan), 0);
   EXPECT_FALSE(c.render(s, test::frame(Method::rmfr, 0.5)));
   EXPECT_FALSE(c.render(s, test::frame(Method::rmfr, NAN)));
+}
+
+TEST(Compositor, UnknownMethodIsAnErrorNotAnotherMethodsKernel) {
+  ASSERT_TRUE(test::gl_ready());
+  render::Compositor c = test::make_compositor(kW, kH);
+  render::Scene s = test::scene("pattern:noise");
+  for (double sigma : {1.0, 2.0}) {
+    auto r = c.render(s, test::frame(static_cast<Method>(42), sigma));
+    ASSERT_FALSE(r);
+    EXPECT_NE(r.error().message.find("unknown foveation method"), std::string::npos) << r.error().message;
+  }
+  EXPECT_TRUE(c.render(s, test::frame(Method::kfr, 2.0)));  // and the compositor still works
 }
 
 TEST(Compositor, SwappingTheDominantEyeSwapsTheSharperHalf) {

@@ -34,7 +34,7 @@ using render::Method;
 
 struct Args {
   std::vector<std::string> scenes;
-  std::string methods = "full,rmfr,kfr,hyperbolic,linear";
+  std::string methods = render::method_names_joined(",");
   std::string sigmas = "1.4:2.8:0.2";
   std::string fovea = "0.5,0.5";
   std::string size = "2880x1600";
@@ -403,7 +403,7 @@ void add_bench(CLI::App& app, int& exit_code) {
   auto a = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand("bench", "Every method at every level against full: time, shaded samples, PSNR/SSIM/FPSNR, charts");
   sub->add_option("--scene", a->scenes, "Scenes (repeatable): glTF files or pattern:NAME; default: the bundled Dungeon");
-  sub->add_option("--methods", a->methods, "Comma list of methods")->capture_default_str();
+  sub->add_option("--methods", a->methods, "Comma list of methods (" + render::method_names_joined(", ") + ")")->capture_default_str();
   sub->add_option("--sigmas", a->sigmas, "Levels: FROM:TO:STEP or a comma list")->capture_default_str();
   sub->add_option("--fovea", a->fovea, "Fovea X,Y of both eyes in [0,1]")->capture_default_str();
   sub->add_option("--size", a->size, "Side-by-side output WxH")->capture_default_str();

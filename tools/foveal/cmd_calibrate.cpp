@@ -2,11 +2,12 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 #include "calibration_window.hpp"
 #include "commands.hpp"
+#include "foveal/core/json_file.hpp"
+#include "foveal/core/read_file.hpp"
 #include "foveal/runtime/calibration.hpp"
 #include "foveal/runtime/profile.hpp"
 #include "foveal/tools/cli.hpp"
@@ -22,8 +23,9 @@ struct ScriptedAnswer {
 
 // One answer per word; '#' starts a comment.
 Result<std::vector<ScriptedAnswer>> read_answers(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return io_error(path + ": cannot open answers file");
+  auto text = read_regular_file(path, kMaxJsonFileBytes, "answers file");
+  if (!text) return text.error();
+  std::istringstream in(*text);
   std::vector<ScriptedAnswer> out;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {

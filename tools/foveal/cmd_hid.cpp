@@ -3,10 +3,9 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "commands.hpp"
+#include "foveal/core/read_file.hpp"
 #include "foveal/drivers/hid/report_decoder.hpp"
 #include "foveal/tools/cli.hpp"
 
@@ -14,15 +13,16 @@ namespace foveal::cmd {
 
 namespace {
 
-// An argument is a file holding hex text if such a file exists, else hex text itself.
+// An argument is a file holding hex text if such a path exists (it must be a regular
+// file: a directory or a FIFO is an error, not hex text), else hex text itself.
 Result<std::vector<std::uint8_t>> hex_argument(const std::string& arg, const char* what) {
+  constexpr std::size_t kMaxHexFileBytes = std::size_t{1} << 20;  // descriptors are < 4 KiB of bytes
   std::string text = arg;
   std::error_code ec;
-  if (std::filesystem::is_regular_file(arg, ec)) {
-    std::ifstream in(arg);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    text = ss.str();
+  if (std::filesystem::exists(std::filesystem::symlink_status(arg, ec))) {
+    auto file = read_regular_file(arg, kMaxHexFileBytes, std::string(what) + " file");
+    if (!file) return file.error();
+    text = std::move(*file);
   }
   auto bytes = hid::parse_hex_bytes(text);
   if (!bytes) return bad_input(std::string(what) + ": " + bytes.error().message);
@@ -81,15 +81,21 @@ void add_hid(CLI::App& app, int& exit_code) {
         exit_code = cli::report(values.error());
         return;
       }
+      // Multi-byte numbers (the HUTRR74 timestamp's eight bytes) as one value each.
       j["values"] = nlohmann::json::array();
-      for (const hid::DecodedValue& v : *values) {
+      for (const hid::ReportValue& r : hid::join_multi_byte_values(*values)) {
+        const hid::Field& f = *r.first->field;
         std::string path;
-        for (hid::Usage u : desc->collection_path(*v.field)) path += hid::usage_name(u) + " > ";
-        j["values"].push_back({{"usage", hid::usage_name(v.usage)}, {"collection", path},
-                               {"bit_offset", v.field->bit_offset + v.index * v.field->size},
-                               {"size", v.field->size}, {"raw", v.raw}, {"value", v.value},
-                               {"unit", hid::unit_name(v.field->unit)}, {"exponent", v.field->unit_exponent},
-                               {"constant_flag", (v.field->flags & hid::kConstant) != 0}, {"in_range", v.in_range}});
+        for (hid::Usage u : desc->collection_path(f)) path += hid::usage_name(u) + " > ";
+        nlohmann::json v = {{"usage", hid::usage_name(r.first->usage)}, {"collection", path}, {"bit_offset", r.bit_offset},
+                            {"size", r.bits}, {"raw", r.raw}, {"value", r.value}, {"unit", hid::unit_name(f.unit)},
+                            {"exponent", f.unit_exponent}, {"constant_flag", (f.flags & hid::kConstant) != 0},
+                            {"in_range", r.in_range}};
+        if (r.is_run()) {
+          v["bytes"] = r.bytes;
+          v["decimal"] = hid::scaled_decimal(r.raw, f.unit_exponent);
+        }
+        j["values"].push_back(std::move(v));
       }
     }
     if (args->json) {
@@ -104,10 +110,23 @@ void add_hid(CLI::App& app, int& exit_code) {
         std::printf("  %-7s id %3d bit %4d  %2dx%-3d %s\n", f["type"].get<std::string>().c_str(), f["report_id"].get<int>(),
                     f["bit_offset"].get<int>(), f["size"].get<int>(), f["count"].get<int>(), f["usage"].get<std::string>().c_str());
     if (j.contains("values"))
-      for (const auto& v : j["values"])
-        std::printf("  bit %4d %2d  %-40s raw %12lld  = %.6g %s\n", v["bit_offset"].get<int>(), v["size"].get<int>(),
-                    v["usage"].get<std::string>().c_str(), v["raw"].get<long long>(), v["value"].get<double>(),
-                    v["unit"].get<std::string>().c_str());
+      for (const auto& v : j["values"]) {
+        char value[64];
+        std::snprintf(value, sizeof value, "%.6g", v["value"].get<double>());
+        std::string bytes;
+        if (v.contains("bytes")) {
+          for (int b : v["bytes"]) {
+            char hex[4];
+            std::snprintf(hex, sizeof hex, " %02x", b);
+            bytes += hex;
+          }
+          bytes = "  (" + std::to_string(v["bytes"].size()) + " bytes:" + bytes + ")";
+        }
+        std::printf("  bit %4d %2d  %-40s raw %12lld  = %s %s%s\n", v["bit_offset"].get<int>(), v["size"].get<int>(),
+                    v["usage"].get<std::string>().c_str(), v["raw"].get<long long>(),
+                    v.contains("decimal") ? v["decimal"].get<std::string>().c_str() : value, v["unit"].get<std::string>().c_str(),
+                    bytes.c_str());
+      }
   });
 }
 

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "foveal/core/data_paths.hpp"
+#include "foveal/image/foveation_plan.hpp"
 #include "foveal/tools/args.hpp"
 
 namespace foveal::cmd {
@@ -11,8 +12,8 @@ std::string default_scene() { return data_path("data/scenes/Dungeon/dungeon_simp
 
 void add_render_options(CLI::App& sub, RenderArgs& a) {
   sub.add_option("--scene", a.scene, "glTF file or pattern:NAME[@DEG] (checker, stripes-h, stripes-v, noise); default: the bundled Dungeon");
-  sub.add_option("--method", a.method, "full (the reference), rmfr, kfr, hyperbolic or linear")
-      ->check(CLI::IsMember({"full", "rmfr", "kfr", "hyperbolic", "linear"}))
+  sub.add_option("--method", a.method, "One of " + render::method_names_joined(", ") + " (full: the reference)")
+      ->check(CLI::IsMember(render::method_names()))
       ->capture_default_str();
   sub.add_option("--sigma-d", a.sigma_d, "RMFR level of the dominant eye (>= 1)")->capture_default_str();
   sub.add_option("--sigma-nd", a.sigma_nd, "RMFR level of the other eye (>= sigma-d)")->capture_default_str();

@@ -6,6 +6,7 @@
 
 #include "daemon_app.hpp"
 #include "foveal/drivers/probe.hpp"
+#include "foveal/image/foveation_plan.hpp"
 #include "foveal/tools/cli.hpp"
 #include "foveal/tools/log.hpp"
 
@@ -44,8 +45,8 @@ int main(int argc, char** argv) {
   app.add_option("--frames", o.frames, "Stop after this many frames (default: when the replay ends)");
   app.add_option("--fps", o.fps, "Headless frame rate (default: as fast as the renderer goes)")->check(CLI::Range(0.0, 1000.0));
   app.add_option("--scene", o.scene, "glTF file or pattern:NAME (default: the bundled Dungeon)");
-  app.add_option("--method", o.method, "full, rmfr, kfr, hyperbolic or linear")
-      ->check(CLI::IsMember({"full", "rmfr", "kfr", "hyperbolic", "linear"}))->capture_default_str();
+  app.add_option("--method", o.method, "One of " + foveal::render::method_names_joined(", "))
+      ->check(CLI::IsMember(foveal::render::method_names()))->capture_default_str();
   app.add_option("--size", o.size, "Side-by-side output WxH (default: the display model's, 2880x1600)");
   app.add_option("--save-every", o.save_every, "Also save every Nth frame as PNG (the first and last always)")->check(CLI::Range(0, 1000000));
   app.add_flag("--json", o.json, "Print the summary as JSON");

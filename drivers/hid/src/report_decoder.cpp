@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 
 namespace foveal::hid {
@@ -61,6 +62,70 @@ Result<std::vector<DecodedValue>> decode_report(const ReportDescriptor& d, Repor
     }
   }
   return out;
+}
+
+namespace {
+
+constexpr Usage kHutrr74Timestamp = make_usage(0x12, 0x20);
+
+std::uint32_t bit_offset_of(const DecodedValue& v) { return v.field->bit_offset + v.index * v.field->size; }
+
+// Whether `v` can continue a multi-byte run whose previous part is `prev`.
+bool continues_run(const DecodedValue& prev, const DecodedValue& v) {
+  return v.usage == prev.usage && v.field->size == 8 && bit_offset_of(v) == bit_offset_of(prev) + 8;
+}
+
+bool may_start_run(const DecodedValue& v) {
+  return v.field->size == 8 && v.field->is_variable() && (v.usage == kHutrr74Timestamp || (v.field->flags & kBufferedBytes) != 0);
+}
+
+}  // namespace
+
+std::vector<ReportValue> join_multi_byte_values(std::span<const DecodedValue> values) {
+  std::vector<ReportValue> out;
+  for (std::size_t k = 0; k < values.size();) {
+    const DecodedValue& v = values[k];
+    std::size_t n = 1;
+    if (may_start_run(v))
+      while (n < 8 && k + n < values.size() && continues_run(values[k + n - 1], values[k + n])) ++n;
+    ReportValue r;
+    r.first = &v;
+    r.bit_offset = bit_offset_of(v);
+    r.bits = v.field->size * static_cast<std::uint32_t>(n);
+    if (n == 1) {
+      r.raw = v.raw, r.value = v.value, r.in_range = v.in_range;
+    } else {
+      std::uint64_t number = 0;
+      for (std::size_t b = 0; b < n; ++b) {
+        const auto byte = static_cast<std::uint8_t>(values[k + b].raw & 0xFF);
+        r.bytes.push_back(byte);
+        number |= static_cast<std::uint64_t>(byte) << (8 * b);
+      }
+      r.in_range = number <= static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
+      r.raw = r.in_range ? static_cast<std::int64_t>(number) : std::numeric_limits<std::int64_t>::max();
+      r.value = static_cast<double>(number) * std::pow(10.0, v.field->unit_exponent);
+    }
+    out.push_back(std::move(r));
+    k += n;
+  }
+  return out;
+}
+
+std::string scaled_decimal(std::int64_t raw, int exponent) {
+  const bool negative = raw < 0;
+  // The magnitude as digits (INT64_MIN included).
+  std::string digits = std::to_string(raw);
+  if (negative) digits.erase(0, 1);
+  if (exponent >= 0) {
+    if (digits != "0") digits.append(static_cast<std::size_t>(exponent), '0');
+  } else {
+    const auto places = static_cast<std::size_t>(-exponent);
+    if (digits.size() <= places) digits.insert(0, places - digits.size() + 1, '0');
+    digits.insert(digits.size() - places, ".");
+    while (digits.back() == '0') digits.pop_back();
+    if (digits.back() == '.') digits.pop_back();
+  }
+  return (negative && digits != "0" ? "-" : "") + digits;
 }
 
 std::string unit_name(std::uint32_t unit) {

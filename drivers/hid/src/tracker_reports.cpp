@@ -38,18 +38,14 @@ Result<std::vector<DecodedValue>> decode_as(const TrackerLayout& l, ReportType t
   return values;
 }
 
-/// Timestamp in ns from the Timestamp fields: either one wide field or a run of bytes
-/// (little-endian, as the reference descriptor declares it). nullopt if it would overflow.
-std::optional<std::int64_t> timestamp_ns(const std::vector<const DecodedValue*>& parts) {
-  if (parts.empty()) return std::nullopt;
-  std::uint64_t raw = 0;
-  if (parts.size() == 1) {
-    raw = static_cast<std::uint64_t>(parts[0]->raw);
-  } else {
-    for (std::size_t k = 0; k < parts.size() && k < 8; ++k)
-      raw |= (static_cast<std::uint64_t>(parts[k]->raw) & 0xFFu) << (8 * k);
-  }
-  const Field& f = *parts[0]->field;
+/// Timestamp in ns from the Timestamp value: one wide field, or a run of bytes joined by
+/// join_multi_byte_values (little-endian, as the reference descriptor declares it).
+/// nullopt if it would overflow (a run above 2^63 - 1 included); a single wide field's
+/// logical range is not checked.
+std::optional<std::int64_t> timestamp_ns(const ReportValue& stamp) {
+  if ((stamp.is_run() && !stamp.in_range) || stamp.raw < 0) return std::nullopt;
+  std::uint64_t raw = static_cast<std::uint64_t>(stamp.raw);
+  const Field& f = *stamp.first->field;
   // Seconds × 10^exponent; without a time unit HUTRR74 says microseconds.
   int exponent = unit_name(f.unit) == "s" ? f.unit_exponent + 9 : 3;
   std::uint64_t factor = 1, divisor = 1;
@@ -104,11 +100,11 @@ Result<TrackingData> decode_tracking_data(const TrackerLayout& l, std::span<cons
   auto values = decode_as(l, ReportType::input, l.tracking, report, "Tracking Data");
   if (!values) return values.error();
   TrackingData t;
-  std::vector<const DecodedValue*> stamp;
   Vec3Parts gaze, left, right;
-  for (const DecodedValue& v : *values) {
+  for (const ReportValue& r : join_multi_byte_values(*values)) {
+    const DecodedValue& v = *r.first;
     if (v.usage == eye_usage(eye::kTimestamp)) {
-      stamp.push_back(&v);
+      if (!t.device_time_ns) t.device_time_ns = timestamp_ns(r);
       continue;
     }
     const Usage in = owner(l.descriptor, *v.field);
@@ -116,7 +112,6 @@ Result<TrackingData> decode_tracking_data(const TrackerLayout& l, std::span<cons
     else if (in == eye_usage(eye::kLeftEyePosition)) left.take(v);
     else if (in == eye_usage(eye::kRightEyePosition)) right.take(v);
   }
-  t.device_time_ns = timestamp_ns(stamp);
   if (gaze.x && gaze.y && gaze.x->in_range && gaze.y->in_range) {
     t.gaze_valid = true;
     t.gaze_x_mm = length_mm(*gaze.x);

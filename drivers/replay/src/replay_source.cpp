@@ -46,7 +46,11 @@ Status ReplaySource::start() {
 Status ReplaySource::restart_pass() {
   // The next pass starts one nominal period after the last sample of this one.
   const TimeNs period = static_cast<TimeNs>(1e9 / reader_->header().rate_hz);
-  loop_offset_ += window_last_ - window_first_ + period;
+  // Log timestamps differ by less than 2^63 (kMaxGazeLogTimeNs); the offset of pass after
+  // pass can still pass int64 for a crafted log spanning centuries.
+  TimeNs pass = 0;
+  if (__builtin_add_overflow(window_last_ - window_first_, period, &pass) || __builtin_add_overflow(loop_offset_, pass, &loop_offset_))
+    return bad_input(opts_.path + ": --loop: the log spans too long a time to repeat it (timestamps would pass int64)");
   ++loops_;
   return reader_->rewind();
 }
@@ -72,7 +76,8 @@ Result<bool> ReplaySource::load_next() {
       continue;
     }
     window_last_ = s.t_ns;
-    s.t_ns += loop_offset_;
+    if (__builtin_add_overflow(s.t_ns, loop_offset_, &s.t_ns))
+      return bad_input(opts_.path + ": --loop: the log spans too long a time to repeat it (timestamps would pass int64)");
     have_pending_ = true;
     return true;
   }

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "foveal/image/kfr_mapping.hpp"
 #include "foveal/image/rmfr_mapping.hpp"
 
 namespace foveal::render {
@@ -117,13 +118,30 @@ const char* method_name(Method m) {
 Result<Method> parse_method(const std::string& s) {
   for (Method m : all_methods())
     if (s == method_name(m)) return m;
-  return bad_input("unknown method '" + s + "' (full, rmfr, kfr, hyperbolic, linear)");
+  return bad_input("unknown method '" + s + "' (" + method_names_joined(", ") + ")");
 }
 
 const std::vector<Method>& all_methods() {
   static const std::vector<Method> m = {Method::full, Method::rmfr, Method::kfr, Method::hyperbolic, Method::linear};
   return m;
 }
+
+const std::vector<std::string>& method_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (Method m : all_methods()) n.emplace_back(method_name(m));
+    return n;
+  }();
+  return names;
+}
+
+std::string method_names_joined(const std::string& separator) {
+  std::string out;
+  for (const std::string& n : method_names()) out += (out.empty() ? "" : separator) + n;
+  return out;
+}
+
+bool is_method(Method m) { return std::find(all_methods().begin(), all_methods().end(), m) != all_methods().end(); }
 
 std::size_t EyePlan::shaded_samples() const {
   if (method != Method::hyperbolic && method != Method::linear) return static_cast<std::size_t>(buffer_w) * static_cast<std::size_t>(buffer_h);
@@ -147,6 +165,7 @@ Result<EyePlan> plan_eye(Method m, const EyeFoveation& e, int W, int H, const Ey
   if (!std::isfinite(e.kfr_alpha) || e.kfr_alpha <= 0) return bad_input("the KFR alpha must be a number > 0");
   if (!std::isfinite(e.layer_scale) || e.layer_scale < 0) return bad_input("the layer scale must be a number >= 0");
   if (W < 1 || H < 1) return bad_input("empty viewport");
+  if (!is_method(m)) return bad_input("unknown foveation method " + std::to_string(static_cast<int>(m)));
   EyePlan p;
   p.method = m;
   p.screen_w = W, p.screen_h = H;
@@ -163,11 +182,7 @@ Result<EyePlan> plan_eye(Method m, const EyeFoveation& e, int W, int H, const Ey
       break;
     case Method::kfr: {
       p.buffer_w = image::rmfr_buffer_size(W, e.sigma), p.buffer_h = image::rmfr_buffer_size(H, e.sigma);
-      const glm::dvec2 c(p.fovea.x * W, p.fovea.y * H);
-      double far = 1.0;
-      for (glm::dvec2 corner : {glm::dvec2(0, 0), glm::dvec2(W, 0), glm::dvec2(0, H), glm::dvec2(W, H)})
-        far = std::max(far, glm::length(corner - c));
-      p.kfr_log_max = std::log(std::max(far, 2.0));
+      p.kfr_log_max = image::kfr_log_max(W, H, p.fovea.x * W, p.fovea.y * H);
       p.kfr_alpha = e.kfr_alpha;
       break;
     }

@@ -9,12 +9,29 @@
 #include <limits>
 
 #include "foveal/core/atomic_file.hpp"
+#include "foveal/core/read_file.hpp"
 
 namespace foveal::image {
 
 Result<Image> load(const std::string& path) {
+  // The header's dimensions are checked before decoding: a few bytes can claim 10^10 pixels.
+  constexpr int kMaxSide = 65536;
+  constexpr std::size_t kMaxBytes = std::size_t{1} << 30;
+  auto bytes = read_regular_file(path, kMaxBytes, "image");
+  if (!bytes) return bytes.error();
+  if (bytes->size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) return bad_input(path + ": image file too large");
+  const auto* data_in = reinterpret_cast<const stbi_uc*>(bytes->data());
+  const int size = static_cast<int>(bytes->size());
   int w = 0, h = 0, n = 0;
-  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &n, 4);
+  if (!stbi_info_from_memory(data_in, size, &w, &h, &n)) {
+    const char* why = stbi_failure_reason();
+    return bad_input(path + ": cannot read image: " + (why ? why : "unknown error"));
+  }
+  if (w <= 0 || h <= 0 || w > kMaxSide || h > kMaxSide ||
+      static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4 > kMaxBytes)
+    return bad_input(path + ": " + std::to_string(w) + "×" + std::to_string(h) + " is larger than foveal reads (sides up to " +
+                     std::to_string(kMaxSide) + ", at most " + describe_bytes(kMaxBytes) + " as RGBA8)");
+  stbi_uc* data = stbi_load_from_memory(data_in, size, &w, &h, &n, 4);
   if (!data) {
     const char* why = stbi_failure_reason();
     return bad_input(path + ": cannot read image: " + (why ? why : "unknown error"));

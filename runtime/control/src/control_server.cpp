@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "foveal/core/clock.hpp"
+#include "foveal/core/json_file.hpp"
 
 namespace foveal {
 
@@ -104,7 +105,7 @@ bool ControlServer::send_all(int fd, const std::string& data) {
 
 void ControlServer::handle_line(Client& c, const std::string& line, const Handler& handler) {
   nlohmann::json reply;
-  nlohmann::json req = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
+  nlohmann::json req = parse_json_or_discarded(line, {kMaxMessageBytes, kMaxJsonDepth});
   if (req.is_discarded() || !req.is_object()) {
     ++bad_;
     reply = error_reply("malformed request: expected one JSON object per line");
@@ -206,7 +207,7 @@ Result<nlohmann::json> control_request(const std::string& path, const nlohmann::
     in.append(buf, static_cast<std::size_t>(n));
     if (in.size() > 16 * ControlServer::kMaxMessageBytes) return io_error(path + ": reply too long");
   }
-  nlohmann::json reply = nlohmann::json::parse(in.substr(0, in.find('\n')), nullptr, false);
+  nlohmann::json reply = parse_json_or_discarded(in.substr(0, in.find('\n')), {16 * ControlServer::kMaxMessageBytes, kMaxJsonDepth});
   if (reply.is_discarded()) return io_error(path + ": malformed reply");
   return reply;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
@@ -12,7 +13,29 @@ namespace foveal {
 
 namespace {
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// A field that is a number of the wrong kind or size. nlohmann's get<float>() and
+// get<int>() cast out-of-range values, which is undefined behaviour.
+struct FieldError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+float to_float(const nlohmann::json& v) {
+  if (!v.is_number()) throw FieldError("expected a number, got " + v.dump().substr(0, 40));
+  const double d = v.get<double>();
+  if (!(std::fabs(d) <= std::numeric_limits<float>::max())) throw FieldError(v.dump() + " is out of range");
+  return static_cast<float>(d);
 }
+
+int to_int(const nlohmann::json& v) {
+  if (!v.is_number_integer()) throw FieldError("expected an integer, got " + v.dump().substr(0, 40));
+  if (v.is_number_unsigned() ? v.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<int>::max())
+                             : (v.get<std::int64_t>() < std::numeric_limits<int>::min() ||
+                                v.get<std::int64_t>() > std::numeric_limits<int>::max()))
+    throw FieldError(v.dump() + " is out of range");
+  return static_cast<int>(v.get<std::int64_t>());
+}
+}  // namespace
 
 const char* eye_name(Eye e) { return e == Eye::left ? "left" : "right"; }
 
@@ -101,14 +124,16 @@ Result<DisplayModel> DisplayModel::load(const std::string& path) {
   auto parsed = read_json_file(path, "display model");
   if (!parsed) return parsed.error();
   const nlohmann::json& j = *parsed;
+  if (!j.is_object()) return bad_input(path + ": expected a JSON object");
   DisplayModel m;
+  std::string k;
   try {
     for (auto it = j.begin(); it != j.end(); ++it) {
-      const std::string& k = it.key();
+      k = it.key();
       if (k == "name") m.name = it->get<std::string>();
-      else if (k == "eye_width") m.eye_width = it->get<int>();
-      else if (k == "eye_height") m.eye_height = it->get<int>();
-      else if (k == "ipd_mm") m.ipd_mm = it->get<float>();
+      else if (k == "eye_width") m.eye_width = to_int(*it);
+      else if (k == "eye_height") m.eye_height = to_int(*it);
+      else if (k == "ipd_mm") m.ipd_mm = to_float(*it);
       else if (k == "refresh_hz") m.refresh_hz = it->get<double>();
       else if (k == "edid_vendor") m.edid_vendor = it->get<std::string>();
       else if (k == "format" || k == "source") continue;
@@ -117,27 +142,29 @@ Result<DisplayModel> DisplayModel::load(const std::string& path) {
           const auto& d = it->at(eye_name(e));
           LensDistortion& l = m.distortion[static_cast<std::size_t>(e)];
           l.enabled = true;
-          l.center = {d.at("center").at(0).get<float>(), d.at("center").at(1).get<float>()};
+          l.center = {to_float(d.at("center").at(0)), to_float(d.at("center").at(1))};
           const auto& k3 = d.at("k");
-          l.k1 = k3.at(0).get<float>(), l.k2 = k3.at(1).get<float>(), l.k3 = k3.at(2).get<float>();
+          l.k1 = to_float(k3.at(0)), l.k2 = to_float(k3.at(1)), l.k3 = to_float(k3.at(2));
           if (d.contains("channel_scale"))
-            l.channel_scale = {d["channel_scale"].at(0).get<float>(), d["channel_scale"].at(1).get<float>(),
-                               d["channel_scale"].at(2).get<float>()};
+            l.channel_scale = {to_float(d["channel_scale"].at(0)), to_float(d["channel_scale"].at(1)),
+                               to_float(d["channel_scale"].at(2))};
         }
       }
       else if (k == "left" || k == "right") {
         EyeFrustum& f = m.frustum[k == "left" ? 0 : 1];
         const auto& t = it->at("tangents");
-        f = {t.at("left").get<float>(), t.at("right").get<float>(), t.at("bottom").get<float>(),
-             t.at("top").get<float>()};
+        f = {to_float(t.at("left")), to_float(t.at("right")), to_float(t.at("bottom")),
+             to_float(t.at("top"))};
       } else {
         return bad_input(path + ": unknown key '" + k + "'");
       }
     }
   } catch (const nlohmann::json::exception& ex) {
-    return bad_input(path + ": " + ex.what());
+    return bad_input(path + ": " + k + ": " + ex.what());
+  } catch (const FieldError& ex) {
+    return bad_input(path + ": " + k + ": " + ex.what());
   }
-  if (j.value("format", std::string()) != "foveal-display-model v1")
+  if (auto f = j.find("format"); f == j.end() || *f != "foveal-display-model v1")  // value() throws on a non-string
     return bad_input(path + ": field 'format' must be \"foveal-display-model v1\"");
   if (Status s = m.validate(path); !s) return s.error();
   return m;

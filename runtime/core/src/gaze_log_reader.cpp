@@ -165,6 +165,9 @@ Result<bool> GazeLogReader::next(GazeSample& out) {
   read_block(s.combined, false, true);
   s.combined.pupil_mm = s.combined.openness = 0.0f;  // not stored for the combined gaze
   if (!ok || !line.terminated) return describe_row_error(line);
+  if (s.t_ns < -kMaxGazeLogTimeNs || s.t_ns >= kMaxGazeLogTimeNs)
+    return row_error(line.number, gaze_log_columns()[0],
+                     std::to_string(s.t_ns) + " is out of range (timestamps are in [-2^62, 2^62) ns, ±146 years)");
   if (samples_ > 0 && s.t_ns <= last_t_)
     return row_error(line.number, gaze_log_columns()[0],
                      std::to_string(s.t_ns) +
@@ -192,7 +195,7 @@ Error GazeLogReader::describe_row_error(const LineReader::Line& line) {
 
   std::int64_t t = 0;
   if (!parse_number(fields_[0], t))
-    return row_error(line.number, cols[0], "'" + std::string(fields_[0]) + "' is not an integer");
+    return row_error(line.number, cols[0], "'" + std::string(fields_[0]) + "' is " + number_problem<std::int64_t>(fields_[0], "not an integer"));
   std::size_t col = 1;
   std::uint32_t valid = 0;
   for (int block = 0; block < 3; ++block) {
@@ -211,7 +214,7 @@ Error GazeLogReader::describe_row_error(const LineReader::Line& line) {
       if (!present) continue;
       if (f.empty()) return row_error(line.number, cols[col], "empty but its validity bit is set");
       float v = 0;
-      if (!parse_number(f, v)) return row_error(line.number, cols[col], "'" + std::string(f) + "' is not a number");
+      if (!parse_number(f, v)) return row_error(line.number, cols[col], "'" + std::string(f) + "' is " + number_problem<float>(f));
       if (!std::isfinite(v)) return row_error(line.number, cols[col], "'" + std::string(f) + "' is not finite");
     }
   }

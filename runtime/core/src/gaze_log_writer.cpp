@@ -49,6 +49,9 @@ Status GazeLogWriter::write(const GazeSample& s) {
   if (samples_ > 0 && s.t_ns <= last_t_)
     return bad_input(file_.path() + ": sample " + std::to_string(samples_ + 1) + ": timestamp " +
                      std::to_string(s.t_ns) + " does not increase");
+  if (s.t_ns < -kMaxGazeLogTimeNs || s.t_ns >= kMaxGazeLogTimeNs)
+    return bad_input(file_.path() + ": sample " + std::to_string(samples_ + 1) + ": timestamp " +
+                     std::to_string(s.t_ns) + " is out of range ([-2^62, 2^62) ns)");
   row_.clear();
   append_int(row_, s.t_ns);
   auto put = [&](bool present, float v) -> bool {

@@ -1,5 +1,7 @@
 #include "foveal/core/line_reader.hpp"
 
+#include "foveal/core/read_file.hpp"
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -17,8 +19,9 @@ constexpr std::size_t kPadding = 8;         // readable bytes after any line (se
 Result<LineReader> LineReader::open(const std::string& path) {
   LineReader r;
   r.path_ = path;
-  r.fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (r.fd_ < 0) return io_error(path + ": cannot open: " + std::strerror(errno));
+  auto fd = open_regular_file(path, "input");  // a FIFO without a writer must not block us
+  if (!fd) return fd.error();
+  r.fd_ = *fd;
   r.buf_ = std::make_unique<char[]>(kBufSize + kPadding);  // value-initialised: padding is 0
 #ifdef POSIX_FADV_SEQUENTIAL
   ::posix_fadvise(r.fd_, 0, 0, POSIX_FADV_SEQUENTIAL);

@@ -1,7 +1,9 @@
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 
+#include "foveal/core/json_file.hpp"
 #include "foveal/runtime/filter_config.hpp"
 #include "foveal/runtime/profile.hpp"
 
@@ -108,17 +110,18 @@ Status Profile::set(const std::string& key, const std::string& value) {
   nlohmann::json j = to_json();
   if (!j.contains(key) || key == "format") return bad_input("profile " + name + ": unknown key '" + key + "'");
   if (key == "filter") {
-    try {
-      j[key] = nlohmann::json::parse(value);
-    } catch (const nlohmann::json::exception&) {
-      return bad_input("profile " + name + ": filter: expected a JSON object");
-    }
+    auto parsed = parse_json(value, "profile " + name + ": filter");
+    if (!parsed) return parsed.error();
+    j[key] = std::move(*parsed);
   } else if (key == "dominant_eye" || key == "display_model" || value == "auto") {
     j[key] = value;
   } else {
     char* end = nullptr;
+    errno = 0;
     const double d = std::strtod(value.c_str(), &end);
     if (value.empty() || *end != '\0') return bad_input("profile " + name + ": " + key + ": '" + value + "' is not a number");
+    if (errno == ERANGE || !std::isfinite(d))
+      return bad_input("profile " + name + ": " + key + ": '" + value + "' is out of range");
     j[key] = d;
   }
   auto p = from_json(j, name, "profile " + name);

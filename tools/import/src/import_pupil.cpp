@@ -44,10 +44,13 @@ Status read_eye(const TableReader& t, const NormalColumns& nc, bool confident, E
     if (!f) return f.error();
     v[a] = *f;
   }
-  const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (confident && len > 0.0f) {
+  // In double: a float's square overflows from 1.9e19 on (1e30 would give an infinite
+  // length and a zero direction) and underflows below 1e-23.
+  const double len = std::sqrt(static_cast<double>(v[0]) * v[0] + static_cast<double>(v[1]) * v[1] +
+                               static_cast<double>(v[2]) * v[2]);
+  if (confident && len > 0.0) {
     e.valid |= kValidDirection;
-    e.direction = from_pupil(v[0] / len, v[1] / len, v[2] / len);
+    e.direction = from_pupil(static_cast<float>(v[0] / len), static_cast<float>(v[1] / len), static_cast<float>(v[2] / len));
   }
   if (nc.c[0] >= 0 && !t.field(static_cast<std::size_t>(nc.c[0])).empty()) {
     for (int a = 0; a < 3; ++a) {
@@ -121,7 +124,8 @@ Result<ImportSummary> import_pupil(const std::string& in, const std::string& out
     const bool confident = *conf >= kMinConfidence;
     GazeSample s;
     const double ns = (*ts - first_s) * 1e9;
-    if (!(ns < 9.2e18)) return t2.field_error(*ts_col, "too far from the first row's time");
+    if (!(ns < static_cast<double>(kMaxGazeLogTimeNs)))
+      return t2.field_error(*ts_col, "too far from the first row's time (more than 2^62 ns, 146 years)");
     s.t_ns = static_cast<TimeNs>(std::llround(ns));
     if (Status st = read_eye(t2, *left, confident, s.eye(Eye::left)); !st) return st.error();
     if (Status st = read_eye(t2, *right, confident, s.eye(Eye::right)); !st) return st.error();

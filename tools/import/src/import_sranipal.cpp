@@ -111,9 +111,10 @@ Result<ImportSummary> import_sranipal(const std::string& in, const std::string& 
                                           "; timestamps must increase strictly");
     last_tick = *tick;
     GazeSample s;
-    // 100 ns ticks -> ns from the first row; a span past int64 ns (292 years) is bad data.
+    // 100 ns ticks -> ns from the first row; a span past 2^62 ns (146 years) is bad data.
     std::int64_t span = 0;
-    if (__builtin_sub_overflow(*tick, first_tick, &span) || __builtin_mul_overflow(span, std::int64_t{100}, &s.t_ns))
+    if (__builtin_sub_overflow(*tick, first_tick, &span) || __builtin_mul_overflow(span, std::int64_t{100}, &s.t_ns) ||
+        s.t_ns >= kMaxGazeLogTimeNs)
       return t.field_error(*time_col, std::to_string(*tick) + " is too far from the first row's time");
     if (Status st = read_eye(t, *left, s.eye(Eye::left)); !st) return st.error();
     if (Status st = read_eye(t, *right, s.eye(Eye::right)); !st) return st.error();

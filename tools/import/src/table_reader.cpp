@@ -77,7 +77,7 @@ Result<T> TableReader::number(std::size_t i) const {
   T v{};
   const std::string_view f = fields_[i];
   if (f.empty()) return field_error(i, "empty");
-  if (!parse_number(f, v)) return field_error(i, "'" + std::string(f) + "' is not a number");
+  if (!parse_number(f, v)) return field_error(i, "'" + std::string(f) + "' is " + number_problem<T>(f));
   if constexpr (std::is_floating_point_v<T>)
     if (!std::isfinite(v)) return field_error(i, "'" + std::string(f) + "' is not finite");
   return v;

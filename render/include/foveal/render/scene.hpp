@@ -2,66 +2,27 @@
 // What the compositor draws: GPU meshes and materials from a glTF 2.0 file, or one of
 // the built-in screen-space patterns (`pattern:NAME`). Loading needs a current GL
 // context; a Scene must be destroyed while it is current. Not thread-safe.
-#include <array>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "foveal/core/error.hpp"
 #include "foveal/render/gl_objects.hpp"
+#include "foveal/render/scene_types.hpp"
 
 namespace foveal::render {
 
-struct Bounds {
-  glm::vec3 min{0.0f}, max{0.0f};
-  glm::vec3 center() const { return (min + max) * 0.5f; }
-  float radius() const;  ///< half the diagonal
-};
-
-/// Which texture coordinates a material texture reads, and how they are transformed
-/// (KHR_texture_transform: uv' = matrix * (uv, 1)).
-struct TextureUv {
-  glm::mat3 matrix{1.0f};
-  int set = 0;  ///< 0: TEXCOORD_0, 1: TEXCOORD_1
-};
-
-/// glTF 2.0 metal-roughness material. Texture indices point into Scene::textures (-1: none).
-/// A KHR_materials_pbrSpecularGlossiness material keeps its diffuse factor and texture in
-/// base_color, its specular-glossiness texture in metal_rough_tex, and is converted to
-/// metal-roughness per fragment (docs/scenes.md).
-struct Material {
-  enum Slot { base_color_slot, metal_rough_slot, normal_slot, occlusion_slot, emissive_slot, slot_count };
-  glm::vec4 base_color{1.0f};
-  float metallic = 1.0f, roughness = 1.0f;
-  glm::vec3 emissive{0.0f};
-  float normal_scale = 1.0f, occlusion_strength = 1.0f;
-  float alpha_cutoff = -1.0f;  ///< >= 0 for alphaMode MASK
-  bool unlit = false;          ///< KHR_materials_unlit
-  bool double_sided = false;
-  int base_color_tex = -1, metal_rough_tex = -1, normal_tex = -1, occlusion_tex = -1, emissive_tex = -1;
-  std::array<TextureUv, slot_count> uv{};  ///< per texture, indexed by Slot
-  bool spec_gloss = false;                 ///< KHR_materials_pbrSpecularGlossiness
-  glm::vec3 specular{1.0f};                ///< its specularFactor
-  float glossiness = 1.0f;                 ///< its glossinessFactor
-};
-
 /// One indexed triangle list with interleaved vertices (position, normal, uv, tangent,
-/// second uv, colour).
+/// second uv, colour: GltfVertex).
 struct Primitive {
   gl::VertexArray vao;
   gl::Buffer vertices, indices;
   int index_count = 0;
   int material = -1;
-};
-
-struct DrawItem {
-  int primitive = 0;
-  glm::mat4 world{1.0f};
 };
 
 /// Built-in test patterns, drawn in each eye's screen space (the camera plays no part).
@@ -70,13 +31,6 @@ struct Pattern {
   float angle_deg = 0.0f;  ///< rotation of the pattern about the viewport centre
   float tile_px = 32.0f;   ///< screen pixels per texture repeat at angle 0
   gl::Texture texture;     ///< one tile, mipmapped, repeating
-};
-
-/// Where the viewer's head is: the midpoint between the eyes, looking along -z.
-struct ViewPose {
-  glm::mat4 head_to_world{1.0f};  ///< rotation and translation only
-  float units_per_meter = 1.0f;   ///< scales the IPD into scene units
-  std::string source;             ///< "view file", "glTF camera NAME" or "framing"
 };
 
 struct Scene {

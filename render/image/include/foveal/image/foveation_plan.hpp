@@ -20,10 +20,16 @@ namespace foveal::render {
 
 enum class Method { full, rmfr, kfr, hyperbolic, linear };
 const char* method_name(Method m);
-/// "full", "rmfr", "kfr", "hyperbolic" or "linear"; bad_input otherwise.
+/// One of method_names(); bad_input otherwise.
 Result<Method> parse_method(const std::string& s);
 /// Every method, full first.
 const std::vector<Method>& all_methods();
+/// Their names in the same order: the one list for command-line checks, help and defaults.
+const std::vector<std::string>& method_names();
+/// The names joined, e.g. "full,rmfr,kfr,hyperbolic,linear" for ",".
+std::string method_names_joined(const std::string& separator);
+/// Whether `m` is one of all_methods() (an enum value from elsewhere may not be).
+bool is_method(Method m);
 
 /// One eye's foveation for one frame.
 struct EyeFoveation {

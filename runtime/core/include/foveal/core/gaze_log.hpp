@@ -15,6 +15,9 @@
 namespace foveal {
 
 constexpr int kGazeLogVersion = 1;
+/// Timestamps are in [-2^62, 2^62) ns (±146 years), so the difference of any two of
+/// them (durations, gaps, replay offsets) fits in an int64 without wrapping.
+constexpr std::int64_t kMaxGazeLogTimeNs = std::int64_t{1} << 62;
 constexpr std::string_view kGazeLogMagic = "# foveal-gaze-log v";
 
 struct GazeLogHeader {

@@ -1,6 +1,8 @@
 #pragma once
 // Paces a stream recorded on its own time base onto the runtime clock at a speed factor.
 #include <chrono>
+#include <cmath>
+#include <limits>
 
 #include "foveal/core/clock.hpp"
 
@@ -16,10 +18,19 @@ class Pacer {
     runtime_t0_ = monotonic_now_ns();
   }
   /// Runtime-clock time at which the item stamped `stream_t` is due.
+  /// Saturates instead of wrapping: a crafted log's span, slowed down, can pass int64.
   TimeNs due(TimeNs stream_t) const {
-    const TimeNs rel = stream_t - stream_t0_;
-    if (speed_ <= 0.0) return runtime_t0_ + rel;  // timestamps keep their spacing
-    return runtime_t0_ + static_cast<TimeNs>(static_cast<double>(rel) / speed_);
+    constexpr TimeNs kMax = std::numeric_limits<TimeNs>::max(), kMin = std::numeric_limits<TimeNs>::min();
+    TimeNs rel = 0;
+    if (__builtin_sub_overflow(stream_t, stream_t0_, &rel)) return stream_t > stream_t0_ ? kMax : kMin;
+    if (speed_ > 0.0) {  // else timestamps keep their spacing
+      const double scaled = static_cast<double>(rel) / speed_;
+      if (!(std::fabs(scaled) < 0x1p62)) return scaled > 0 ? kMax : kMin;
+      rel = static_cast<TimeNs>(scaled);
+    }
+    TimeNs t = 0;
+    if (__builtin_add_overflow(runtime_t0_, rel, &t)) return rel > 0 ? kMax : kMin;
+    return t;
   }
   /// Sleeps until `due`, but never longer than `timeout`; true if `due` was reached.
   bool wait(TimeNs due_t, std::chrono::nanoseconds timeout) const {

@@ -151,4 +151,17 @@ bool parse_number(std::string_view s, T& out) {
   return ec == std::errc() && p == e;
 }
 
+/// Why parse_number<T> refused `s`, for messages: "out of range" when it is a well-formed
+/// number that T cannot hold ("1e308" as a float, 2^64 as an int64), else `otherwise`
+/// ("not a number", "not an integer").
+template <class T>
+const char* number_problem(std::string_view s, const char* otherwise = "not a number") {
+  const char* b = s.data();
+  const char* e = b + s.size();
+  if (b != e && *b == '+') ++b;
+  T v{};
+  auto [p, ec] = std::from_chars(b, e, v);
+  return b != e && ec == std::errc::result_out_of_range && p == e ? "out of range" : otherwise;
+}
+
 }  // namespace foveal
