@@ -10,54 +10,12 @@
 #include <cstring>
 #include <thread>
 
-#include "foveal/runtime/control_server.hpp"
-#include "test_support.hpp"
+#include "control_fixture.hpp"
 
 namespace foveal {
 namespace {
 
-class ControlSocket : public ::testing::Test {
- protected:
-  void SetUp() override {
-    path_ = dir_.path("run/foveal/control.sock");
-    auto s = ControlServer::listen(path_);
-    ASSERT_TRUE(s) << s.error().message;
-    server_.emplace(std::move(s.value()));
-    thread_ = std::thread([this] {
-      while (!stop_) server_->poll(20, [this](const nlohmann::json& req) -> nlohmann::json {
-        ++handled_;
-        return {{"ok", true}, {"echo", req}};
-      });
-    });
-  }
-  void TearDown() override {
-    stop_ = true;
-    if (thread_.joinable()) thread_.join();
-  }
-
-  // A raw client, for messages the well-behaved control_request() never sends.
-  int connect_raw() {
-    const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
-    sockaddr_un addr{};
-    addr.sun_family = AF_UNIX;
-    std::strncpy(addr.sun_path, path_.c_str(), sizeof addr.sun_path - 1);
-    EXPECT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
-    return fd;
-  }
-  static std::string read_line(int fd) {
-    std::string s;
-    char c;
-    while (::recv(fd, &c, 1, 0) == 1 && c != '\n') s += c;
-    return s;
-  }
-
-  test::TempDir dir_;
-  std::string path_;
-  std::optional<ControlServer> server_;
-  std::thread thread_;
-  std::atomic<bool> stop_{false};
-  std::atomic<int> handled_{0};
-};
+using control_test::ControlSocket;
 
 TEST_F(ControlSocket, AnswersRequestsAndIsPrivate) {
   auto r = control_request(path_, {{"cmd", "status"}});

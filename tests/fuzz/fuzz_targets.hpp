@@ -99,12 +99,21 @@ inline int psvr2(const std::uint8_t* data, std::size_t size) {
 // validated like foveald's `set` (a profile built from the request), and every request
 // line gets a reply.
 inline int control(const std::uint8_t* data, std::size_t size) {
-  static auto server = [] {
-    const std::string path = scratch_output() + ".sock";
-    auto s = foveal::ControlServer::listen(path);
-    if (!s) std::abort();
-    return std::make_unique<foveal::ControlServer>(std::move(*s));
-  }();
+  // The socket needs a private directory (docs/daemon.md), removed again at exit.
+  static struct Served {
+    std::string dir = "/dev/shm/foveal-fuzz-" + std::to_string(::getpid());
+    std::unique_ptr<foveal::ControlServer> server;
+    Served() {
+      auto s = foveal::ControlServer::listen(dir + "/control.sock");
+      if (!s) std::abort();
+      server = std::make_unique<foveal::ControlServer>(std::move(*s));
+    }
+    ~Served() {
+      server.reset();
+      ::rmdir(dir.c_str());
+    }
+  } served;
+  foveal::ControlServer* server = served.server.get();
   const auto handler = [](const nlohmann::json& req) -> nlohmann::json {
     nlohmann::json j = foveal::Profile{}.to_json();
     for (auto it = req.begin(); it != req.end(); ++it)

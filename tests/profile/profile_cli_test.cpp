@@ -3,6 +3,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
+
+#include "foveal/runtime/profile.hpp"
+
 #include "test_support.hpp"
 
 namespace foveal {
@@ -51,6 +56,61 @@ TEST_F(ProfileCli, BadValuesExitTwoAndChangeNothing) {
   EXPECT_NE(r.err.find("not left or right"), std::string::npos) << r.err;
   EXPECT_EQ(foveal("create alice").exit_code, 2);  // exists
   EXPECT_EQ(foveal("create ../x").exit_code, 2);
+}
+
+// Issue 15 item 4: two writers racing on one profile. Each `set` prints the profile it
+// saved; serialised, the 150 saved states form one chain in which every step applies
+// exactly one more update of one writer. A lost update breaks the chain.
+TEST_F(ProfileCli, ConcurrentSetsOnOneProfileLoseNoUpdate) {
+  ASSERT_EQ(foveal("create alice").exit_code, 0);
+  ASSERT_EQ(foveal("set alice ipd_mm 50").exit_code, 0);
+  constexpr int kEach = 75;
+  const std::string cmd = "XDG_CONFIG_HOME=" + dir_.path() + " " + test::bin("foveal") + " profile set alice ";
+  // writer A: sigma_nd = 3 + i/100; writer B: ipd_mm = 50 + i/10
+  const std::string n = std::to_string(kEach);
+  test::write_file(dir_.path("race.sh"),
+                   "a() { for i in $(seq 1 " + n + "); do " + cmd + "sigma_nd $(printf '3.%02d' $i) --json > " +
+                       dir_.path("a") + "$i.json || echo fail; done; }\n"
+                   "b() { for i in $(seq 1 " + n + "); do " + cmd +
+                       "ipd_mm $(awk -v i=$i 'BEGIN { printf \"%.1f\", 50 + i / 10 }') --json > " + dir_.path("b") +
+                       "$i.json || echo fail; done; }\n"
+                   "a & b & wait\n");
+  auto r = test::run("bash " + dir_.path("race.sh"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("fail"), std::string::npos) << r.out << r.err;
+
+  std::vector<std::pair<int, int>> states;  // (A's updates, B's updates) in each saved profile
+  for (const char* who : {"a", "b"})
+    for (int i = 1; i <= kEach; ++i) {
+      const std::string text = test::read_file(dir_.path(std::string(who) + std::to_string(i) + ".json"));
+      const auto j = nlohmann::json::parse(text, nullptr, false);
+      ASSERT_FALSE(j.is_discarded()) << who << i << ": " << text;
+      states.emplace_back(static_cast<int>(std::lround((j["sigma_nd"].get<double>() - 3.0) * 100)),
+                          static_cast<int>(std::lround((j["ipd_mm"].get<double>() - 50.0) * 10)));
+    }
+  std::sort(states.begin(), states.end(), [](auto x, auto y) { return x.first + x.second < y.first + y.second; });
+  std::pair<int, int> prev{0, 0};
+  int lost = 0;
+  for (const auto& s : states) {
+    const bool one_step = (s.first == prev.first + 1 && s.second == prev.second) ||
+                          (s.first == prev.first && s.second == prev.second + 1);
+    if (!one_step) ++lost;
+    prev = s;
+  }
+  EXPECT_EQ(lost, 0) << "saved states that dropped another writer's update";
+  auto final_state = nlohmann::json::parse(foveal("show alice --json").out);
+  EXPECT_DOUBLE_EQ(final_state["sigma_nd"].get<double>(), 3.75);
+  EXPECT_DOUBLE_EQ(final_state["ipd_mm"].get<double>(), 57.5);
+}
+
+TEST_F(ProfileCli, AHeldStoreLockTimesOutWithAClearError) {
+  ASSERT_EQ(foveal("create alice").exit_code, 0);
+  const ProfileStore store(dir_.path("foveal"));
+  auto held = store.lock();
+  ASSERT_TRUE(held) << held.error().message;
+  auto again = store.lock(200);  // a second descriptor: flock excludes it like another process
+  ASSERT_FALSE(again);
+  EXPECT_NE(again.error().message.find(dir_.path("foveal/lock")), std::string::npos) << again.error().message;
 }
 
 }  // namespace

@@ -1,17 +1,8 @@
 #!/bin/busybox sh
-# /init of the VM test guest (built by run_vm_tests.sh): loads the USB/HID modules,
-# runs the checks, prints "VMTEST ..." lines on the serial console and powers off.
-/bin/busybox --install -s /bin
-export PATH=/bin:/usr/bin LD_LIBRARY_PATH=/lib/foveal
-mount -t proc proc /proc
-mount -t sysfs sys /sys
-mount -t devtmpfs dev /dev
-mount -t tmpfs tmp /tmp
-echo "VMTEST-BEGIN kernel $(uname -r)"
-
-for m in $(cat /modules/order); do
-  insmod "/modules/$m" || echo "VMTEST modules FAIL insmod $m"
-done
+# /init of the USB/HID suite's guest (built by run_usb_vm_test.py): loads the USB/HID
+# modules, runs the checks, prints "VMTEST ..." lines on the serial console and powers off.
+. /vm/guest_lib.sh
+guest_boot
 mount -t configfs none /sys/kernel/config
 
 # (d) uhid: malformed descriptors and reports.
@@ -19,24 +10,10 @@ foveal_vm_guest uhid
 
 # (a) a USB HID gadget with the real HUTRR74 descriptor, on dummy_hcd.
 G=/sys/kernel/config/usb_gadget/tracker
-mkdir -p $G/strings/0x409 $G/functions/hid.usb0 $G/configs/c.1
-echo 0x1209 > $G/idVendor
-echo 0xf0ee > $G/idProduct
-echo foveal > $G/strings/0x409/manufacturer
-echo "Emulated HUTRR74 tracker" > $G/strings/0x409/product
-echo VM0001 > $G/strings/0x409/serialnumber
-echo 0 > $G/functions/hid.usb0/protocol
-echo 0 > $G/functions/hid.usb0/subclass
-echo 65 > $G/functions/hid.usb0/report_length
-# Feature SET_REPORTs (the Mode Request) then reach /dev/hidg0 instead of stalling.
-echo 1 > $G/functions/hid.usb0/no_out_endpoint
-cat /data/tracker.desc > $G/functions/hid.usb0/report_desc
-ln -s $G/functions/hid.usb0 $G/configs/c.1/
+hid_gadget $G
 echo dummy_udc.0 > $G/UDC
-n=0
-while [ ! -e /dev/hidg0 ] || ! ls /dev/hidraw* >/dev/null 2>&1; do
-  n=$((n + 1)); [ $n -gt 100 ] && break; sleep 0.1
-done
+hid_ready() { [ -e /dev/hidg0 ] && ls /dev/hidraw* >/dev/null 2>&1; }
+wait_until 100 hid_ready
 ls -l /dev/hidg0 /dev/hidraw* 2>&1
 
 foveal_vm_guest feed /dev/hidg0 > /tmp/feed.log 2>&1 &
@@ -70,26 +47,14 @@ fi
 # (c) 20 unplug/replug cycles.
 foveal_vm_guest replug $G/UDC dummy_udc.0 20
 
-kill $FEED; wait $FEED
-cat /tmp/feed.log
+stop_device $FEED /tmp/feed.log
 
 # (b) an emulated PS VR2 gaze interface through FunctionFS, read by the libusb driver.
 echo "" > $G/UDC
 P=/sys/kernel/config/usb_gadget/psvr2
-mkdir -p $P/strings/0x409 $P/functions/ffs.gaze $P/configs/c.1
-echo 0x054c > $P/idVendor
-echo 0x0cde > $P/idProduct
-echo "Emulated PS VR2 gaze" > $P/strings/0x409/product
-ln -s $P/functions/ffs.gaze $P/configs/c.1/
-mkdir -p /dev/ffs-gaze
-mount -t functionfs gaze /dev/ffs-gaze
-foveal_vm_guest psvr2-gadget /dev/ffs-gaze > /tmp/psvr2.log 2>&1 &
-PSVR2=$!
-n=0
-while [ ! -e /dev/ffs-gaze/ep1 ]; do n=$((n + 1)); [ $n -gt 50 ] && break; sleep 0.1; done
+psvr2_gadget $P /dev/ffs-gaze
 echo dummy_udc.0 > $P/UDC || echo "psvr2: bind failed"
-n=0
-until grep -qs 0cde /sys/bus/usb/devices/*/idProduct; do n=$((n + 1)); [ $n -gt 50 ] && break; sleep 0.1; done
+wait_until 50 psvr2_present
 ls /dev/bus/usb/*/ 2>&1 | tr '\n' ' '; echo
 dmesg | tail -5
 foveal_vm_guest psvr2-probe 500 30
@@ -100,14 +65,14 @@ else
   echo "VMTEST devices_usb FAIL $(tr -d '\n' < /tmp/devices2.json | head -c 300)"
 fi
 foveal record --device psvr2 --out /tmp/psvr2.csv --duration 2 --json > /tmp/record2.json 2>&1
-n=$(grep -o '"samples": [0-9]*' /tmp/record2.json | grep -o '[0-9]*$')
+# The top-level "samples" (the last key; driver_counters has one too).
+n=$(grep -o '"samples": [0-9]*' /tmp/record2.json | tail -n 1 | grep -o '[0-9]*$')
 if [ "${n:-0}" -ge 100 ] && [ -s /tmp/psvr2.csv ]; then
   echo "VMTEST record_usb PASS samples=$n $(head -c 120 /tmp/psvr2.csv | tr '\n' ' ')"
 else
   echo "VMTEST record_usb FAIL $(tr -d '\n' < /tmp/record2.json)"
 fi
-kill $PSVR2; wait $PSVR2
-cat /tmp/psvr2.log
+stop_device $PSVR2 /tmp/psvr2.log
 if grep -q "value=030c index=5 data=0c 01" /tmp/psvr2.log; then
   echo "VMTEST psvr2_enable PASS the gadget received the gaze-stream enable request"
 else

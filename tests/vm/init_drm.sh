@@ -3,24 +3,11 @@
 # foveald on /dev/dri/card0, prints VMTEST-DRM-READY once it has presented
 # $READY_FRAMES frames, waits for the host's "go" on the console (the host takes its
 # screendump in between), checks that a second foveald finds the card busy, stops
-# foveald with SIGTERM and reports how it exited. Before all that: the error an ordinary
-# user gets.
-/bin/busybox --install -s /bin
-export PATH=/bin:/usr/bin
-mount -t proc proc /proc
-mount -t sysfs sys /sys
-mount -t devtmpfs dev /dev
-mount -t tmpfs tmp /tmp
-echo "VMTEST-BEGIN kernel $(uname -r), uptime $(cut -d' ' -f1 /proc/uptime) s"
-
-# Each line: a module file and its parameters.
-while read -r m params; do
-  insmod "/modules/$m" $params || echo "VMTEST modules FAIL insmod $m"
-done < /modules/order
-n=0
-while [ ! -e /dev/dri/card0 ]; do
-  n=$((n + 1)); [ $n -gt 100 ] && break; sleep 0.1
-done
+# foveald with SIGTERM once it has presented one frame more and reports how it exited.
+# Before all that: the error an ordinary user gets.
+. /vm/guest_lib.sh
+guest_boot
+wait_until 100 test -e /dev/dri/card0
 ls -l /dev/dri 2>&1
 
 # READY_FRAMES, READY_TIMEOUT, GO_TIMEOUT, OUT, the environment, and foveald's
@@ -56,10 +43,9 @@ rows() {
 }
 # An exited foveald stays a zombie until "wait": kill -0 would still succeed.
 running() { [ -e /proc/$PID ] && ! grep -q '^State:[[:space:]]*Z' /proc/$PID/status; }
-t=0
-while [ "$(rows)" -lt "$READY_FRAMES" ] && running && [ $t -lt $((READY_TIMEOUT * 10)) ]; do
-  t=$((t + 1)); sleep 0.1
-done
+# At least $1 frames presented, or foveald gone.
+presented() { [ "$(rows)" -ge "$1" ] || ! running; }
+wait_until $((READY_TIMEOUT * 10)) presented "$READY_FRAMES"
 if [ "$(rows)" -ge "$READY_FRAMES" ] && running; then
   echo "VMTEST-DRM-READY $(rows) frames at uptime $(cut -d' ' -f1 /proc/uptime) s"
   read -r -t "$GO_TIMEOUT" go || echo "no go from the host"
@@ -71,6 +57,10 @@ if [ "$(rows)" -ge "$READY_FRAMES" ] && running; then
   else
     echo "VMTEST drm_busy FAIL exit $rc: $(head -c 400 /tmp/busy.log)"
   fi
+  # SIGTERM abandons the frame in flight (frames take seconds here) and the summary
+  # counts the flips completed before it; a frame's flip completes during the next
+  # frame's present: one frame more, so that the ready frames' flips are counted.
+  wait_until $((READY_TIMEOUT * 10)) presented $((READY_FRAMES + 1))
   kill -TERM $PID
   wait $PID
   rc=$?

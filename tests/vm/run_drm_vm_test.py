@@ -11,24 +11,18 @@ import argparse
 import glob
 import json
 import os
-import select
 import shlex
 import shutil
 import socket
-import stat
 import struct
 import subprocess
 import sys
 import time
 import zlib
 
-SKIP = 77
-MULTIARCH = "/usr/lib/x86_64-linux-gnu"
-# What Mesa loads at run time (dlopen), beyond what the binary links: glvnd's EGL vendor
-# library and its JSON, GBM, and the gallium driver that GBM falls back to on a KMS-only
-# device (kms_swrast; swrast_dri.so is the same file).
-MESA_FILES = [f"{MULTIARCH}/libEGL_mesa.so.0", "/usr/share/glvnd/egl_vendor.d/50_mesa.json",
-              f"{MULTIARCH}/libgbm.so.1", f"{MULTIARCH}/libglapi.so.0", f"{MULTIARCH}/dri/kms_swrast_dri.so"]
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+from qemu_guest import HERE, Initramfs, host_ready, qemu_command, run_console, verdicts
+
 # bochs and what it needs, in load order. No fbdev emulation: no fbcon drawing on a
 # 2880x1600 console under emulation, no framebuffer pinned in VRAM.
 MODULES = ["bochs"]
@@ -36,79 +30,6 @@ MODULE_PARAMS = {"drm_kms_helper.ko": "fbdev_emulation=0"}
 # The standard VGA with an EDID that offers 2880x1600 at the Vive Pro Eye's 90 Hz.
 # bochs accepts a mode when two framebuffers of it fit in VRAM (2 x 17.6 MiB).
 VGA = "VGA,vgamem_mb=64,edid=on,xres=2880,yres=1600,refresh_rate=90000"
-
-
-class Initramfs:
-    """A newc cpio archive written straight from the host's files."""
-
-    def __init__(self):
-        self.entries = {}  # guest path -> (kind, payload, mode)
-
-    def _parents(self, path):
-        parent = os.path.dirname(path)
-        if parent != "/" and parent not in self.entries:
-            self._parents(parent)
-            self.entries[parent] = ("dir", None, 0o755)
-
-    def add(self, path, kind, payload=None, mode=0o644):
-        self._parents(path)
-        self.entries[path] = (kind, payload, mode)
-
-    def add_file(self, path, src):
-        self.add(path, "file", src, stat.S_IMODE(os.stat(src).st_mode))
-
-    def add_tree(self, path, src):
-        for root, _, files in os.walk(src):
-            for name in files:
-                self.add_file(os.path.normpath(os.path.join(path, os.path.relpath(root, src), name)),
-                              os.path.join(root, name))
-
-    def write(self, out):
-        def header(ino, mode, size, name, rdev=(0, 0)):
-            name = name.encode() + b"\0"
-            fields = [ino, mode, 0, 0, 1, 0, size, 0, 0, rdev[0], rdev[1], len(name), 0]
-            h = b"070701" + b"".join(b"%08x" % v for v in fields) + name
-            return h + b"\0" * (-len(h) % 4)
-
-        total = 0
-        with open(out, "wb") as f:
-            for ino, path in enumerate(sorted(self.entries), 1):
-                kind, payload, mode = self.entries[path]
-                name = path.lstrip("/")
-                if kind == "dir":
-                    f.write(header(ino, stat.S_IFDIR | mode, 0, name))
-                elif kind == "char":
-                    f.write(header(ino, stat.S_IFCHR | mode, 0, name, payload))
-                elif kind == "file":
-                    size = os.path.getsize(payload)
-                    f.write(header(ino, stat.S_IFREG | mode, size, name))
-                    with open(payload, "rb") as src:
-                        shutil.copyfileobj(src, f, 1 << 20)
-                    f.write(b"\0" * (-size % 4))
-                    total += size
-                else:  # "link" (payload: the target) or "data" (payload: the bytes)
-                    data = payload.encode() if kind == "link" else payload
-                    f.write(header(ino, (stat.S_IFLNK | 0o777) if kind == "link" else (stat.S_IFREG | mode),
-                                   len(data), name))
-                    f.write(data + b"\0" * (-len(data) % 4))
-                    total += len(data)
-            f.write(header(0, 0, 0, "TRAILER!!!"))
-        return total
-
-
-def ldd(paths):
-    """The shared libraries (and the dynamic loader) that `ldd` names for these files."""
-    out = subprocess.run(["ldd"] + paths, capture_output=True, text=True, check=True).stdout
-    libs = set()
-    for line in out.splitlines():
-        parts = line.split()
-        if "=>" in parts and len(parts) > parts.index("=>") + 1 and parts[parts.index("=>") + 1].startswith("/"):
-            libs.add(parts[parts.index("=>") + 1])
-        elif parts and parts[0].startswith("/") and not line.endswith(":"):  # not a "file:" heading
-            libs.add(parts[0])
-    # One copy per library: resolve the directory (merged /usr: /lib is usr/lib), keep
-    # the name (the soname link, which is what the loader looks for).
-    return {os.path.join(os.path.realpath(os.path.dirname(p)), os.path.basename(p)) for p in libs}
 
 
 def out_dir(args, default):
@@ -166,51 +87,11 @@ def qmp_screendump(sock_path, filename):
                     break  # anything else is an asynchronous event
 
 
-def find_kernel():
-    """The newest /boot kernel whose modules include bochs, or None."""
-    found = None
-    for image in sorted(glob.glob("/boot/vmlinuz-*")):
-        kver = image[len("/boot/vmlinuz-"):]
-        if glob.glob(f"/lib/modules/{kver}/kernel/drivers/gpu/drm/tiny/bochs.ko*"):
-            found = kver
-    return found
-
-
 def build_initramfs(a, kver, guest_args, guest_out, work):
-    img = Initramfs()
-    img.add("/dev/console", "char", (5, 1), 0o600)
-    for d in ("/proc", "/sys", "/tmp", "/modules"):
-        img.add(d, "dir", mode=0o755)
-    img.add_file("/bin/busybox", "/bin/busybox")
-    img.add_file("/init", os.path.join(os.path.dirname(os.path.abspath(__file__)), "init_drm.sh"))
-    img.add_file("/usr/bin/foveald", a.foveald)
-
-    modprobe = shutil.which("modprobe") or "/usr/sbin/modprobe"
-    order = []
-    for m in MODULES:
-        deps = subprocess.run([modprobe, "-S", kver, "--show-depends", m], capture_output=True, text=True, check=True)
-        for line in deps.stdout.splitlines():
-            if line.startswith("insmod ") and os.path.basename(line.split()[1]) not in order:
-                ko = line.split()[1]
-                order.append(os.path.basename(ko))
-                img.add_file("/modules/" + os.path.basename(ko), ko)
-    img.add("/modules/order", "data", "".join(f"{m} {MODULE_PARAMS.get(m, '')}\n" for m in order).encode())
-
-    for path in MESA_FILES:
-        if not os.path.exists(path):
-            raise FileNotFoundError(f"{path} is missing (apt-get install libegl-mesa0 libgbm1 libgl1-mesa-dri)")
-        img.add_file(path, path)
-    img.add(f"{MULTIARCH}/dri/swrast_dri.so", "link", "kms_swrast_dri.so")
-    for lib in ldd([a.foveald] + [p for p in MESA_FILES if p.endswith(".so") or ".so." in p]):
-        img.add_file(lib, lib)
-    # Merged /usr: the paths the binaries name (/lib64/ld-linux-x86-64.so.2) lead to usr/.
-    for top in ("/lib", "/lib64"):
-        if os.path.islink(top):
-            img.add(top, "link", os.readlink(top))
-
-    img.add_tree("/foveal/shaders", os.path.join(a.source_dir, "shaders"))
-    for sub in ("display", "gaze"):
-        img.add_tree(f"/foveal/data/{sub}", os.path.join(a.source_dir, "data", sub))
+    img = Initramfs(os.path.join(HERE, "init_drm.sh"))
+    img.add_modules(kver, MODULES, MODULE_PARAMS)
+    img.add_binaries([a.foveald], img.add_mesa(a.source_dir))
+    img.add_tree("/foveal/data/gaze", os.path.join(a.source_dir, "data", "gaze"))
     for spec in a.extra_file:
         src, _, dst = spec.partition(":")
         img.add_file(dst, src)
@@ -229,58 +110,31 @@ def run_guest(a, qemu, kver, work):
     """Boots the guest, takes the screendump when it is ready. Returns (ok, seconds to ready)."""
     sock = os.path.join(work, "qmp.sock")
     screen = os.path.join(work, "screen.ppm")
-    cmd = [qemu, "-accel", "tcg", "-cpu", "max", "-smp", "2", "-m", "2048", "-nodefaults", "-no-reboot",
-           "-display", "none", "-monitor", "none", "-device", VGA, "-serial", "stdio",
-           "-qmp", f"unix:{sock},server=on,wait=off",
-           "-kernel", f"/boot/vmlinuz-{kver}", "-initrd", os.path.join(work, "initrd.cpio"),
-           "-append", "console=ttyS0 panic=-1 quiet loglevel=3"]
+    initrd = os.path.join(work, "initrd.cpio")
+    cmd = qemu_command(qemu, kver, initrd, 2, 2048, ["-device", VGA, "-qmp", f"unix:{sock},server=on,wait=off"])
     start = time.monotonic()
-    ready_s = None
-    lines = []
-    proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
-    pending = b""
+    ready = {"s": None, "error": None}
+
+    def on_line(line):
+        if not line.startswith("VMTEST-DRM-READY") or ready["s"] is not None:
+            return None
+        ready["s"] = time.monotonic() - start
+        t = time.monotonic()
+        try:
+            qmp_screendump(sock, screen)
+        except (OSError, ValueError, RuntimeError) as e:  # QMP: socket errors, bad JSON, error replies
+            ready["error"] = e
+            print(f"run_drm_vm_test: screendump failed: {e}")
+        print(f"run_drm_vm_test: screendump in {time.monotonic() - t:.1f} s", flush=True)
+        return b"go\n"
+
     try:
-        with open(os.path.join(work, "console.log"), "w") as log:
-            while True:
-                left = a.timeout - (time.monotonic() - start)
-                if left <= 0 or not select.select([proc.stdout], [], [], left)[0]:
-                    print(f"run_drm_vm_test: the guest ran past {a.timeout} s")
-                    break
-                chunk = os.read(proc.stdout.fileno(), 65536)
-                if not chunk:
-                    break
-                pending += chunk
-                *complete, pending = pending.split(b"\n")
-                for raw in complete:
-                    line = raw.decode(errors="replace").replace("\r", "")
-                    if not line:
-                        continue
-                    lines.append(line)
-                    log.write(line + "\n")
-                    print("guest: " + line, flush=True)
-                    if line.startswith("VMTEST-DRM-READY") and ready_s is None:
-                        ready_s = time.monotonic() - start
-                        t = time.monotonic()
-                        qmp_screendump(sock, screen)
-                        print(f"run_drm_vm_test: screendump in {time.monotonic() - t:.1f} s", flush=True)
-                        proc.stdin.write(b"go\n")
-                        proc.stdin.flush()
-    except (OSError, ValueError, RuntimeError) as e:  # QMP: socket errors, bad JSON, error replies
-        print(f"run_drm_vm_test: screendump failed: {e}")
-        ready_s = None
+        lines, _ = run_console(cmd, a.timeout, os.path.join(work, "console.log"), on_line)
     finally:
-        if proc.poll() is None:
-            proc.kill()
-        proc.wait()
-        os.remove(os.path.join(work, "initrd.cpio"))  # 200+ MiB, rebuilt by every run
-    ok = ready_s is not None and os.path.exists(screen)
-    for check in ("VMTEST drm_not_permitted PASS", "VMTEST drm_busy PASS", "VMTEST drm_exit PASS", "VMTEST-END"):
-        if not any(line.startswith(check) for line in lines):
-            print(f"run_drm_vm_test: no '{check}' from the guest")
-            ok = False
-    if any(line.startswith("VMTEST ") and " FAIL" in line for line in lines):
-        ok = False
-    return ok and check_summary(lines, a.ready_frames), ready_s
+        os.remove(initrd)  # 200+ MiB, rebuilt by every run
+    ok = ready["s"] is not None and ready["error"] is None and os.path.exists(screen)
+    ok = verdicts("run_drm_vm_test", lines, ["drm_not_permitted", "drm_busy", "drm_exit"]) and ok
+    return ok and check_summary(lines, a.ready_frames), ready["s"]
 
 
 def check_summary(lines, ready_frames):
@@ -331,24 +185,12 @@ def main():
         if ":" not in spec:
             p.error(f"--extra-file {spec}: expected SRC:GUESTPATH")
 
-    qemu = shutil.which("qemu-system-x86_64")
-    if not qemu:
-        print("SKIPPED: qemu-system-x86_64 is not installed (apt-get install qemu-system-x86)")
-        return SKIP
-    kver = find_kernel()
-    if not kver:
-        print("SKIPPED: no Debian kernel image with the bochs module in /boot and /lib/modules "
-              "(apt-get install linux-image-amd64)")
-        return SKIP
-    # Not reasons to skip: bootstrap.sh installs busybox-static with qemu.
-    if not os.access("/bin/busybox", os.X_OK) or subprocess.run(["ldd", "/bin/busybox"], capture_output=True).returncode == 0:
-        print("run_drm_vm_test: /bin/busybox is missing or not static (apt-get install busybox-static)")
-        return 1
-
     start = time.monotonic()
     work = os.path.abspath(a.work)
-    shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(work)
+    found = host_ready("run_drm_vm_test", "drivers/gpu/drm/tiny/bochs", work)
+    if isinstance(found, int):
+        return found
+    qemu, kver = found
     guest_args = shlex.split(a.guest_args)
     host_args = shlex.split(a.host_args)
     guest_out = os.path.join("/tmp", out_dir(guest_args, "foveald-out"))  # foveald runs in /tmp

@@ -1,13 +1,8 @@
 // vm replug (c): the runtime's gaze thread (GazeLoop) on the hidapi driver while the
 // gadget is unplugged and plugged back (UDC file) again and again: every disconnect is
 // seen, every replug resumes, and the open file descriptors stay the same.
-#include <dirent.h>
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
-#include <cstring>
 
 #include "feeder_pattern.hpp"
 #include "foveal/drivers/hid/hid_tracker_source.hpp"
@@ -15,37 +10,6 @@
 #include "vm_guest.hpp"
 
 namespace foveal::vmtest {
-namespace {
-
-bool write_udc(const std::string& file, const std::string& value) {
-  const int fd = ::open(file.c_str(), O_WRONLY);
-  if (fd < 0) return false;
-  const std::string v = value + "\n";
-  const bool ok = ::write(fd, v.data(), v.size()) == static_cast<ssize_t>(v.size());
-  ::close(fd);
-  return ok;
-}
-
-template <class Pred>
-bool wait_for(Pred pred, TimeNs timeout_ns) {
-  const TimeNs until = monotonic_now_ns() + timeout_ns;
-  while (!pred()) {
-    if (monotonic_now_ns() > until) return false;
-    sleep_until_ns(monotonic_now_ns() + kNsPerMs);
-  }
-  return true;
-}
-
-bool hidraw_present() {
-  DIR* d = ::opendir("/sys/class/hidraw");
-  if (d == nullptr) return false;
-  bool any = false;
-  while (const dirent* e = ::readdir(d)) any = any || e->d_name[0] != '.';
-  ::closedir(d);
-  return any;
-}
-
-}  // namespace
 
 int run_replug(const std::string& udc_file, const std::string& udc_name, int cycles) {
   hid::HidTrackerOptions opts;

@@ -94,6 +94,8 @@ void add_calibrate(CLI::App& app, int& exit_code) {
                             " (trial " + std::to_string(cal.prompt().trial + 1) + ")"));
     const CalibrationResult& r = cal.result();
     const ProfileStore store = ProfileStore::user();
+    auto lock = store.lock();  // the profile is read, changed and saved
+    if (!lock) return fail(lock.error());
     const std::string name = a->profile.empty() ? store.active() : a->profile;
     Profile p;
     p.name = name;

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "foveal/core/atomic_file.hpp"
 #include "foveal/image/foveate.hpp"
 #include "foveal/tools/args.hpp"
 #include "foveal/tools/cli.hpp"
@@ -25,6 +26,8 @@ int run(const Args& a) {
   if (!fovea) return cli::report(fovea.error());
   if (fovea->first < 0 || fovea->first > 1 || fovea->second < 0 || fovea->second > 1)
     return cli::report(bad_input("--fovea: X and Y must lie in [0,1], got '" + a.fovea + "'"));
+  for (const std::string* out : {&a.out, &a.reduced_out})
+    if (Status s = check_output_is_not_an_input(*out, {a.in}); !s) return cli::report(s.error());
   auto in = image::load(a.in);
   if (!in) return cli::report(in.error());
   image::FoveateParams p;

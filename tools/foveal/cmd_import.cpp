@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "foveal/core/atomic_file.hpp"
 #include "foveal/import/importers.hpp"
 #include "foveal/tools/cli.hpp"
 
@@ -21,6 +22,10 @@ void add_import(CLI::App& app, int& exit_code) {
   sub->add_option("--out,-o", args->out, "Output native gaze log (written atomically)")->required();
   sub->add_flag("--json", args->json, "Print the summary as JSON");
   sub->callback([args, &exit_code] {
+    if (Status s = check_output_is_not_an_input(args->out, {args->in}); !s) {
+      exit_code = cli::report(s.error());
+      return;
+    }
     auto r = args->from == "sranipal" ? import_sranipal(args->in, args->out) : import_pupil(args->in, args->out);
     if (!r) {
       exit_code = cli::report(r.error());

@@ -53,6 +53,8 @@ void add_profile(CLI::App& app, int& exit_code) {
   create->callback([a, fail] {
     const ProfileStore store = ProfileStore::user();
     if (!valid_profile_name(a->name)) return fail(bad_input("profile name '" + a->name + "': use letters, digits, '-' and '_'"));
+    auto lock = store.lock();  // the exists check and the save as one step
+    if (!lock) return fail(lock.error());
     if (store.exists(a->name) && !a->force) return fail(bad_input("profile '" + a->name + "' exists (use --force)"));
     Profile p;
     if (!a->from.empty()) {
@@ -113,6 +115,8 @@ void add_profile(CLI::App& app, int& exit_code) {
   set->add_flag("--json", a->json, "Print the profile as JSON");
   set->callback([a, fail] {
     const ProfileStore store = ProfileStore::user();
+    auto lock = store.lock();  // load, change, save: a concurrent set must not be lost
+    if (!lock) return fail(lock.error());
     auto p = store.load(a->name);
     if (!p) return fail(p.error());
     if (Status s = p->set(a->key, a->value); !s) return fail(s.error());
@@ -123,14 +127,20 @@ void add_profile(CLI::App& app, int& exit_code) {
   CLI::App* use = prof->add_subcommand("use", "Make a profile the active one");
   use->add_option("name", a->name, "Profile name")->required();
   use->callback([a, fail] {
-    if (Status s = ProfileStore::user().set_active(a->name); !s) return fail(s.error());
+    const ProfileStore store = ProfileStore::user();
+    auto lock = store.lock();
+    if (!lock) return fail(lock.error());
+    if (Status s = store.set_active(a->name); !s) return fail(s.error());
     std::printf("active profile: %s\n", a->name.c_str());
   });
 
   CLI::App* del = prof->add_subcommand("delete", "Delete a profile");
   del->add_option("name", a->name, "Profile name")->required();
   del->callback([a, fail] {
-    if (Status s = ProfileStore::user().remove(a->name); !s) return fail(s.error());
+    const ProfileStore store = ProfileStore::user();
+    auto lock = store.lock();
+    if (!lock) return fail(lock.error());
+    if (Status s = store.remove(a->name); !s) return fail(s.error());
     std::printf("deleted profile %s\n", a->name.c_str());
   });
 
@@ -138,7 +148,9 @@ void add_profile(CLI::App& app, int& exit_code) {
   exp->add_option("name", a->name, "Profile name")->required();
   exp->add_option("file", a->file, "Output file (written atomically)")->required();
   exp->callback([a, fail] {
-    auto p = ProfileStore::user().load(a->name);
+    const ProfileStore store = ProfileStore::user();
+    if (Status s = check_output_is_not_an_input(a->file, {store.path_of(a->name)}); !s) return fail(s.error());
+    auto p = store.load(a->name);
     if (!p) return fail(p.error());
     if (Status s = write_file_atomically(a->file, p->to_json().dump(2) + "\n"); !s) return fail(s.error());
     std::printf("exported %s -> %s\n", a->name.c_str(), a->file.c_str());
@@ -155,6 +167,8 @@ void add_profile(CLI::App& app, int& exit_code) {
       name = a->file.substr(a->file.find_last_of('/') + 1);
       if (auto dot = name.rfind('.'); dot != std::string::npos) name.resize(dot);
     }
+    auto lock = store.lock();
+    if (!lock) return fail(lock.error());
     if (store.exists(name) && !a->force) return fail(bad_input("profile '" + name + "' exists (use --force)"));
     auto p = ProfileStore::load_file(a->file, name);
     if (!p) return fail(p.error());

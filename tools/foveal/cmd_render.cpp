@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "foveal/core/atomic_file.hpp"
 #include "foveal/image/auto_f.hpp"
 #include "foveal/render/egl_context.hpp"
 #include "foveal/render/scene.hpp"
@@ -33,6 +34,7 @@ int run(const Args& a) {
   auto setup = resolve(a.render);
   if (!setup) return cli::report(setup.error());
   if (a.frames < 1) return cli::report(bad_input("--frames must be >= 1"));
+  if (Status s = check_output_is_not_an_input(a.out, {setup->scene, a.render.display}); !s) return cli::report(s.error());
   auto ctx = gl::EglContext::create();
   if (!ctx) return cli::report(ctx.error());
   auto scene = render::load_scene(setup->scene);

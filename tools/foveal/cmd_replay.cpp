@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "foveal/core/atomic_file.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/core/json_file.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
@@ -54,6 +55,9 @@ void add_replay(CLI::App& app, int& exit_code) {
     if (!reader) return fail(reader.error());
     std::optional<cli::FoveaTrace> trace;
     if (!a->trace.empty()) {
+      const std::string profile_file = a->profile.empty() ? "" : ProfileStore::user().path_of(a->profile);
+      if (Status st = check_output_is_not_an_input(a->trace, {a->log, a->config, profile_file, a->display}); !st)
+        return fail(st.error());
       auto t = cli::FoveaTrace::create(a->trace);
       if (!t) return fail(t.error());
       trace.emplace(std::move(t.value()));

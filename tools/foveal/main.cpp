@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
+#include "foveal/core/atomic_file.hpp"
 #include "foveal/tools/cli.hpp"
 
 int main(int argc, char** argv) {
@@ -9,6 +10,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "foveal 0.1.0");
   int exit_code = foveal::cli::kExitOk;
+  foveal::remove_temporary_files_on_signals();  // a killed write leaves no OUT.tmp.* behind
   foveal::cmd::add_import(app, exit_code);
   foveal::cmd::add_log(app, exit_code);
   foveal::cmd::add_synth(app, exit_code);

@@ -106,6 +106,7 @@ Status DaemonApp::setup() {
     auto c = ControlServer::listen(o_.control.empty() ? default_control_socket_path() : o_.control);
     if (!c) return c.error();
     control_.emplace(std::move(c.value()));
+    control_->set_logger([](const std::string& line) { log::warn("control: " + line); });
     log::info("control socket " + control_->path());
   }
   if (o_.shm) {

@@ -58,11 +58,15 @@ void Psvr2Source::problem(std::string message) {
 
 Status Psvr2Source::open() {
   close();
-  if (!ctx_)
-    if (int rc = libusb_init(&ctx_); rc != 0) {
-      ctx_ = nullptr;
-      return usb_error("libusb_init", rc);
-    }
+  // A fresh context at every open: it enumerates the bus anew. A kept one only learns
+  // of devices through hotplug events, which libusb takes from the udev daemon; where
+  // none runs (containers, minimal systems, the VM tests) a headset plugged in after
+  // the first open, or back after an unplug, would never be found.
+  if (ctx_) libusb_exit(ctx_);
+  if (int rc = libusb_init(&ctx_); rc != 0) {
+    ctx_ = nullptr;
+    return usb_error("libusb_init", rc);
+  }
   handle_ = libusb_open_device_with_vid_pid(ctx_, kPsvr2Vendor, kPsvr2Product);
   if (!handle_) return Error{ErrorKind::device, "psvr2: no PlayStation VR2 (054c:0cde) found, or no permission (udev/70-foveal.rules)"};
   libusb_device* dev = libusb_get_device(handle_);

@@ -1,6 +1,7 @@
 #include "foveal/runtime/fovea_shm.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -10,22 +11,68 @@
 #include <new>
 #include <utility>
 
+#include "foveal/core/file_mode.hpp"
+
 namespace foveal {
 
 std::string default_fovea_shm_name() { return "/foveal-fovea-" + std::to_string(::getuid()); }
 
+namespace {
+
+/// Opens the block for writing: a new one, or one a dead foveald of this user left.
+/// Someone else's block (another owner, a wider mode, not a plain file) is refused:
+/// publishing into it would hand them the live gaze, or let them forge it.
+Result<int> open_for_writing(const std::string& name) {
+  const std::string what = "shared memory " + name + " (/dev/shm" + name + ")";
+  int fd = ::shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd >= 0) {
+    ::fchmod(fd, 0600);  // exactly 0600 whatever the umask
+  } else {
+    if (errno != EEXIST) return io_error(what + ": " + std::strerror(errno));
+    fd = ::shm_open(name.c_str(), O_RDWR | O_NOFOLLOW | O_CLOEXEC, 0);
+    if (fd < 0) return io_error(what + ": exists and cannot be opened: " + std::strerror(errno) + "; remove it");
+    struct stat st{};
+    std::string wrong;
+    if (::fstat(fd, &st) != 0) wrong = std::strerror(errno);
+    else if (!S_ISREG(st.st_mode)) wrong = "it is not a plain shared-memory object";
+    else if (st.st_uid != ::geteuid())
+      wrong = "it belongs to uid " + std::to_string(st.st_uid) + ", not to you (uid " + std::to_string(::geteuid()) + ")";
+    else if ((st.st_mode & 07777) != 0600) wrong = "its mode is " + mode_text(st.st_mode) + ", not 0600";
+    if (!wrong.empty()) {
+      ::close(fd);
+      return bad_input(what + ": exists and is not foveald's: " + wrong + "; refusing to publish gaze into it");
+    }
+  }
+  // The writer holds a lock for as long as it runs: a second foveald must not share the
+  // block, while a crashed one's lock is gone with it and its block is reused.
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int e = errno;
+    ::close(fd);
+    if (e == EWOULDBLOCK) return bad_input(what + ": another foveald is publishing there");
+    return io_error(what + ": cannot lock: " + std::strerror(e));
+  }
+  return fd;
+}
+
+}  // namespace
+
 Result<FoveaShm> FoveaShm::create(const std::string& name) {
-  const int fd = ::shm_open(name.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
-  if (fd < 0) return io_error("shared memory " + name + ": " + std::strerror(errno));
+  auto opened = open_for_writing(name);
+  if (!opened) return opened.error();
+  const int fd = *opened;
   if (::ftruncate(fd, sizeof(FoveaShmBlock)) != 0) {
     ::close(fd);
     return io_error("shared memory " + name + ": cannot size: " + std::strerror(errno));
   }
   void* p = ::mmap(nullptr, sizeof(FoveaShmBlock), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-  ::close(fd);
-  if (p == MAP_FAILED) return io_error("shared memory " + name + ": cannot map: " + std::strerror(errno));
+  if (p == MAP_FAILED) {
+    const int e = errno;
+    ::close(fd);
+    return io_error("shared memory " + name + ": cannot map: " + std::strerror(e));
+  }
   FoveaShm s;
   s.name_ = name;
+  s.lock_fd_ = fd;
   s.owner_ = true;
   s.block_ = new (p) FoveaShmBlock{FoveaShmBlock::kMagic, FoveaShmBlock::kVersion,
                                    static_cast<std::uint32_t>(sizeof(FoveaShmBlock)), 0, {}};
@@ -39,6 +86,11 @@ Result<FoveaShm> FoveaShm::open(const std::string& name) {
   if (::fstat(fd, &st) != 0 || static_cast<std::size_t>(st.st_size) < sizeof(FoveaShmBlock)) {
     ::close(fd);
     return bad_input("shared memory " + name + ": too small for a fovea block");
+  }
+  if ((st.st_mode & 077) != 0) {  // foveald makes it 0600: a wider block is someone else's bait
+    ::close(fd);
+    return bad_input("shared memory " + name + ": mode " + mode_text(st.st_mode) +
+                     " lets other users write it; not a block of foveald's");
   }
   void* p = ::mmap(nullptr, sizeof(FoveaShmBlock), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
   ::close(fd);
@@ -55,12 +107,17 @@ Result<FoveaShm> FoveaShm::open(const std::string& name) {
 }
 
 FoveaShm::FoveaShm(FoveaShm&& o) noexcept
-    : name_(std::move(o.name_)), block_(std::exchange(o.block_, nullptr)), owner_(o.owner_), frames_(o.frames_) {}
+    : name_(std::move(o.name_)),
+      block_(std::exchange(o.block_, nullptr)),
+      lock_fd_(std::exchange(o.lock_fd_, -1)),
+      owner_(o.owner_),
+      frames_(o.frames_) {}
 
 FoveaShm::~FoveaShm() {
   if (!block_) return;
   ::munmap(block_, sizeof(FoveaShmBlock));
   if (owner_) ::shm_unlink(name_.c_str());
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // after the unlink: no second writer takes the name in between
 }
 
 void FoveaShm::publish(const FoveaFrame& f, int eye_width, int eye_height) {

@@ -1,10 +1,17 @@
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "foveal/core/atomic_file.hpp"
+#include "foveal/core/clock.hpp"
 #include "foveal/core/json_file.hpp"
 #include "foveal/runtime/profile.hpp"
 
@@ -76,6 +83,29 @@ std::string ProfileStore::active() const {
 Status ProfileStore::set_active(const std::string& name) const {
   if (!exists(name)) return bad_input("profile '" + name + "' does not exist");
   return write_file_atomically(root_ + "/active", name + "\n");
+}
+
+ProfileStore::Lock::~Lock() {
+  if (fd_ >= 0) ::close(fd_);  // closing releases the flock
+}
+
+Result<ProfileStore::Lock> ProfileStore::lock(int timeout_ms) const {
+  std::error_code ec;
+  fs::create_directories(root_, ec);
+  if (ec) return io_error(root_ + ": cannot create: " + ec.message());
+  const std::string path = root_ + "/lock";
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd < 0) return io_error(path + ": cannot open the profile store's lock file: " + std::strerror(errno));
+  Lock held(fd);
+  const TimeNs deadline = monotonic_now_ns() + static_cast<TimeNs>(timeout_ms) * kNsPerMs;
+  while (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    if (errno != EWOULDBLOCK && errno != EINTR) return io_error(path + ": cannot lock: " + std::strerror(errno));
+    if (monotonic_now_ns() >= deadline)
+      return io_error(path + ": another foveal command has held the profile store's lock for " +
+                      std::to_string(timeout_ms / 1000) + " s; try again");
+    sleep_until_ns(monotonic_now_ns() + kNsPerMs);
+  }
+  return held;
 }
 
 }  // namespace foveal

@@ -39,7 +39,11 @@ std::string default_fovea_shm_name();
 /// (a seqlock reader writes nothing, but needs the atomics mapped).
 class FoveaShm {
  public:
+  /// Creates the block with O_EXCL. A block already there is taken over only when it
+  /// is this user's, mode 0600, and no live writer holds it (one a crashed foveald
+  /// left); anything else is refused naming the block and what is wrong with it.
   static Result<FoveaShm> create(const std::string& name);
+  /// Refuses a block that group or others may read or write: not one foveald made.
   static Result<FoveaShm> open(const std::string& name);
   FoveaShm(FoveaShm&&) noexcept;
   FoveaShm& operator=(FoveaShm&&) = delete;
@@ -54,6 +58,7 @@ class FoveaShm {
   FoveaShm() = default;
   std::string name_;
   FoveaShmBlock* block_ = nullptr;
+  int lock_fd_ = -1;  ///< the writer's descriptor, flock'd: marks the block as in use
   bool owner_ = false;
   std::uint64_t frames_ = 0;
 };

@@ -41,7 +41,8 @@ bool valid_profile_name(const std::string& name);
 
 /// Profiles on disk: <config>/foveal/profiles/NAME.json, the active one's name in
 /// <config>/foveal/active; <config> is $XDG_CONFIG_HOME or ~/.config. Every write is
-/// atomic. Not synchronised across processes beyond that.
+/// atomic; a read-modify-write (profile set, create, import, calibrate) holds lock()
+/// so that concurrent writers take turns instead of losing updates.
 class ProfileStore {
  public:
   /// The store under the user's config directory.
@@ -62,6 +63,21 @@ class ProfileStore {
   /// The active profile's name: the one `use` chose, else "default".
   std::string active() const;
   Status set_active(const std::string& name) const;
+
+  /// An exclusive flock on <root>/lock, released when destroyed (or when the process
+  /// dies). Readers need none: every file is replaced atomically.
+  class Lock {
+   public:
+    explicit Lock(int fd) : fd_(fd) {}
+    Lock(Lock&& o) noexcept : fd_(o.fd_) { o.fd_ = -1; }
+    Lock& operator=(Lock&&) = delete;
+    ~Lock();
+
+   private:
+    int fd_;
+  };
+  /// Waits up to `timeout_ms` for the lock; an io error naming the lock file after that.
+  Result<Lock> lock(int timeout_ms = 10000) const;
 
  private:
   std::string root_;
