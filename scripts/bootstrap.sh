@@ -11,6 +11,7 @@ packages=(
   libglfw3-dev libglm-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libdrm-dev libgbm-dev  # direct mode (EGL on GBM, KMS)
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
+  libdraco-dev libmeshoptimizer-dev  # compressed glTF geometry (docs/scenes.md)
   googletest libgtest-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy python3-scipy  # charts; tests against NumPy/SciPy
   qemu-system-x86 linux-image-amd64 busybox-static cpio kmod  # tests/vm (docs/vm-tests.md)

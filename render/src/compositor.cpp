@@ -81,6 +81,19 @@ void set(GLuint p, const char* n, glm::ivec4 v) { glProgramUniform4i(p, loc(p, n
 void set(GLuint p, const char* n, const glm::mat3& m) { glProgramUniformMatrix3fv(p, loc(p, n), 1, GL_FALSE, glm::value_ptr(m)); }
 void set(GLuint p, const char* n, const glm::mat4& m) { glProgramUniformMatrix4fv(p, loc(p, n), 1, GL_FALSE, glm::value_ptr(m)); }
 
+// Per-slot texture coordinates and KHR_texture_transform matrices, and the spec-gloss
+// factors (shaders/gbuffer.frag).
+void set_texture_uvs(GLuint p, const Material& m) {
+  std::array<glm::mat3, Material::slot_count> matrices;
+  std::array<GLint, Material::slot_count> sets;
+  for (std::size_t i = 0; i < m.uv.size(); ++i) matrices[i] = m.uv[i].matrix, sets[i] = m.uv[i].set;
+  glProgramUniformMatrix3fv(p, loc(p, "u_uv_matrix"), Material::slot_count, GL_FALSE, glm::value_ptr(matrices[0]));
+  glProgramUniform1iv(p, loc(p, "u_uv_set"), Material::slot_count, sets.data());
+  set(p, "u_spec_gloss", m.spec_gloss ? 1 : 0);
+  set(p, "u_specular", m.specular);
+  set(p, "u_glossiness", m.glossiness);
+}
+
 // Which pass a GPU timestamp interval belongs to.
 enum class Pass { shadow, gbuffer, mapping, lighting, inverse };
 
@@ -198,6 +211,7 @@ struct Compositor::Impl {
       set(p, "u_double_sided", m.double_sided ? 1 : 0);
       set(p, "u_has_tex", glm::ivec4(m.base_color_tex >= 0, m.metal_rough_tex >= 0, m.normal_tex >= 0, m.occlusion_tex >= 0));
       set(p, "u_has_emissive_tex", m.emissive_tex >= 0 ? 1 : 0);
+      set_texture_uvs(p, m);
       const int texs[] = {m.base_color_tex, m.metal_rough_tex, m.normal_tex, m.occlusion_tex, m.emissive_tex};
       for (GLuint unit = 0; unit < 5; ++unit)
         glBindTextureUnit(unit, texs[unit] >= 0 ? scene.textures[static_cast<std::size_t>(texs[unit])].id() : 0);

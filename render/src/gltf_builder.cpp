@@ -1,5 +1,6 @@
 // A checked tinygltf model to the renderer's triangles: node hierarchy, indexed and
-// non-indexed triangle lists, metal-roughness materials, KHR_materials_unlit. Every
+// non-indexed triangle lists, strips and fans, vertex colours and two UV sets; materials
+// in gltf_materials.cpp. Every
 // accessor's range is checked against its buffer view and buffer (64-bit, no wrap)
 // before its output is allocated.
 #include <algorithm>
@@ -12,6 +13,8 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gltf_internal.hpp"
+#include "gltf_materials.hpp"
+#include "gltf_topology.hpp"
 
 namespace foveal::render::detail {
 
@@ -216,36 +219,24 @@ class Builder {
 
   Status materials() {
     for (std::size_t mi = 0; mi < m_.materials.size(); ++mi) {
-      const tinygltf::Material& gm = m_.materials[mi];
       const std::string path = "materials[" + std::to_string(mi) + "]";
-      Material mat;
-      const auto& pbr = gm.pbrMetallicRoughness;
-      for (int i = 0; i < 4 && i < static_cast<int>(pbr.baseColorFactor.size()); ++i)
-        mat.base_color[i] = static_cast<float>(pbr.baseColorFactor[static_cast<std::size_t>(i)]);
-      mat.metallic = static_cast<float>(pbr.metallicFactor);
-      mat.roughness = static_cast<float>(pbr.roughnessFactor);
-      for (int i = 0; i < 3 && i < static_cast<int>(gm.emissiveFactor.size()); ++i)
-        mat.emissive[i] = static_cast<float>(gm.emissiveFactor[static_cast<std::size_t>(i)]);
-      mat.normal_scale = static_cast<float>(gm.normalTexture.scale);
-      mat.occlusion_strength = static_cast<float>(gm.occlusionTexture.strength);
-      mat.double_sided = gm.doubleSided;
-      if (gm.alphaMode == "MASK") mat.alpha_cutoff = static_cast<float>(gm.alphaCutoff);
-      mat.unlit = gm.extensions.count("KHR_materials_unlit") > 0;
-      auto tex = [&](int index, bool srgb, int& out, const char* which) -> Status {
-        auto r = texture(index, srgb, path + "." + which);
-        if (!r) return r.error();
-        out = *r;
-        return {};
-      };
-      if (Status s = tex(pbr.baseColorTexture.index, true, mat.base_color_tex, "pbrMetallicRoughness.baseColorTexture"); !s) return s;
-      if (Status s = tex(pbr.metallicRoughnessTexture.index, false, mat.metal_rough_tex, "pbrMetallicRoughness.metallicRoughnessTexture"); !s)
-        return s;
-      if (Status s = tex(gm.normalTexture.index, false, mat.normal_tex, "normalTexture"); !s) return s;
-      if (Status s = tex(gm.occlusionTexture.index, false, mat.occlusion_tex, "occlusionTexture"); !s) return s;
-      if (Status s = tex(gm.emissiveTexture.index, true, mat.emissive_tex, "emissiveTexture"); !s) return s;
-      out_.materials.push_back(mat);
+      const TextureUploader upload = [&](int index, bool srgb) { return texture(index, srgb, path); };
+      auto mat = read_material(m_.materials[mi], upload, file_ + ": " + path, out_.warnings);
+      if (!mat) return mat.error();
+      out_.materials.push_back(*mat);
     }
     return {};
+  }
+
+  void warn_once(const std::string& w) {
+    if (std::find(out_.warnings.begin(), out_.warnings.end(), w) == out_.warnings.end()) out_.warnings.push_back(w);
+  }
+
+  static bool reads_uv1(const Material& m) {
+    const int tex[] = {m.base_color_tex, m.metal_rough_tex, m.normal_tex, m.occlusion_tex, m.emissive_tex};
+    for (std::size_t i = 0; i < m.uv.size(); ++i)
+      if (tex[i] >= 0 && m.uv[i].set == 1) return true;
+    return false;
   }
 
   // Hands every primitive of mesh `index` to the sink once; returns the sink's indices.
@@ -256,10 +247,11 @@ class Builder {
     for (std::size_t pi = 0; pi < gm.primitives.size(); ++pi) {
       const tinygltf::Primitive& gp = gm.primitives[pi];
       const std::string where = "meshes[" + std::to_string(index) + "].primitives[" + std::to_string(pi) + "]";
-      if (gp.mode >= TINYGLTF_MODE_POINTS && gp.mode <= TINYGLTF_MODE_LINE_STRIP) continue;  // points and lines are not drawn
-      if (gp.mode != TINYGLTF_MODE_TRIANGLES)
-        return Error{ErrorKind::unsupported, file_ + ": " + where + ".mode: " + std::to_string(gp.mode) +
-                                                 " (strip or fan) is not supported; foveal draws triangle lists (4)"};
+      const int mode = gp.mode == -1 ? TINYGLTF_MODE_TRIANGLES : gp.mode;
+      if (!is_triangle_mode(mode)) {
+        warn_once(file_ + ": points and lines are not drawn");
+        continue;
+      }
       if (gp.material >= static_cast<int>(out_.materials.size()))
         return fail(where + ".material", std::to_string(gp.material) + " is out of range (" +
                                              std::to_string(out_.materials.size()) + " materials)");
@@ -274,7 +266,7 @@ class Builder {
       const std::size_t n = pos->size() / 3;
       if (n > UINT32_MAX) return fail(where + ".attributes.POSITION", "more than 2^32 vertices");
       if (Status s = budget_.take(n * sizeof(GltfVertex), file_ + ": " + where); !s) return s.error();
-      std::vector<GltfVertex> v(n, GltfVertex{{0, 0, 0}, {0, 0, 0}, {0, 0}, {1, 0, 0, 1}});
+      std::vector<GltfVertex> v(n, GltfVertex{{0, 0, 0}, {0, 0, 0}, {0, 0}, {1, 0, 0, 1}, {0, 0}, {1, 1, 1, 1}});
       for (std::size_t i = 0; i < n; ++i) std::memcpy(v[i].position, &(*pos)[i * 3], 12);
       pos = std::vector<float>();
       std::vector<std::uint32_t> idx;
@@ -291,6 +283,7 @@ class Builder {
         idx.resize(n);
         for (std::size_t i = 0; i < n; ++i) idx[i] = static_cast<std::uint32_t>(i);
       }
+      if (mode != TINYGLTF_MODE_TRIANGLES) idx = triangle_list(mode, idx);
       if (idx.size() % 3 != 0)
         return fail(where + (gp.indices >= 0 ? ".indices" : ".attributes.POSITION"),
                     "count " + std::to_string(idx.size()) + " is not a multiple of 3 (a triangle list)");
@@ -314,6 +307,20 @@ class Builder {
       if (!has_uv) return has_uv.error();
       auto has_t = copy("TANGENT", 4, {kFloat, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT}, &GltfVertex::tangent);
       if (!has_t) return has_t.error();
+      auto has_uv1 = copy("TEXCOORD_1", 2, kQuantized, &GltfVertex::uv1);
+      if (!has_uv1) return has_uv1.error();
+      const auto color_it = gp.attributes.find("COLOR_0");
+      const bool color_vec3 = color_it != gp.attributes.end() && color_it->second >= 0 &&
+                              static_cast<std::size_t>(color_it->second) < m_.accessors.size() &&
+                              m_.accessors[static_cast<std::size_t>(color_it->second)].type == TINYGLTF_TYPE_VEC3;
+      auto has_color = copy("COLOR_0", color_vec3 ? 3 : 4,  // alpha stays 1 for vec3
+                            {kFloat, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, &GltfVertex::color);
+      if (!has_color) return has_color.error();
+      if (!*has_uv1) {
+        if (gp.material >= 0 && reads_uv1(out_.materials[static_cast<std::size_t>(gp.material)]))
+          warn_once(file_ + ": " + where + ": a texture reads TEXCOORD_1, which the primitive lacks; TEXCOORD_0 is used");
+        for (GltfVertex& x : v) std::memcpy(x.uv1, x.uv, sizeof x.uv);
+      }
       if (!*has_n) generate_normals(v, idx);
       if (!*has_t) generate_tangents(v, idx);
       const int p = sink_.add_primitive(v, idx, gp.material >= 0 ? gp.material : -1);

@@ -12,13 +12,14 @@
 
 #include "foveal/core/json_file.hpp"
 #include "foveal/core/read_file.hpp"
+#include "gltf_decode.hpp"
+#include "gltf_extensions.hpp"
 #include "gltf_internal.hpp"
+#include "gltf_json_fixups.hpp"
 
 namespace foveal::render {
 
 namespace {
-
-const std::set<std::string> kSupportedRequired = {"KHR_materials_unlit"};
 
 // What tinygltf's callbacks need; the first error they meet is kept here, so the
 // message is ours rather than tinygltf's.
@@ -119,12 +120,19 @@ Status decode_image(tinygltf::Image& image, int index, const unsigned char* byte
   return {};
 }
 
+bool is_ktx2(const unsigned char* bytes, std::size_t size) {
+  static const unsigned char kKtx2[] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB};
+  return size >= 8 && std::memcmp(bytes, kKtx2, 8) == 0;
+}
+
 // tinygltf's image callback. Images in a buffer view are left for later: tinygltf 2.7
 // passes &buffer.data[view.byteOffset] without checking the view against the buffer.
+// KTX2 images (KHR_texture_basisu) stay undecoded: a texture with a PNG/JPEG fallback
+// source uses that, one without is refused when the scene is built.
 bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                 const unsigned char* bytes, int size, void* user) {
   auto* ctx = static_cast<LoadContext*>(user);
-  if (image->bufferView >= 0) return true;
+  if (image->bufferView >= 0 || is_ktx2(bytes, static_cast<std::size_t>(size < 0 ? 0 : size))) return true;
   if (Status s = decode_image(*image, index, bytes, static_cast<std::size_t>(size < 0 ? 0 : size), *ctx); !s) {
     ctx->fail(s.error().message);
     *err += s.error().message;
@@ -143,6 +151,7 @@ Status decode_buffer_view_images(tinygltf::Model& model, LoadContext& ctx) {
     if (__builtin_add_overflow(v.byteOffset, v.byteLength, &end) || end > b.data.size())
       return bad_input(ctx.file + ": bufferViews[" + std::to_string(image.bufferView) + "] (of images[" + std::to_string(i) +
                        "]) is past the end of its buffer");
+    if (is_ktx2(b.data.data() + v.byteOffset, v.byteLength)) continue;
     if (Status s = decode_image(image, static_cast<int>(i), b.data.data() + v.byteOffset, v.byteLength, ctx); !s) return s;
   }
   return {};
@@ -177,6 +186,12 @@ Result<GltfScene> load_gltf_bytes(std::string_view bytes, const std::string& nam
   auto root = parse_json(json_text, name, {limits.max_json_bytes, kMaxJsonDepth});
   if (!root) return root.error();
   if (Status s = detail::check_gltf_json(*root, name); !s) return s.error();
+  // Draco and meshopt files need placeholders tinygltf accepts (gltf_json_fixups.hpp).
+  std::string mended;
+  if (detail::mend_for_tinygltf(*root, binary)) {
+    mended = binary ? detail::glb_with_json(bytes, json_text, root->dump()) : root->dump();
+    bytes = mended;
+  }
   *root = nlohmann::json();  // free it before tinygltf builds its own
 
   detail::DecodeBudget budget(limits.max_decoded_bytes);
@@ -202,12 +217,18 @@ Result<GltfScene> load_gltf_bytes(std::string_view bytes, const std::string& nam
     while (!err.empty() && err.back() == '\n') err.pop_back();
     return bad_input(name + ": cannot load glTF: " + (err.empty() ? "unknown error" : err));
   }
-  for (const std::string& ext : model.extensionsRequired)
-    if (!kSupportedRequired.count(ext))
-      return Error{ErrorKind::unsupported,
-                   name + ": requires extension " + ext + ", which foveal does not support (supported: KHR_materials_unlit)"};
+  std::vector<std::string> warnings;
+  for (std::size_t a = 0, b; a < warn.size(); a = b + 1) {  // tinygltf's, one per line
+    b = warn.find('\n', a);
+    if (b == std::string::npos) b = warn.size();
+    if (b > a) warnings.push_back(name + ": " + warn.substr(a, b - a));
+  }
+  if (Status s = detail::check_gltf_extensions(model, name, warnings); !s) return s.error();
   if (Status s = decode_buffer_view_images(model, ctx); !s) return s.error();
-  return detail::build_gltf_scene(model, name, limits, budget, sink);
+  if (Status s = detail::decode_gltf_model(model, name, budget); !s) return s.error();
+  auto scene = detail::build_gltf_scene(model, name, limits, budget, sink);
+  if (scene) scene->warnings.insert(scene->warnings.begin(), warnings.begin(), warnings.end());
+  return scene;
 }
 
 Result<GltfScene> load_gltf(const std::string& path, const GltfLimits& limits, GltfSink& sink) {

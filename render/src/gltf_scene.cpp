@@ -54,6 +54,7 @@ Result<Scene> load_gltf_scene(const std::string& path) {
   scene.bounds = loaded->bounds;
   scene.view = std::move(loaded->view);
   scene.triangles = loaded->triangles;
+  scene.warnings = std::move(loaded->warnings);
   return scene;
 }
 

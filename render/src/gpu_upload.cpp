@@ -24,6 +24,8 @@ Primitive upload_primitive(const std::vector<GltfVertex>& vertices, const std::v
   attrib(1, 3, offsetof(GltfVertex, normal));
   attrib(2, 2, offsetof(GltfVertex, uv));
   attrib(3, 4, offsetof(GltfVertex, tangent));
+  attrib(4, 2, offsetof(GltfVertex, uv1));
+  attrib(5, 4, offsetof(GltfVertex, color));
   p.index_count = static_cast<int>(indices.size());
   p.material = material;
   return p;

@@ -3,10 +3,14 @@
 
 #include <signal.h>
 #include <spawn.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
@@ -329,6 +333,57 @@ TEST_F(Foveald, SlowFramesNeverMakeItDeaf) {
   for (const auto& e : std::filesystem::directory_iterator(dir_.path("out")))
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << "left behind: " << e.path();
   EXPECT_FALSE(std::filesystem::exists(socket_));
+}
+
+// 31 clients that flood requests and never read their replies: the control thread drops
+// or starves them, a 32nd client's status still answers at once, and the render thread
+// goes on at its pace (frames counted before and during the flood, in the same run).
+TEST_F(Foveald, NonReadingClientsStallNeitherStatusNorFrames) {
+  start({"--loop", "--end", "5", "--no-shm", "-q", "--out", dir_.path("out"), "--scene", "pattern:checker", "--size",
+         "64x36", "--fps", "30"});
+  const auto frames_now = [this] { return ctl({{"cmd", "status"}})["render"]["frames"].get<int>(); };
+  sleep_until_ns(monotonic_now_ns() + 300 * kNsPerMs);
+  const int f0 = frames_now();
+  sleep_until_ns(monotonic_now_ns() + 1000 * kNsPerMs);
+  const int quiet = frames_now() - f0;
+
+  std::vector<int> flooders;
+  const std::string request = "{\"cmd\":\"status\"}\n";
+  const auto connect_one = [this] {
+    const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+    sockaddr_un a{};
+    a.sun_family = AF_UNIX;
+    std::snprintf(a.sun_path, sizeof a.sun_path, "%s", socket_.c_str());
+    EXPECT_EQ(::connect(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a), 0);
+    return fd;
+  };
+  for (int i = 0; i < 31; ++i) flooders.push_back(connect_one());
+  const int f1 = frames_now();
+  std::vector<double> ms;
+  const TimeNs until = monotonic_now_ns() + 1000 * kNsPerMs;
+  while (monotonic_now_ns() < until) {
+    for (int& fd : flooders) {
+      for (int k = 0; k < 8; ++k)
+        if (::send(fd, request.data(), request.size(), MSG_NOSIGNAL | MSG_DONTWAIT) < 0 && errno != EAGAIN) {
+          ::close(fd);  // dropped by the server: a new flooder takes its place
+          fd = connect_one();
+          break;
+        }
+    }
+    const TimeNs t0 = monotonic_now_ns();
+    auto r = control_request(socket_, {{"cmd", "status"}}, 2000);
+    ms.push_back(static_cast<double>(monotonic_now_ns() - t0) / 1e6);
+    EXPECT_TRUE(r) << r.error().message;
+  }
+  const int flooded = frames_now() - f1;
+  for (int fd : flooders) ::close(fd);
+  std::sort(ms.begin(), ms.end());
+  ASSERT_FALSE(ms.empty());
+  EXPECT_LT(ms[ms.size() * 99 / 100], 100.0) << "status p99 under the flood (" << ms.size() << " requests)";
+  EXPECT_GT(quiet, 15) << "about 30 frames a second without the flood";
+  EXPECT_GE(flooded, quiet / 2) << "frames during the flood: " << flooded << ", before: " << quiet;
+  ASSERT_EQ(::kill(pid_, SIGTERM), 0);
+  EXPECT_EQ(wait_exit(1000), 0);
 }
 
 }  // namespace

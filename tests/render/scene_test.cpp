@@ -88,12 +88,12 @@ TEST(Scene, UnsupportedRequiredExtensionIsRefused) {
   ASSERT_TRUE(test::gl_ready());
   test::TempDir d;
   const std::string path = edited_bottle(d, [](std::string& t) {
-    t.replace(t.find('{'), 1, "{ \"extensionsUsed\": [\"KHR_draco_mesh_compression\"], \"extensionsRequired\": [\"KHR_draco_mesh_compression\"],");
+    t.replace(t.find('{'), 1, "{ \"extensionsUsed\": [\"KHR_texture_basisu\"], \"extensionsRequired\": [\"KHR_texture_basisu\"],");
   });
   auto s = render::load_scene(path);
   ASSERT_FALSE(s);
   EXPECT_EQ(s.error().kind, ErrorKind::unsupported);
-  EXPECT_NE(s.error().message.find("KHR_draco_mesh_compression"), std::string::npos) << s.error().message;
+  EXPECT_NE(s.error().message.find("KHR_texture_basisu"), std::string::npos) << s.error().message;
   EXPECT_NE(s.error().message.find("WaterBottle.gltf"), std::string::npos);
 }
 

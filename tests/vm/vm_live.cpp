@@ -73,7 +73,8 @@ int run_live(const std::string& kind, const std::string& udc_file, const std::st
   };
   auto dev = live_device(kind);
   if (!dev) return fail(dev.error().message);
-  const std::string sock = out + ".sock";
+  // In a directory of its own: foveald refuses a socket directory others may enter (/tmp).
+  const std::string sock = out + "-run/control.sock";
   foveald.insert(foveald.end(), {"--out", out, "--control", sock});
   std::string cmdline;
   for (const std::string& a : foveald) cmdline += a + " ";

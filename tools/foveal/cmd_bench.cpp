@@ -258,6 +258,7 @@ int run(const Args& a) {
   for (const std::string& spec : scenes) {
     auto scene = render::load_scene(spec);
     if (!scene) return fail(scene.error());
+    for (const std::string& w : scene->warnings) cli::warn(w);
     const std::string name = std::filesystem::path(spec).stem().string();
     auto full = bench.measure(*scene, uniform_frame(Method::full, 1, a.fx, a.fy, *fovea), a.frames);
     if (!full) return fail(full.error());

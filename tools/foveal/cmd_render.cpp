@@ -39,6 +39,7 @@ int run(const Args& a) {
   if (!ctx) return cli::report(ctx.error());
   auto scene = render::load_scene(setup->scene);
   if (!scene) return cli::report(scene.error());
+  for (const std::string& w : scene->warnings) cli::warn(w);
   auto comp = render::Compositor::create(setup->compositor);
   if (!comp) return cli::report(comp.error());
 
@@ -93,6 +94,7 @@ int run(const Args& a) {
       {"scene", setup->scene},
       {"triangles", scene->triangles},
       {"view", scene->view.source},
+      {"warnings", scene->warnings},
       {"method", render::method_name(setup->frame.method)},
       {"size", {comp->width(), comp->height()}},
       {"eyes", eyes},

@@ -78,6 +78,11 @@ Status DaemonApp::setup_source() {
   // A file must be readable now; a device may come later (the gaze loop waits for it).
   if (!source_.live)
     if (Status s = source_.source->open(); !s) return s;
+  // The camera follows the head when the source knows its pose (docs/daemon.md, "Head pose").
+  const bool has_pose = !source_.live && source_.source->info().head_pose;
+  if (o_.head == "recorded" && !has_pose)
+    return bad_input("--head recorded: " + source_text_ + " carries no head pose (a native log v2 with head columns has one)");
+  head_recorded_ = o_.head.empty() ? has_pose : o_.head == "recorded";
   return {};
 }
 
@@ -181,7 +186,9 @@ int DaemonApp::render_loop() {
     if (!loop_->latest().load(f)) f = FoveaFrame{};
     RenderSettings rs;
     (void)settings_.load(rs);
-    if (Status s = renderer_->render(f, rs, model_); !s) return cli::report(s.error(), "foveald");
+    // The head where it was when the frame's gaze sample was taken.
+    const PoseAt head = head_recorded_ ? head_track_.pose_at(f.t_ns) : PoseAt{};
+    if (Status s = renderer_->render(f, rs, model_, head); !s) return cli::report(s.error(), "foveald");
     const std::uint64_t frames = renderer_->frames();
     if (frames == kWarmupFrames) warm_rss_mb_ = current_rss_mb(), warm_fds_ = open_fds();
     if ((o_.frames > 0 && frames >= o_.frames) || renderer_->window_closed()) break;
@@ -216,6 +223,7 @@ int DaemonApp::run() {
       *source_.source, make_mapper(),
       [this, eye_w, eye_h, paced](const GazeSample& s, const FoveaFrame& f) {
         if (paced) pacing_.add(monotonic_now_ns() - s.t_ns);
+        if (head_recorded_ && s.head.valid) head_track_.push({s.t_ns, s.head.pose});
         trace_->write(f, markers_.take_until(f.t_ns));
         if (shm_) shm_->publish(f, eye_w, eye_h);
       },

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "foveal/core/display_model.hpp"
+#include "foveal/core/pose_track.hpp"
 #include "foveal/drivers/probe.hpp"
 #include "foveal/runtime/control_server.hpp"
 #include "foveal/runtime/fovea_shm.hpp"
@@ -76,6 +77,8 @@ class DaemonApp {
   std::string source_text_;             // the spec, for status
   probe::OpenedSource source_;
   std::unique_ptr<GazeLoop> loop_;
+  PoseTrack head_track_;      // gaze thread pushes the source's head poses, the renderer samples
+  bool head_recorded_ = false;  // the camera follows head_track_ (--head recorded)
   std::optional<cli::FoveaTrace> trace_;
   cli::MarkerQueue markers_;  // `ctl mark`: control thread in, gaze thread out into the trace
   std::optional<ControlServer> control_;  // control thread after setup

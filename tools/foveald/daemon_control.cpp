@@ -198,6 +198,9 @@ nlohmann::json DaemonApp::summary_json() const {
   j.erase("ok");
   j["display_model"] = model_.name;
   j["trace"] = o_.out + "/trace.csv";
+  j["head"] = {{"mode", head_recorded_ ? "recorded" : "static"},
+               {"poses", head_track_.accepted()},
+               {"poses_dropped", head_track_.dropped()}};
   j["peak_rss_mb"] = peak_rss_mb();
   // The driver's own counters; the gaze thread has stopped, so reading them is safe.
   if (loop_ && loop_->finished() && source_.counters) j["source"]["counters"] = source_.counters();

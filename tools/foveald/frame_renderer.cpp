@@ -49,15 +49,18 @@ Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions
   r->csv_->write(
       "frame,t_ns,generation,fovea_left_x,fovea_left_y,fovea_right_x,fovea_right_y,sigma_left,sigma_right,"
       "buffer_left_w,buffer_left_h,buffer_right_w,buffer_right_h,f_x,f_y,shadow_ms,gbuffer_ms,mapping_ms,lighting_ms,"
-      "inverse_ms,gpu_ms,cpu_ms\n");
+      "inverse_ms,gpu_ms,cpu_ms,head_x,head_y,head_z,head_qw,head_qx,head_qy,head_qz\n");
   return r;
 }
 
 FrameRenderer::~FrameRenderer() = default;
 
-Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, const DisplayModel& model) {
+Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, const DisplayModel& model,
+                             const PoseAt& head) {
   const Eye dominant = s.dominant_eye == 0 ? Eye::left : Eye::right;
   render::FrameParams p = render::efr_frame(method_, dominant, s.sigma_d, s.sigma_nd, s.f_x, s.f_y);
+  p.ipd_mm = s.ipd_mm;
+  if (head.valid) p.head = head.relative;
   for (Eye e : kEyes) {
     // The gaze pipeline decides what a lost eye shows (docs/filtering.md); the centre
     // stands in only before the first sample.
@@ -83,12 +86,18 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
   last_generation_ = s.generation;
 
   const auto bl = comp_->buffer_size(Eye::left), br = comp_->buffer_size(Eye::right);
-  char line[512];
+  // The head pose this frame used, in the tracking frame as the log records it (the
+  // identity for a static camera); %.9g keeps a float's digits, so the columns equal the log's.
+  const Pose& hp = head.pose;
+  char line[768];
   std::snprintf(line, sizeof line,
-                "%" PRIu64 ",%" PRId64 ",%u,%.5f,%.5f,%.5f,%.5f,%.3f,%.3f,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
+                "%" PRIu64 ",%" PRId64 ",%u,%.5f,%.5f,%.5f,%.5f,%.3f,%.3f,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,"
+                "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
                 frames_, static_cast<std::int64_t>(fovea.t_ns), s.generation, p.eyes[0].fovea_x, p.eyes[0].fovea_y,
                 p.eyes[1].fovea_x, p.eyes[1].fovea_y, p.eyes[0].sigma, p.eyes[1].sigma, bl[0], bl[1], br[0], br[1], fx, fy,
-                t->shadow, t->gbuffer, t->mapping, t->lighting, t->inverse, t->gpu_total, t->cpu);
+                t->shadow, t->gbuffer, t->mapping, t->lighting, t->inverse, t->gpu_total, t->cpu, double(hp.position_m.x),
+                double(hp.position_m.y), double(hp.position_m.z), double(hp.orientation.w), double(hp.orientation.x),
+                double(hp.orientation.y), double(hp.orientation.z));
   if (Status st = output_->present(comp_->output_framebuffer(), comp_->width(), comp_->height()); !st) return st;
   {
     // A row once the frame is on its way to the screen, readable in the temporary file

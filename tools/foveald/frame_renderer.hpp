@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "foveal/core/atomic_file.hpp"
+#include "foveal/core/pose_source.hpp"
 #include "foveal/render/compositor.hpp"
 #include "foveal/render/output.hpp"
 #include "foveal/render/scene.hpp"
@@ -40,7 +41,9 @@ class FrameRenderer {
 
   /// Renders one frame for `fovea` (viewport pixels of `model`; the gaze pipeline has
   /// already decided what a lost eye shows) with `settings`. Render thread.
-  Status render(const FoveaFrame& fovea, const RenderSettings& settings, const DisplayModel& model);
+  /// `head`: the head pose at the fovea's time (invalid: the scene's own view); the
+  /// camera moves by its pose relative to the first one, and frames.csv records it.
+  Status render(const FoveaFrame& fovea, const RenderSettings& settings, const DisplayModel& model, const PoseAt& head);
   /// Saves the last frame (if `save_last` and not yet saved: a 2880x1600 PNG takes about
   /// a second on llvmpipe, too long after SIGTERM), commits frames.csv. Render thread.
   Status finish(bool save_last);

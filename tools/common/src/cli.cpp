@@ -14,6 +14,10 @@ int report(const Error& e, const char* program) {
   return e.kind == ErrorKind::internal ? kExitFailure : kExitBadInput;
 }
 
+void warn(const std::string& message, const char* program) {
+  std::fprintf(stderr, "%s: warning: %s\n", program, message.c_str());
+}
+
 void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << std::endl; }
 
 Progress::Progress(std::string label, std::uint64_t total, bool enabled)

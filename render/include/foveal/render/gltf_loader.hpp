@@ -31,6 +31,8 @@ struct GltfVertex {
   float normal[3];
   float uv[2];
   float tangent[4];
+  float uv1[2];    ///< TEXCOORD_1 (TEXCOORD_0 when absent)
+  float color[4];  ///< COLOR_0, white when absent
 };
 
 /// One image in one colour space, ready to upload: width × height RGBA8.
@@ -57,6 +59,7 @@ struct GltfScene {
   Bounds bounds;
   ViewPose view;  ///< the file's first camera, else source "framing"
   std::size_t triangles = 0;
+  std::vector<std::string> warnings;  ///< what the file uses that is ignored, once each ("FILE: ...")
 };
 
 /// Loads a .gltf or .glb file (told apart by the "glTF" magic).

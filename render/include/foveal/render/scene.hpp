@@ -16,7 +16,8 @@
 
 namespace foveal::render {
 
-/// One indexed triangle list with interleaved vertices (position, normal, uv, tangent).
+/// One indexed triangle list with interleaved vertices (position, normal, uv, tangent,
+/// second uv, colour: GltfVertex).
 struct Primitive {
   gl::VertexArray vao;
   gl::Buffer vertices, indices;
@@ -43,6 +44,7 @@ struct Scene {
   std::size_t triangles = 0;
   std::size_t texture_bytes = 0;  ///< GPU memory of the textures, mip levels included
   std::optional<Pattern> pattern;
+  std::vector<std::string> warnings;  ///< what the file uses that is ignored, once each
 
   bool is_pattern() const { return pattern.has_value(); }
 };

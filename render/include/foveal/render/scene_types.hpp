@@ -1,9 +1,11 @@
 #pragma once
 // The GL-free parts of a scene: bounds, materials, draw items and the view pose, shared
 // by the glTF loader (CPU only, gltf_loader.hpp) and the compositor's Scene.
+#include <array>
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -16,8 +18,19 @@ struct Bounds {
   float radius() const { return 0.5f * glm::length(max - min); }  ///< half the diagonal
 };
 
+/// Which texture coordinates a material texture reads, and how they are transformed
+/// (KHR_texture_transform: uv' = matrix * (uv, 1)).
+struct TextureUv {
+  glm::mat3 matrix{1.0f};
+  int set = 0;  ///< 0: TEXCOORD_0, 1: TEXCOORD_1
+};
+
 /// glTF 2.0 metal-roughness material. Texture indices point into Scene::textures (-1: none).
+/// A KHR_materials_pbrSpecularGlossiness material keeps its diffuse factor and texture in
+/// base_color, its specular-glossiness texture in metal_rough_tex, and is converted to
+/// metal-roughness per fragment (docs/scenes.md).
 struct Material {
+  enum Slot { base_color_slot, metal_rough_slot, normal_slot, occlusion_slot, emissive_slot, slot_count };
   glm::vec4 base_color{1.0f};
   float metallic = 1.0f, roughness = 1.0f;
   glm::vec3 emissive{0.0f};
@@ -26,6 +39,10 @@ struct Material {
   bool unlit = false;          ///< KHR_materials_unlit
   bool double_sided = false;
   int base_color_tex = -1, metal_rough_tex = -1, normal_tex = -1, occlusion_tex = -1, emissive_tex = -1;
+  std::array<TextureUv, slot_count> uv{};  ///< per texture, indexed by Slot
+  bool spec_gloss = false;                 ///< KHR_materials_pbrSpecularGlossiness
+  glm::vec3 specular{1.0f};                ///< its specularFactor
+  float glossiness = 1.0f;                 ///< its glossinessFactor
 };
 
 struct DrawItem {

@@ -16,6 +16,9 @@ constexpr int kExitBadInput = 2;  ///< bad input, bad arguments, unreadable or u
 /// Prints "foveal: <message>" to stderr and returns the exit code for the error.
 int report(const Error& e, const char* program = "foveal");
 
+/// Prints "foveal: warning: <message>" to stderr (something ignored, the run goes on).
+void warn(const std::string& message, const char* program = "foveal");
+
 /// Prints `j` indented to stdout.
 void print_json(const nlohmann::json& j);
 
