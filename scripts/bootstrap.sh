@@ -13,7 +13,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
   libdraco-dev libmeshoptimizer-dev  # compressed glTF geometry (docs/scenes.md)
   googletest libgtest-dev libbenchmark-dev
-  python3 python3-matplotlib
+  python3 python3-matplotlib python3-numpy python3-scipy  # charts; tests against NumPy/SciPy
   qemu-system-x86 linux-image-amd64 busybox-static cpio kmod  # tests/vm (docs/vm-tests.md)
   xvfb xauth xdotool  # the GLFW window paths, tested on a virtual X server
   clang libclang-rt-14-dev  # libFuzzer targets (scripts/test.sh)

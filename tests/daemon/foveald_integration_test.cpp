@@ -161,6 +161,55 @@ TEST_F(Foveald, ABrokenProfileOnSighupKeepsTheLastGoodOne) {
   EXPECT_EQ(wait_exit(1000), 0);
 }
 
+TEST_F(Foveald, MarkersReachTheTraceInTimeOrder) {
+  start({"--loop", "--end", "5", "--speed", "1", "-q", "--no-shm", "--no-render", "--out", dir_.path("out")});
+  sleep_until_ns(monotonic_now_ns() + 200 * kNsPerMs);
+  auto first = ctl({{"cmd", "mark"}, {"text", "trial 1, start"}});
+  ASSERT_EQ(first["ok"], true) << first.dump();
+  EXPECT_EQ(first["markers"], 1);
+  sleep_until_ns(monotonic_now_ns() + 200 * kNsPerMs);
+  // Through the command line, words joined by spaces.
+  const auto cli = test::run("XDG_RUNTIME_DIR=" + dir_.path("run") + " " + test::bin("foveal") + " ctl mark trial 1 end");
+  EXPECT_EQ(cli.exit_code, 0) << cli.err;
+  EXPECT_NE(cli.out.find("\"markers\": 2"), std::string::npos) << cli.out;
+  // Bad texts are refused and change nothing.
+  EXPECT_EQ(ctl({{"cmd", "mark"}, {"text", "two\nlines"}})["ok"], false);
+  EXPECT_EQ(ctl({{"cmd", "mark"}, {"text", ""}})["ok"], false);
+  EXPECT_EQ(ctl({{"cmd", "mark"}, {"text", std::string(300, 'x')}})["ok"], false);
+  EXPECT_EQ(ctl({{"cmd", "mark"}})["ok"], false);
+  EXPECT_EQ(ctl({{"cmd", "status"}})["markers"], 2);
+  auto last = ctl({{"cmd", "mark"}, {"text", "just before the end"}});
+  ASSERT_EQ(::kill(pid_, SIGTERM), 0);
+  ASSERT_EQ(wait_exit(2000), 0);
+
+  // Each marker is its own row, between the samples around its time; the rest of the
+  // trace is sample rows as before.
+  std::istringstream in(test::read_file(dir_.path("out/trace.csv")));
+  std::string line;
+  std::getline(in, line);  // the column row
+  std::vector<std::string> marks;
+  std::vector<long long> mark_t;
+  long long prev_t = -1, samples = 0;
+  while (std::getline(in, line)) {
+    const bool mark = line.rfind("#mark,", 0) == 0;
+    const std::string rest = mark ? line.substr(6) : line;
+    const long long t = std::stoll(rest.substr(0, rest.find(',')));
+    EXPECT_GE(t, prev_t) << line;
+    prev_t = t;
+    if (mark) {
+      marks.push_back(rest.substr(rest.find(',') + 1));
+      mark_t.push_back(t);
+    } else {
+      ++samples;
+    }
+  }
+  EXPECT_GT(samples, 20);
+  EXPECT_EQ(marks, (std::vector<std::string>{"trial 1, start", "trial 1 end", "just before the end"}));
+  // Mark to mark on the trace's time base is mark to mark on the daemon's clock.
+  ASSERT_EQ(mark_t.size(), 3u);
+  EXPECT_EQ(mark_t[2] - mark_t[0], last["t_ns"].get<long long>() - first["t_ns"].get<long long>());
+}
+
 TEST_F(Foveald, MalformedAndOversizedSocketMessagesDoNotStopIt) {
   start({"--loop", "--end", "5", "-q", "--no-shm", "--no-render", "--out", dir_.path("out")});
   auto r = control_request(socket_, nlohmann::json::array({1, 2}));  // not an object

@@ -41,7 +41,8 @@ void add_ctl(CLI::App& app, int& exit_code) {
       "  profiles                 list profiles and the active one\n"
       "  use NAME                 switch to another profile\n"
       "  set KEY=VALUE...         sigma_d, sigma_nd, f_x, f_y at run time\n"
-      "  pause | resume           stop / restart rendering and gaze processing\n");
+      "  pause | resume           stop / restart rendering and gaze processing\n"
+      "  mark TEXT...             a timestamped event marker in foveald's trace\n");
   ctl->add_option("request", a->words, "The request and its arguments")->required();
   ctl->add_option("--socket", a->socket, "Control socket")->capture_default_str();
   ctl->add_option("--timeout-ms", a->timeout_ms, "How long to wait for the reply")->capture_default_str();
@@ -65,6 +66,14 @@ void add_ctl(CLI::App& app, int& exit_code) {
           exit_code = cli::report(s.error());
           return;
         }
+    } else if (cmd == "mark") {
+      if (a->words.size() < 2) {
+        exit_code = cli::report(bad_input("ctl mark: expected the marker's text"));
+        return;
+      }
+      std::string text = a->words[1];
+      for (std::size_t i = 2; i < a->words.size(); ++i) text += " " + a->words[i];
+      req["text"] = text;
     } else if (a->words.size() != 1) {
       exit_code = cli::report(bad_input("ctl " + cmd + ": takes no arguments"));
       return;

@@ -79,6 +79,7 @@ void add_log(CLI::App& app, int& exit_code) {
     if (args->json) cli::print_json(stats_json(args->file, *s));
     else print_text(args->file, *s);
   });
+  add_log_quality(*log, exit_code);
 }
 
 }  // namespace foveal::cmd

@@ -9,6 +9,7 @@ namespace foveal::cmd {
 
 void add_import(CLI::App& app, int& exit_code);
 void add_log(CLI::App& app, int& exit_code);
+void add_log_quality(CLI::App& log, int& exit_code);  // `log quality`, called by add_log
 void add_synth(CLI::App& app, int& exit_code);
 void add_hid(CLI::App& app, int& exit_code);  // with FOVEAL_HAVE_HID
 void add_profile(CLI::App& app, int& exit_code);
@@ -23,5 +24,6 @@ void add_bench(CLI::App& app, int& exit_code);
 void add_outputs(CLI::App& app, int& exit_code);
 void add_devices(CLI::App& app, int& exit_code);
 void add_record(CLI::App& app, int& exit_code);
+void add_study(CLI::App& app, int& exit_code);
 
 }  // namespace foveal::cmd

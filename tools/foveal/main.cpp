@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   foveal::cmd::add_outputs(app, exit_code);
   foveal::cmd::add_devices(app, exit_code);
   foveal::cmd::add_record(app, exit_code);
+  foveal::cmd::add_study(app, exit_code);
 #ifdef FOVEAL_HAVE_HID
   foveal::cmd::add_hid(app, exit_code);
 #endif

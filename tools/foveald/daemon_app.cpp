@@ -224,7 +224,7 @@ int DaemonApp::run() {
       [this, eye_w, eye_h, paced](const GazeSample& s, const FoveaFrame& f) {
         if (paced) pacing_.add(monotonic_now_ns() - s.t_ns);
         if (head_recorded_ && s.head.valid) head_track_.push({s.t_ns, s.head.pose});
-        trace_->write(f);
+        trace_->write(f, markers_.take_until(f.t_ns));
         if (shm_) shm_->publish(f, eye_w, eye_h);
       },
       /*wait_for_source=*/source_.live);
@@ -248,6 +248,7 @@ int DaemonApp::shutdown(int rc) {
   if (log::enabled(log::Level::info) && !o_.json && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
   const GazeLoopStats st = loop_->stats();
   if (st.failed) rc = cli::report(bad_input(st.last_error), "foveald");
+  trace_->write_markers(markers_.take_all());  // those after the last sample
   if (Status s = trace_->commit(); !s) return cli::report(s.error(), "foveald");
   if (renderer_)
     if (Status s = renderer_->finish(/*save_last=*/!stop_requested_); !s) return cli::report(s.error(), "foveald");

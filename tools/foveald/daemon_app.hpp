@@ -23,6 +23,7 @@
 #include "foveal/runtime/gaze_loop.hpp"
 #include "foveal/runtime/profile.hpp"
 #include "foveal/tools/fovea_trace.hpp"
+#include "foveal/tools/trace_markers.hpp"
 #include "frame_renderer.hpp"
 #include "options.hpp"
 #include "render_settings.hpp"
@@ -79,6 +80,7 @@ class DaemonApp {
   PoseTrack head_track_;      // gaze thread pushes the source's head poses, the renderer samples
   bool head_recorded_ = false;  // the camera follows head_track_ (--head recorded)
   std::optional<cli::FoveaTrace> trace_;
+  cli::MarkerQueue markers_;  // `ctl mark`: control thread in, gaze thread out into the trace
   std::optional<ControlServer> control_;  // control thread after setup
   std::optional<FoveaShm> shm_;
   std::unique_ptr<FrameRenderer> renderer_;  // render() on the main thread only

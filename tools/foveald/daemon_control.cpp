@@ -108,6 +108,7 @@ nlohmann::json DaemonApp::status_json() const {
           {"realtime", st.realtime},
           {"disconnects", st.disconnects},
           {"reconnects", st.reconnects},
+          {"markers", markers_.pushed()},
           {"resident_mb", current_rss_mb()},
           {"render", renderer_ ? renderer_->stats_json() : nlohmann::json(nullptr)},
           {"control", {{"requests", control_ ? control_->requests_served() : 0}, {"bad_requests", control_ ? control_->bad_requests() : 0}}}};
@@ -115,7 +116,7 @@ nlohmann::json DaemonApp::status_json() const {
 
 nlohmann::json DaemonApp::handle(const nlohmann::json& req) {
   const auto cmd_it = req.find("cmd");
-  if (cmd_it == req.end() || !cmd_it->is_string()) return error_reply("expected \"cmd\": a string (status, fovea, profiles, use, set, pause, resume)");
+  if (cmd_it == req.end() || !cmd_it->is_string()) return error_reply("expected \"cmd\": a string (status, fovea, profiles, use, set, pause, resume, mark)");
   const std::string cmd = cmd_it->get<std::string>();
   // A change's reply says which settings generation carries it; the renderer reports the
   // one it last applied as render.settings_generation.
@@ -163,7 +164,18 @@ nlohmann::json DaemonApp::handle(const nlohmann::json& req) {
     if (loop_) loop_->set_paused(cmd == "pause");
     return status_json();
   }
-  return error_reply("unknown request '" + cmd + "' (status, fovea, profiles, use, set, pause, resume)");
+  if (cmd == "mark") {
+    // Stamped on arrival, on the samples' clock; the gaze thread writes it into the trace.
+    const auto text = req.find("text");
+    if (text == req.end() || !text->is_string()) return error_reply("mark: expected \"text\": a string");
+    if (Status s = check_marker_text(text->get<std::string>()); !s) return error_reply(s.error().message);
+    const TimeNs now = monotonic_now_ns();
+    if (!markers_.push({now, text->get<std::string>()}))
+      return error_reply("mark: " + std::to_string(cli::MarkerQueue::kMaxWaiting) +
+                         " markers wait for the next sample already; refused");
+    return {{"ok", true}, {"t_ns", now}, {"markers", markers_.pushed()}};
+  }
+  return error_reply("unknown request '" + cmd + "' (status, fovea, profiles, use, set, pause, resume, mark)");
 }
 
 void DaemonApp::print_status_line() {
@@ -209,6 +221,7 @@ void DaemonApp::emergency_exit() {
   log::info("a frame is still in flight: finishing without it");
   loop_->stop();
   int rc = cli::kExitOk;
+  trace_->write_markers(markers_.take_all());
   Status s = trace_->commit();
   if (s && renderer_) s = renderer_->abandon();
   nlohmann::json summary = summary_json();

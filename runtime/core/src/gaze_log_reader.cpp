@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -114,18 +115,43 @@ Status GazeLogReader::rewind() {
   if (Status s = lines_.rewind(); !s) return s;
   samples_ = 0;
   last_t_ = 0;
+  markers_.clear();
   return read_header();
+}
+
+Status GazeLogReader::read_marker(const LineReader::Line& line) {
+  if (line.text.substr(0, kMarkerRowPrefix.size()) != kMarkerRowPrefix)
+    return bad_input(where(path(), line.number) + ": a row starting with '#' is a marker row, '#mark,T_NS,TEXT'");
+  if (!line.terminated)
+    return bad_input(where(path(), line.number) + ": truncated: the file ends inside this marker row");
+  auto m = parse_marker_row(line.text);
+  if (!m) return bad_input(where(path(), line.number) + ": " + m.error().message);
+  // Rows are in time order, so the latest time so far is the previous row's.
+  const bool any_row = samples_ > 0 || !markers_.empty();
+  const TimeNs before = std::max(samples_ > 0 ? last_t_ : INT64_MIN, markers_.empty() ? INT64_MIN : markers_.back().t_ns);
+  if (any_row && m->t_ns < before)
+    return bad_input(where(path(), line.number) + ": t_ns: marker time " + std::to_string(m->t_ns) +
+                     " is earlier than the row before it (" + std::to_string(before) + ")");
+  if (markers_.size() >= kMaxGazeLogMarkers)
+    return bad_input(where(path(), line.number) + ": more than " + std::to_string(kMaxGazeLogMarkers) +
+                     " markers; a gaze log holds at most that many");
+  markers_.push_back(std::move(m.value()));
+  return {};
 }
 
 Result<bool> GazeLogReader::next(GazeSample& out) {
   LineReader::Line line;
-  auto got = lines_.next(line);
-  if (!got) return got.error();
-  if (!*got) {
-    if (samples_ == 0) return bad_input(path() + ": no samples: the log has a header only");
-    return false;
+  for (;;) {  // marker rows are kept aside; the first sample row ends the loop
+    auto got = lines_.next(line);
+    if (!got) return got.error();
+    if (!*got) {
+      if (samples_ == 0) return bad_input(path() + ": no samples: the log has a header only");
+      return false;
+    }
+    if (line.crlf) return bad_input(where(path(), line.number) + ": line ends in CRLF; gaze logs use LF line ends");
+    if (line.text.empty() || line.text[0] != '#') break;
+    if (Status s = read_marker(line); !s) return s.error();
   }
-  if (line.crlf) return bad_input(where(path(), line.number) + ": line ends in CRLF; gaze logs use LF line ends");
 
   // One pass over the row: each field is parsed where it starts and must end at a ','
   // (or the line's end for the last). This is the replay hot path; the slow path
@@ -201,6 +227,10 @@ Result<bool> GazeLogReader::next(GazeSample& out) {
                          (s.t_ns == last_t_ ? " repeats the previous timestamp"
                                             : " goes back from " + std::to_string(last_t_)) +
                          "; timestamps must increase strictly");
+  if (!markers_.empty() && s.t_ns < markers_.back().t_ns)
+    return row_error(line.number, gaze_log_columns()[0],
+                     std::to_string(s.t_ns) + " is earlier than the marker before it (" +
+                         std::to_string(markers_.back().t_ns) + ")");
   last_t_ = s.t_ns;
   ++samples_;
   return true;
@@ -264,7 +294,8 @@ Error GazeLogReader::describe_row_error(const LineReader::Line& line) {
   return bad_input(where(path(), line.number) + ": malformed row");
 }
 
-Result<std::vector<GazeSample>> read_gaze_log(const std::string& path, GazeLogHeader* header) {
+Result<std::vector<GazeSample>> read_gaze_log(const std::string& path, GazeLogHeader* header,
+                                              std::vector<GazeMarker>* markers) {
   auto r = GazeLogReader::open(path);
   if (!r) return r.error();
   std::vector<GazeSample> out;
@@ -276,6 +307,7 @@ Result<std::vector<GazeSample>> read_gaze_log(const std::string& path, GazeLogHe
     out.push_back(s);
   }
   if (header) *header = r->header();
+  if (markers) *markers = r->markers();
   return out;
 }
 

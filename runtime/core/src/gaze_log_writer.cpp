@@ -48,10 +48,26 @@ Result<GazeLogWriter> GazeLogWriter::create(const std::string& path, const GazeL
   return w;
 }
 
+Status GazeLogWriter::mark(const GazeMarker& m) {
+  if (Status s = check_marker_text(m.text); !s) return bad_input(file_.path() + ": " + s.error().message);
+  if (any_row_ && m.t_ns < last_row_t_)
+    return bad_input(file_.path() + ": mark: time " + std::to_string(m.t_ns) + " is earlier than the row before it (" +
+                     std::to_string(last_row_t_) + ")");
+  if (m.t_ns < -kMaxGazeLogTimeNs || m.t_ns >= kMaxGazeLogTimeNs)
+    return bad_input(file_.path() + ": mark: time " + std::to_string(m.t_ns) + " is out of range ([-2^62, 2^62) ns)");
+  file_.write(marker_row(m));
+  last_row_t_ = m.t_ns;
+  any_row_ = true;
+  return {};
+}
+
 Status GazeLogWriter::write(const GazeSample& s) {
   if (samples_ > 0 && s.t_ns <= last_t_)
     return bad_input(file_.path() + ": sample " + std::to_string(samples_ + 1) + ": timestamp " +
                      std::to_string(s.t_ns) + " does not increase");
+  if (any_row_ && s.t_ns < last_row_t_)
+    return bad_input(file_.path() + ": sample " + std::to_string(samples_ + 1) + ": timestamp " +
+                     std::to_string(s.t_ns) + " is earlier than the marker before it");
   if (s.t_ns < -kMaxGazeLogTimeNs || s.t_ns >= kMaxGazeLogTimeNs)
     return bad_input(file_.path() + ": sample " + std::to_string(samples_ + 1) + ": timestamp " +
                      std::to_string(s.t_ns) + " is out of range ([-2^62, 2^62) ns)");
@@ -99,7 +115,8 @@ Status GazeLogWriter::write(const GazeSample& s) {
   }
   row_ += '\n';
   file_.write(row_);
-  last_t_ = s.t_ns;
+  last_t_ = last_row_t_ = s.t_ns;
+  any_row_ = true;
   ++samples_;
   return {};
 }

@@ -10,6 +10,7 @@
 
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/error.hpp"
+#include "foveal/core/gaze_marker.hpp"
 #include "foveal/core/gaze_sample.hpp"
 #include "foveal/core/line_reader.hpp"
 
@@ -49,26 +50,32 @@ class GazeLogReader {
   const std::string& path() const { return lines_.path(); }
   /// Next sample into `out`; false at the end of the file (an error if it held none).
   /// After an error `out` holds an unspecified, partly parsed sample.
+  /// Marker rows on the way are checked and kept (markers()), never returned as samples.
   Result<bool> next(GazeSample& out);
   /// Back to the first sample.
   Status rewind();
   std::uint64_t samples_read() const { return samples_; }
+  /// The marker rows read so far (since open or the last rewind), in file order.
+  const std::vector<GazeMarker>& markers() const { return markers_; }
 
  private:
   GazeLogReader(LineReader lines) : lines_(std::move(lines)) {}
   Status read_header();
   Error row_error(std::uint64_t line, std::string_view column, const std::string& what) const;
   Error describe_row_error(const LineReader::Line& line);
+  Status read_marker(const LineReader::Line& line);
 
   LineReader lines_;
   GazeLogHeader header_;
   std::vector<std::string_view> fields_;
   std::uint64_t samples_ = 0;
   TimeNs last_t_ = 0;
+  std::vector<GazeMarker> markers_;
 };
 
 /// Reads a whole log into memory (tests and small tools; replay streams instead).
-Result<std::vector<GazeSample>> read_gaze_log(const std::string& path, GazeLogHeader* header = nullptr);
+Result<std::vector<GazeSample>> read_gaze_log(const std::string& path, GazeLogHeader* header = nullptr,
+                                              std::vector<GazeMarker>* markers = nullptr);
 
 /// Writes a native gaze log atomically: nothing appears at `path` until commit().
 /// Values are written in their shortest round-trip form, so reading back is bit-exact.
@@ -80,6 +87,8 @@ class GazeLogWriter {
   /// Rejects non-increasing timestamps, non-finite valid fields, a valid head pose whose
   /// orientation is not a unit quaternion, and (v1) any valid head pose.
   Status write(const GazeSample& s);
+  /// A marker row: its time may not be earlier than the row before it (sample or marker).
+  Status mark(const GazeMarker& m);
   Status commit() { return file_.commit(); }
   std::uint64_t samples_written() const { return samples_; }
 
@@ -90,6 +99,8 @@ class GazeLogWriter {
   std::string row_;
   std::uint64_t samples_ = 0;
   TimeNs last_t_ = 0;
+  bool any_row_ = false;  // a sample or a marker is written: last_row_t_ holds its time
+  TimeNs last_row_t_ = 0;
 };
 
 }  // namespace foveal

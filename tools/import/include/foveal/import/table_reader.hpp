@@ -25,6 +25,7 @@ class TableReader {
   /// header are errors (a truncated last row included).
   Result<bool> next();
   std::string_view field(std::size_t i) const { return fields_[i]; }
+  const std::vector<std::string>& header() const { return header_; }
   std::uint64_t line() const { return line_no_; }
   const std::string& path() const { return lines_.path(); }
 
