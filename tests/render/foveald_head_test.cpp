@@ -70,7 +70,9 @@ TEST(FovealdHead, FramesFollowTheRecordedHeadAndTheCameraMoves) {
   const auto frames = frame_poses(test::read_file(d.path("rec/frames.csv")));
   ASSERT_GE(frames.size(), 3u);
   std::size_t from = 0;
+  const PoseRow identity{0, 0, 0, 1, 0, 0, 0};
   for (const PoseRow& f : frames) {
+    if (f == identity) continue;  // a frame rendered before the first sample (a loaded machine): no pose yet
     std::size_t k = from;
     const auto same = [&](const PoseRow& l) {
       for (std::size_t i = 0; i < 7; ++i)
@@ -81,7 +83,8 @@ TEST(FovealdHead, FramesFollowTheRecordedHeadAndTheCameraMoves) {
     ASSERT_LT(k, log.size()) << "a frame's head pose is not a row of the log (or out of order)";
     from = k;
   }
-  const PoseRow& first = frames.front();
+  ASSERT_NE(frames.back(), identity);
+  const PoseRow& first = frames.front() == identity ? frames[1] : frames.front();
   const PoseRow& last = frames.back();
   double moved = 0;
   for (std::size_t i = 0; i < 7; ++i) moved = std::max(moved, std::abs(first[i] - last[i]));
@@ -90,7 +93,7 @@ TEST(FovealdHead, FramesFollowTheRecordedHeadAndTheCameraMoves) {
   // A static camera records the identity, and with full rendering (no fovea) every frame
   // is the same picture; the recorded head's last frame is not.
   for (const PoseRow& f : frame_poses(test::read_file(d.path("static/frames.csv"))))
-    EXPECT_EQ(f, (PoseRow{0, 0, 0, 1, 0, 0, 0}));
+    EXPECT_EQ(f, identity);
   const auto saved_png = [&](const std::string& dir, bool final_frame) {
     const auto j = nlohmann::json::parse(test::read_file(d.path(dir + "/summary.json")));
     const auto& saved = j["render"]["saved"];
