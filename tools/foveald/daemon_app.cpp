@@ -176,7 +176,7 @@ bool DaemonApp::claim_shutdown(Owner who) {
 
 int DaemonApp::render_loop() {
   TimeNs next_frame = monotonic_now_ns();
-  while (!loop_->finished() && !stop_requested_.load() && !deadline_passed()) {
+  while (!loop_->finished() && !stopping() && !deadline_passed()) {
     if (!renderer_) {
       sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
       continue;
@@ -195,7 +195,7 @@ int DaemonApp::render_loop() {
     if (o_.fps > 0) {
       next_frame += static_cast<TimeNs>(1e9 / o_.fps);
       // Sleep in steps so that a stop request is seen promptly.
-      while (!stop_requested_.load() && monotonic_now_ns() < next_frame)
+      while (!stopping() && monotonic_now_ns() < next_frame)
         sleep_until_ns(std::min(next_frame, monotonic_now_ns() + 10 * kNsPerMs));
     }
   }
@@ -251,14 +251,14 @@ int DaemonApp::shutdown(int rc) {
   trace_->write_markers(markers_.take_all());  // those after the last sample
   if (Status s = trace_->commit(); !s) return cli::report(s.error(), "foveald");
   if (renderer_)
-    if (Status s = renderer_->finish(/*save_last=*/!stop_requested_); !s) return cli::report(s.error(), "foveald");
+    if (Status s = renderer_->finish(/*save_last=*/!stopping()); !s) return cli::report(s.error(), "foveald");
   const nlohmann::json summary = summary_json();
   if (Status s = write_file_atomically(o_.out + "/summary.json", summary.dump(2) + "\n"); !s)
     return cli::report(s.error(), "foveald");
   if (o_.json) cli::print_json(summary);
   else if (log::enabled(log::Level::info))
     std::printf("foveald: %s %llu samples from %s -> %s/trace.csv, %s/summary.json\n",
-                stop_requested_ ? "stopped after" : "read", static_cast<unsigned long long>(st.samples),
+                stopping() ? "stopped after" : "read", static_cast<unsigned long long>(st.samples),
                 source_text_.c_str(), o_.out.c_str(), o_.out.c_str());
   if (renderer_ && !o_.json && log::enabled(log::Level::info))
     std::printf("foveald: rendered %llu frames -> %s/frames.csv, %zu PNG in %s\n",

@@ -87,8 +87,8 @@ class DaemonApp {
   LatencyHistogram pacing_;  // gaze thread only until the loop has stopped
   std::thread control_thread_;
   std::atomic<bool> control_stop_{false};
-  std::atomic<bool> stop_requested_{false};  // SIGINT/SIGTERM
-  std::atomic<TimeNs> stop_requested_at_{0};
+  std::atomic<TimeNs> stop_requested_at_{0};  // when SIGINT/SIGTERM came; 0: not (yet)
+  bool stopping() const { return stop_requested_at_.load() > 0; }
   std::atomic<int> shutdown_owner_{nobody};
   std::atomic<double> warm_rss_mb_{-1};  // resident memory and fds after the warm-up frames
   std::atomic<int> warm_fds_{0};

@@ -61,8 +61,7 @@ void DaemonApp::handle_signals(int signal_fd) {
       auto p = store_.load(profile_.name);
       if (!p) log::error(p.error().message + "; keeping the last good profile");
       else if (Status s = apply_profile(*p, "reloaded"); !s) log::error(s.error().message);
-    } else if (!stop_requested_.exchange(true)) {
-      stop_requested_at_ = monotonic_now_ns();
+    } else if (TimeNs none = 0; stop_requested_at_.compare_exchange_strong(none, monotonic_now_ns())) {
       log::info(std::string("stopping on ") + (si.ssi_signo == SIGINT ? "SIGINT" : "SIGTERM"));
     }
   }
@@ -89,7 +88,7 @@ nlohmann::json DaemonApp::status_json() const {
   const double up_s = static_cast<double>(monotonic_now_ns() - started_) / 1e9;
   const char* state = st.ended                               ? "ended"
                       : st.failed                            ? "failed"
-                      : stop_requested_                      ? "stopped"
+                      : stopping()                           ? "stopped"
                       : (loop_ && loop_->paused())           ? "paused"
                       : st.state == SourceState::streaming   ? "running"
                                                              : source_state_name(st.state);
@@ -115,9 +114,8 @@ nlohmann::json DaemonApp::status_json() const {
 }
 
 nlohmann::json DaemonApp::handle(const nlohmann::json& req) {
-  const auto cmd_it = req.find("cmd");
-  if (cmd_it == req.end() || !cmd_it->is_string()) return error_reply("expected \"cmd\": a string (status, fovea, profiles, use, set, pause, resume, mark)");
-  const std::string cmd = cmd_it->get<std::string>();
+  // ControlServer::answer has already refused a request without a string "cmd".
+  const std::string cmd = req.at("cmd").get<std::string>();
   // A change's reply says which settings generation carries it; the renderer reports the
   // one it last applied as render.settings_generation.
   const auto changed = [this] {
