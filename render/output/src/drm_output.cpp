@@ -15,7 +15,7 @@
 #include <ctime>
 #include <filesystem>
 
-#include "../../src/egl_util.hpp"
+#include "../../gl/src/egl_util.hpp"
 
 namespace foveal::render {
 
