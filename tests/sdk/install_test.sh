@@ -93,7 +93,7 @@ except foveal.ClientError as e:
     assert e.code == foveal.NO_WRITER, e
     print(f"  python: {e}")
 t = foveal.read_trace(sys.argv[1])
-assert len(t) > 100 and (t["t_ns"][1:] > t["t_ns"][:-1]).all(), len(t)
+assert len(t) > 10 and (t["t_ns"][1:] > t["t_ns"][:-1]).all(), len(t)
 print(f"  python: trace {len(t)} samples")
 EOF
 echo "install_test: all passed"

@@ -99,7 +99,7 @@ class Live(unittest.TestCase):
         self.assertIn("is foveald running?", str(caught.exception))
         # Its trace, as arrays.
         t = foveal.read_trace(os.path.join(self.out, "trace.csv"))
-        self.assertGreater(len(t), 100)
+        self.assertGreater(len(t), 10)
         self.assertEqual(t["t_ns"][0], 0)
         self.assertTrue(np.all((t["left_state"] <= foveal.LOST)))
         self.assertTrue(np.all((t["left_x_px"] >= 0) & (t["left_x_px"] <= 1440)))

@@ -21,6 +21,7 @@ _HEAD = ("head_valid", "head_x_m", "head_y_m", "head_z_m", "head_qw", "head_qx",
 _TRACE_COLUMNS = ("t_ns", "left_state", "left_x_px", "left_y_px", "left_confidence", "right_state", "right_x_px",
                   "right_y_px", "right_confidence")
 STATE_NAMES = ("fixation", "saccade", "pursuit", "blink", "lost")  # codes 0..4, as in foveal.FIXATION..LOST
+_STATE_CODES = {name: str(code) for code, name in enumerate(STATE_NAMES)}
 
 
 def gaze_log_columns(version: int) -> Tuple[str, ...]:
@@ -111,9 +112,9 @@ def _check_columns(path: str, number: int, got: str, expected: Tuple[str, ...]) 
         raise FormatError(path, number, f"column row: unexpected extra column '{names[len(expected)]}'")
 
 
-def _locate_bad_field(path: str, rows: List[Tuple[int, str]], columns: Tuple[str, ...], optional) -> None:
+def _locate_bad_field(path: str, lines: List[str], numbers: List[int], columns: Tuple[str, ...], optional) -> None:
     """The slow path, after the fast parse failed: finds the first bad field and raises."""
-    for number, line in rows:
+    for number, line in zip(numbers, lines):
         fields = line.split(",")
         if len(fields) < len(columns):
             raise FormatError(path, number, f"{columns[len(fields)]}: missing ({len(fields)} of {len(columns)} fields)")
@@ -128,31 +129,58 @@ def _locate_bad_field(path: str, rows: List[Tuple[int, str]], columns: Tuple[str
                 raise FormatError(path, number, f"{name}: '{value}' is not a number") from None
             if not np.isfinite(x):
                 raise FormatError(path, number, f"{name}: '{value}' is not finite")
-    raise FormatError(path, rows[0][0] if rows else 1, "unreadable rows")
+    raise FormatError(path, numbers[0] if numbers else 1, "unreadable rows")
 
 
-def _parse_rows(path: str, rows: List[Tuple[int, str]], columns: Tuple[str, ...], optional) -> np.ndarray:
-    """All rows as a float64 matrix (NaN where an optional field is empty), t_ns aside as int64."""
-    if not rows:
+_NUMBER_BYTES = b"0123456789.,+-eE\n"
+
+
+def _parse_rows(path: str, lines: List[str], numbers: List[int], columns: Tuple[str, ...], optional):
+    """All rows as a float64 matrix (NaN where an optional field is empty), and t_ns as int64."""
+    if not lines:
         return np.zeros((0, len(columns))), np.zeros(0, dtype=np.int64)
-    block = "\n".join(line for _, line in rows) + "\n"
-    if re.search(r"(?i)nan|inf", block):
-        _locate_bad_field(path, rows, columns, optional)
-    filled = re.sub(r",(?=,|\n)", ",nan", block)  # empty fields read as NaN
+    block = "\n".join(lines) + "\n"
+    try:  # only number characters: no 'nan' or 'inf' may pass for a value
+        clean = not block.encode("ascii").translate(None, _NUMBER_BYTES)
+    except UnicodeEncodeError:
+        clean = False
+    if not clean:
+        _locate_bad_field(path, lines, numbers, columns, optional)
+    filled = block.replace(",,", ",nan,").replace(",,", ",nan,").replace(",\n", ",nan\n")  # empty fields: NaN
     try:
         values = np.loadtxt(io.StringIO(filled), delimiter=",", dtype=np.float64, ndmin=2)
-        t_ns = np.array([line[:line.find(",")] for _, line in rows], dtype=np.int64)
     except ValueError:
-        _locate_bad_field(path, rows, columns, optional)
-    if values.shape[1] != len(columns):
-        _locate_bad_field(path, rows, columns, optional)
+        _locate_bad_field(path, lines, numbers, columns, optional)
+    if values.shape[1] != len(columns) or np.isnan(values[:, 0]).any():
+        _locate_bad_field(path, lines, numbers, columns, optional)
     # An empty field is allowed only where the format allows it.
     for j, name in enumerate(columns):
         if not optional(name):
             empty = np.isnan(values[:, j])
             if empty.any():
-                raise FormatError(path, rows[int(np.argmax(empty))][0], f"{name}: missing")
+                raise FormatError(path, numbers[int(np.argmax(empty))], f"{name}: missing")
+    # Integers below 2^53 read exactly as doubles; larger ones are parsed again as integers.
+    if np.all(np.abs(values[:, 0]) < 2.0**53):
+        t_ns = values[:, 0].astype(np.int64)
+    else:
+        t_ns = np.array([line[:line.find(",")] for line in lines], dtype=np.int64)
+    if not np.array_equal(t_ns.astype(np.float64), values[:, 0]):
+        _locate_bad_field(path, lines, numbers, columns, optional)
     return values, t_ns
+
+
+def _split_markers(path: str, lines: List[str], first_number: int):
+    """Sample rows (their texts and line numbers) and marker rows [(t_ns, text)]."""
+    if not any(line.startswith("#") for line in lines):
+        return lines, range(first_number, first_number + len(lines)), []
+    rows, numbers, markers = [], [], []
+    for number, line in enumerate(lines, start=first_number):
+        if line.startswith("#"):
+            markers.append(_marker(path, number, line))
+        else:
+            rows.append(line)
+            numbers.append(number)
+    return rows, numbers, markers
 
 
 def _structured(columns: Tuple[str, ...], values: np.ndarray, t_ns: np.ndarray, kinds) -> np.ndarray:
@@ -193,21 +221,16 @@ def read_gaze_log(path: str) -> GazeLog:
     columns = gaze_log_columns(version)
     _check_columns(path, i + 1, lines[i], columns)
 
-    rows, markers = [], []
-    for number, line in enumerate(lines[i + 1:], start=i + 2):
-        if line.startswith("#"):
-            markers.append(_marker(path, number, line))
-        else:
-            rows.append((number, line))
+    rows, numbers, markers = _split_markers(path, lines[i + 1:], i + 2)
     if not rows:
         raise FormatError(path, len(lines), "no samples: the log has a header only")
     optional = lambda name: name != "t_ns" and not name.endswith("_valid")  # noqa: E731
-    values, t_ns = _parse_rows(path, rows, columns, optional)
+    values, t_ns = _parse_rows(path, rows, numbers, columns, optional)
     back = np.flatnonzero(np.diff(t_ns) <= 0)
     if back.size:
         k = int(back[0]) + 1
         what = "repeats the previous timestamp" if t_ns[k] == t_ns[k - 1] else f"goes back from {t_ns[k - 1]}"
-        raise FormatError(path, rows[k][0], f"t_ns: {t_ns[k]} {what}")
+        raise FormatError(path, numbers[k], f"t_ns: {t_ns[k]} {what}")
     kinds = lambda name: np.int64 if name == "t_ns" else np.uint8 if name.endswith("_valid") else np.float64  # noqa: E731
     return GazeLog(path, version, rate_hz, meta, _structured(columns, values, t_ns, kinds), markers)
 
@@ -216,22 +239,18 @@ def read_trace(path: str) -> Trace:
     """Reads a fovea trace (foveald's trace.csv, `foveal replay --trace`); raises FormatError."""
     lines = _read_lines(path)
     _check_columns(path, 1, lines[0], _TRACE_COLUMNS)
-    codes = {name: float(code) for code, name in enumerate(STATE_NAMES)}
-    rows, markers = [], []
-    for number, line in enumerate(lines[1:], start=2):
-        if line.startswith("#"):
-            markers.append(_marker(path, number, line))
-            continue
+    rows, numbers, markers = _split_markers(path, lines[1:], 2)
+    # State names to their codes, so that every field is a number.
+    for k, line in enumerate(rows):
         fields = line.split(",")
-        # State names to their codes, so the whole row is numeric.
         for j in (1, 5):
             if j < len(fields):
-                code = codes.get(fields[j])
+                code = _STATE_CODES.get(fields[j])
                 if code is None:
-                    raise FormatError(path, number, f"{_TRACE_COLUMNS[j]}: '{fields[j]}' is not a state "
-                                                    f"({', '.join(STATE_NAMES)})")
-                fields[j] = "%d" % code
-        rows.append((number, ",".join(fields)))
-    values, t_ns = _parse_rows(path, rows, _TRACE_COLUMNS, lambda name: False)
+                    raise FormatError(path, numbers[k], f"{_TRACE_COLUMNS[j]}: '{fields[j]}' is not a state "
+                                                        f"({', '.join(STATE_NAMES)})")
+                fields[j] = code
+        rows[k] = ",".join(fields)
+    values, t_ns = _parse_rows(path, rows, list(numbers), _TRACE_COLUMNS, lambda name: False)
     kinds = lambda name: np.int64 if name == "t_ns" else np.uint8 if name.endswith("_state") else np.float64  # noqa: E731
     return Trace(path, _structured(_TRACE_COLUMNS, values, t_ns, kinds), markers)
