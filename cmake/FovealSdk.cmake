@@ -9,11 +9,40 @@
 # folder (relative to this directory; default include), foveal-C.pc and the package's
 # component file foveal-C-component.cmake: find_package(foveal CONFIG) finds every
 # component installed beside it, so a new library only calls this function.
-# PRIVATE_DEPS are linked into the library only (foveal's static libraries, built -fPIC
-# for it); FIND_DEPENDENCIES are packages the exported target needs (find_dependency).
+# PRIVATE_DEPS are linked into the library only (foveal's static libraries: they and the
+# static libraries they link are switched to -fPIC); FIND_DEPENDENCIES are packages the
+# exported target needs (find_dependency).
 include(CMakePackageConfigHelpers)
 set(FOVEAL_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/foveal)
 set(FOVEAL_SDK_TEMPLATES ${CMAKE_CURRENT_LIST_DIR}/sdk)
+
+# A static library linked into a shared one must be position-independent, and so must
+# every static library it links in turn.
+function(_foveal_sdk_make_pic dep)
+  if(NOT TARGET ${dep})
+    return()
+  endif()
+  get_target_property(real ${dep} ALIASED_TARGET)
+  if(real)
+    set(dep ${real})
+  endif()
+  get_target_property(type ${dep} TYPE)
+  get_target_property(imported ${dep} IMPORTED)
+  if(imported OR NOT type STREQUAL "STATIC_LIBRARY")
+    return()
+  endif()
+  get_target_property(done ${dep} POSITION_INDEPENDENT_CODE)
+  if(done)
+    return()
+  endif()
+  set_target_properties(${dep} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  get_target_property(links ${dep} LINK_LIBRARIES)
+  foreach(link IN LISTS links)
+    if(NOT link MATCHES "^\\$<")
+      _foveal_sdk_make_pic(${link})
+    endif()
+  endforeach()
+endfunction()
 
 function(foveal_sdk_library name)
   cmake_parse_arguments(ARG "" "COMPONENT;DESCRIPTION"
@@ -40,6 +69,7 @@ function(foveal_sdk_library name)
   target_link_libraries(${name} PUBLIC ${ARG_PUBLIC_DEPS})
   foreach(dep IN LISTS ARG_PRIVATE_DEPS)
     target_link_libraries(${name} PRIVATE $<BUILD_INTERFACE:${dep}>)  # linked in; not part of the export
+    _foveal_sdk_make_pic(${dep})
   endforeach()
   foveal_target_defaults(${name})
 
