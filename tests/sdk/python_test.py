@@ -29,6 +29,10 @@ class Live(unittest.TestCase):
         cls.env = dict(os.environ, FOVEAL_SHM_NAME=f"/foveal-python-test-{os.getpid()}",
                        XDG_RUNTIME_DIR=os.path.join(d, "run"), XDG_CONFIG_HOME=os.path.join(d, "config"))
         os.makedirs(cls.env["XDG_RUNTIME_DIR"])
+        profiles = os.path.join(cls.env["XDG_CONFIG_HOME"], "foveal", "profiles")
+        os.makedirs(profiles)
+        with open(os.path.join(profiles, "bob.json"), "w") as f:
+            f.write('{"format":"foveal-profile v1","dominant_eye":"left","sigma_d":2.4,"sigma_nd":3.2}')
         os.environ["FOVEAL_SHM_NAME"] = cls.env["FOVEAL_SHM_NAME"]
         cls.out = os.path.join(d, "out")
         cls.foveald = subprocess.Popen(
@@ -74,7 +78,7 @@ class Live(unittest.TestCase):
             time.sleep(0.1)
             self.assertGreater(c.read().frame, f.frame, "the fovea moves on at the replay's rate")
 
-    def test_2_sees_a_settings_change(self):
+    def test_2_sees_a_settings_change_and_a_profile_switch(self):
         with self.client() as c:
             before = c.settings()
             self.assertEqual((before.sigma_d, before.sigma_nd, before.dominant_eye), (2.0, 3.0, 1))  # the defaults
@@ -83,6 +87,12 @@ class Live(unittest.TestCase):
             after = c.settings()  # the reply comes after the change is in the block
             self.assertEqual((after.sigma_d, after.sigma_nd), (2.75, 3.25))
             self.assertGreater(after.generation, before.generation)
+            # A profile switch, too.
+            subprocess.run([os.path.join(BUILD, "bin", "foveal"), "ctl", "use", "bob"], env=self.env, check=True,
+                           stdout=subprocess.DEVNULL)
+            bob = c.settings()
+            self.assertEqual((bob.sigma_d, bob.sigma_nd, bob.dominant_eye), (2.4, 3.2, 0))
+            self.assertGreater(bob.generation, after.generation)
 
     def test_3_a_stopped_foveald_is_no_writer(self):
         c = self.client()
