@@ -1,5 +1,9 @@
 #include "renderer.hpp"
 
+#include <algorithm>
+#include <cstddef>
+#include <cstdio>
+
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
 
@@ -290,12 +294,10 @@ std::string Renderer::render(const std::optional<std::array<foveal::rmfr::Plan, 
     glProgramUniformMatrix4fv(lp, glGetUniformLocation(lp, "u_inv_proj"), 1, GL_FALSE, glm::value_ptr(inv_proj));
     const glm::mat3 rot(view);
     glProgramUniformMatrix3fv(lp, glGetUniformLocation(lp, "u_view_rot"), 1, GL_FALSE, glm::value_ptr(rot));
-    for (int i = 0; i < 4; ++i) {
-      const glm::vec3 p = glm::vec3(view * glm::vec4(lights[i], 1));
-      const std::string k = "[" + std::to_string(i) + "]";
-      glProgramUniform4f(lp, glGetUniformLocation(lp, ("u_light_pos" + k).c_str()), p.x, p.y, p.z, 6.0f);
-      glProgramUniform3fv(lp, glGetUniformLocation(lp, ("u_light_color" + k).c_str()), 1, glm::value_ptr(colors[i]));
-    }
+    glm::vec4 light_pos[4];
+    for (int i = 0; i < 4; ++i) light_pos[i] = glm::vec4(glm::vec3(view * glm::vec4(lights[i], 1)), 6.0f);  // radius 6
+    glProgramUniform4fv(lp, glGetUniformLocation(lp, "u_light_pos"), 4, glm::value_ptr(light_pos[0]));
+    glProgramUniform3fv(lp, glGetUniformLocation(lp, "u_light_color"), 4, glm::value_ptr(colors[0]));
     const glm::vec3 sun = glm::normalize(rot * glm::vec3(0.4f, 1.0f, 0.3f));
     glProgramUniform3fv(lp, glGetUniformLocation(lp, "u_sun_dir"), 1, glm::value_ptr(sun));
     glUseProgram(lp);
@@ -310,7 +312,11 @@ std::string Renderer::render(const std::optional<std::array<foveal::rmfr::Plan, 
     }
   }
   glFinish();
-  if (GLenum err = glGetError(); err != GL_NO_ERROR) return "OpenGL error " + std::to_string(err);
+  if (GLenum err = glGetError(); err != GL_NO_ERROR) {
+    char message[48];
+    std::snprintf(message, sizeof message, "OpenGL error 0x%04x during the frame", err);
+    return message;
+  }
   return {};
 }
 
