@@ -197,8 +197,8 @@ struct Compositor::Impl {
   // One per MAPPING (0 RMFR/full, 1 KFR, 2 layers); resolve also with and without the lens.
   // RMFR maps and resolves through foveal-rmfr, so its map and resolve slots stay empty.
   std::array<gl::Program, 3> map_progs, lighting_progs;
-  std::optional<rmfr::Foveator> foveator;
   std::array<std::array<gl::Program, 2>, 3> resolve_progs;
+  std::optional<rmfr::Foveator> foveator;  // RMFR's mapping and resolve passes
   gl::VertexArray empty_vao;
   gl::Buffer lights_ubo;
   detail::SurfaceTargets gbuffer;
