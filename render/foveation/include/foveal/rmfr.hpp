@@ -145,17 +145,21 @@ class FOVEAL_RMFR_API Foveator {
   /// have a matching kind (integer for integer sources) and be at least w×h; the draw
   /// buffers of `dst_framebuffer` are set to attachments 0..n-1. The first call with a
   /// new combination of kinds compiles a program for it.
-  /// Errors: bad_input for no textures or more than GL_MAX_DRAW_BUFFERS, a name that is
-  /// no 2D texture, a source smaller than the plan's screen, a stencil-only source, a
-  /// destination smaller than the buffer or incomplete; internal for a GL error.
+  /// Errors: bad_input for a plan whose sizes plan_eye would not give, no textures or
+  /// more than GL_MAX_DRAW_BUFFERS, a name that is no 2D texture, a source smaller than
+  /// the plan's screen, a stencil-only source, the default framebuffer, a destination
+  /// attachment missing, of the wrong kind or smaller than the buffer, or an incomplete
+  /// destination; internal when the program for a new layout does not build. GL errors
+  /// are left to the caller's glGetError (the pass does not wait on GL).
   /// Thread safety: GL thread.
   Status map(const Plan& plan, std::span<const unsigned> gbuffer_textures, unsigned dst_framebuffer);
 
   /// Resolve pass: each pixel of the eye's W×H viewport at (x, y) in `dst_framebuffer`
   /// (0: the default framebuffer) reads `lit_texture` (2D, at least w×h, its w×h region
   /// at the origin used) bilinearly where RMFR's forward map sends it; through `lens`
-  /// when given. Errors: bad_input for a name that is no 2D texture or a texture smaller
-  /// than the buffer; internal for a GL error. Thread safety: GL thread.
+  /// when given. Errors: bad_input for a plan plan_eye would not give, a name that is no
+  /// 2D texture, an integer texture or one smaller than the buffer. GL errors are left to
+  /// the caller's glGetError. Thread safety: GL thread.
   Status resolve(const Plan& plan, unsigned lit_texture, unsigned dst_framebuffer, int x, int y,
                  const Lens* lens = nullptr);
 
