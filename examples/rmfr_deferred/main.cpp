@@ -2,7 +2,7 @@
 // the live fovea and EFR settings of a running foveald (foveal-client), headless.
 //   rmfr_deferred --out FRAME.ppm [--full] [--live] [--sigma-d S --sigma-nd S]
 //                 [--dominant left|right] [--fovea-left X,Y --fovea-right X,Y]
-//                 [--fx F --fy F] [--size WxH] [--frames N]
+//                 [--fx F --fy F | --auto-f] [--size WxH] [--frames N]
 // --live reads each frame's fovea and, unless given here, σ_d, σ_nd, the dominant eye and
 // f from foveald (a negative f there: automatic f, from one full-resolution frame).
 // Prints one JSON line: what each eye was rendered with. Exit 2: bad arguments or no
@@ -26,7 +26,7 @@ namespace {
 
 struct Args {
   std::string out;
-  bool full = false, live = false;
+  bool full = false, live = false, auto_f = false;
   std::optional<double> sigma_d, sigma_nd, fx, fy;
   std::optional<int> dominant;
   std::array<foveal::rmfr::Fovea, 2> fovea{};
@@ -63,6 +63,7 @@ std::optional<Args> parse(int argc, char** argv, std::string& why) {
     if (k == "--out" && value()) a.out = argv[i];
     else if (k == "--full") a.full = true;
     else if (k == "--live") a.live = true;
+    else if (k == "--auto-f") a.auto_f = true;
     else if (k == "--sigma-d") { if (!number(a.sigma_d)) return {}; }
     else if (k == "--sigma-nd") { if (!number(a.sigma_nd)) return {}; }
     else if (k == "--fx") { if (!number(a.fx)) return {}; }
@@ -151,6 +152,7 @@ int main(int argc, char** argv) {
   if (args->sigma_nd) efr.sigma_nd = *args->sigma_nd;
   if (args->dominant) efr.dominant_eye = *args->dominant;
   if (args->fx || args->fy) auto_f = false;
+  if (args->auto_f) auto_f = true;
   if (args->fx) efr.fx = *args->fx;
   if (args->fy) efr.fy = *args->fy;
 
@@ -170,7 +172,9 @@ int main(int argc, char** argv) {
         const std::vector<std::uint8_t> px = renderer->read_rgba();
         const foveal::rmfr::Frustum fr = renderer->frustum();
         const double ppd = args->width / (fr.tan_right - fr.tan_left) * M_PI / 180.0;
-        auto f = foveal::rmfr::estimate_f({px.data(), 2 * args->width, args->height, 0, false}, {1, 1}, fovea, ppd);
+        const bool left_dominant = efr.dominant_eye == 0;
+        const std::array<double, 2> sigma = {left_dominant ? efr.sigma_d : efr.sigma_nd, left_dominant ? efr.sigma_nd : efr.sigma_d};
+        auto f = foveal::rmfr::estimate_f({px.data(), 2 * args->width, args->height, 0, false}, sigma, fovea, ppd);
         if (!f) return usage(f.error().message);
         efr.fx = f->fx, efr.fy = f->fy;
       }

@@ -28,13 +28,30 @@ done
 [[ -n $(find "$prefix" -path '*/foveal/rmfr/glsl/foveal/rmfr.glsl') ]] || fail "the prefix has no GLSL include files"
 so=$(find "$prefix" -name 'libfoveal-rmfr.so.*.*.*' | head -1)
 [[ -n $so ]] || fail "the prefix has no versioned libfoveal-rmfr.so"
-readelf -d "$so" | grep -q 'SONAME.*libfoveal-rmfr\.so\.[0-9]' || fail "$so has no SONAME"
+# (Outputs are captured first: with pipefail, `cmd | grep -q` fails when grep stops reading early.)
+dynamic=$(readelf -d "$so")
+grep -q 'SONAME.*libfoveal-rmfr\.so\.[0-9]' <<< "$dynamic" || fail "$so has no SONAME"
 # Only the library's own API is exported (foveal::image and core are linked in, hidden).
-if nm -D --defined-only -C "$so" | grep -v ' foveal::rmfr::' | grep -q ' foveal::'; then
-  nm -D --defined-only -C "$so" | grep ' foveal::' | grep -v 'foveal::rmfr::' | head
-  fail "$so exports foveal symbols outside foveal::rmfr"
-fi
-PKG_CONFIG_PATH=$(dirname "$(find "$prefix" -name foveal-rmfr.pc)") pkg-config --exists foveal-rmfr || fail "foveal-rmfr.pc does not load"
+leaked=$(nm -D --defined-only -C "$so" | grep ' foveal::' | grep -v ' foveal::rmfr::' || true)
+[[ -z $leaked ]] || { echo "$leaked" | head; fail "$so exports foveal symbols outside foveal::rmfr"; }
+
+step "a C++ program with pkg-config --cflags --libs foveal-rmfr"
+export PKG_CONFIG_PATH
+PKG_CONFIG_PATH=$(dirname "$(find "$prefix" -name foveal-rmfr.pc)")
+cat > "$work/plan.cpp" <<'CPP'
+#include <foveal/rmfr.hpp>
+#include <cstdio>
+int main() {
+  auto p = foveal::rmfr::plan_eye({.width = 1440, .height = 1600, .sigma = 2.0});
+  if (!p) return std::fprintf(stderr, "%s\n", p.error().message.c_str()), 1;
+  std::printf("  pkg-config: foveal-rmfr %s plans %dx%d\n", foveal::rmfr::version(), p->buffer_w, p->buffer_h);
+  return p->buffer_w == 720 && p->buffer_h == 800 ? 0 : 1;
+}
+CPP
+# shellcheck disable=SC2046
+c++ -std=c++20 -Wall -Wextra -Werror "$work/plan.cpp" -o "$work/plan" $(pkg-config --cflags --libs foveal-rmfr) \
+  -Wl,-rpath,"$(pkg-config --variable=libdir foveal-rmfr)" || fail "the pkg-config program does not build"
+"$work/plan" || fail "the pkg-config program failed"
 
 step "the example from a copy outside the source tree, with find_package(foveal CONFIG)"
 cp -r "$src/examples/rmfr_deferred" "$work/src"
@@ -42,7 +59,8 @@ cmake -S "$work/src" -B "$work/ex" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" -DCMAK
   > "$work/cmake.log" 2>&1 || { show "$work/cmake.log"; fail "the example does not configure"; }
 cmake --build "$work/ex" > "$work/build.log" 2>&1 || { show "$work/build.log"; fail "the example does not build"; }
 example=$work/ex/rmfr_deferred
-ldd "$example" | grep -q "$prefix.*libfoveal-rmfr" || { ldd "$example"; fail "the example does not load the prefix's libfoveal-rmfr"; }
+libs=$(ldd "$example")
+grep -q "$prefix.*libfoveal-rmfr" <<< "$libs" || { echo "$libs"; fail "the example does not load the prefix's libfoveal-rmfr"; }
 
 step "a live foveald (replay, --no-render) with its own block and control socket"
 export FOVEAL_SHM_NAME=/foveal-rmfr-example-$$
@@ -63,6 +81,7 @@ render full --full
 render sigma1 --live --sigma-d 1 --sigma-nd 1
 render right --live --sigma-d 2 --sigma-nd 3 --dominant right
 render left --live --sigma-d 2 --sigma-nd 3 --dominant left
+render auto --live --sigma-d 2 --sigma-nd 3 --auto-f
 "$build/bin/foveal" ctl set sigma_d=1.5 sigma_nd=2.5 > "$work/ctl.out" 2>&1 || { show "$work/ctl.out"; fail "foveal ctl set failed"; }
 render settings --live
 
@@ -101,6 +120,10 @@ for dominant, name in ((1, "right"), (0, "left")):
     sharper, other = (right, left) if dominant == 1 else (left, right)
     assert sharper > other + 0.5, f"the dominant {name} eye is not the sharper one"
     assert other < 40, "sigma 3 should be visibly below the full rendering"
+r = run("auto")
+assert all(0.05 <= f <= 1.0 for f in r["f"]) and r["f"] != [0.3, 0.3], r  # estimate_f chose f
+r, combined, left, right = metrics("auto")
+print(f"  automatic f {r['f'][0]:.3f}, {r['f'][1]:.3f}: left {left:.2f} dB, right {right:.2f} dB")
 r = run("settings")
 d = r["dominant"]
 assert r["eyes"][d]["sigma"] == 1.5 and r["eyes"][1 - d]["sigma"] == 2.5, r  # foveal ctl set reached the example
