@@ -152,11 +152,11 @@ Result<std::size_t> mapping_index(const EyePlan& plan) {
 
 // An RMFR eye's plan as foveal-rmfr takes it (plan_eye computed it with the library's
 // formulas, foveal/rmfr_mapping.hpp).
-rmfr::Plan rmfr_plan(const EyePlan& p, double sigma) {
+rmfr::Plan rmfr_plan(const EyePlan& p) {
   rmfr::Plan r;
   r.screen_w = p.screen_w, r.screen_h = p.screen_h;
   r.buffer_w = p.buffer_w, r.buffer_h = p.buffer_h;
-  r.sigma = sigma;
+  r.sigma = static_cast<double>(p.screen_w) / p.buffer_w;  // informative; the passes use the sizes
   r.fovea_x = p.fovea.x, r.fovea_y = p.fovea.y;
   r.fx = p.f.x, r.fy = p.f.y;
   r.frustum = {p.frustum.tan_left, p.frustum.tan_right, p.frustum.tan_bottom, p.frustum.tan_top};
@@ -414,9 +414,6 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     const auto mapping = mapping_index(plan);
     if (!mapping) return mapping.error();
     const std::size_t variant = *mapping;
-    // RMFR (also full through the lens) maps and resolves through foveal-rmfr.
-    const bool through_library = plan.method == Method::rmfr;
-    const rmfr::Plan library_plan = rmfr_plan(plan, eye_params.sigma);
     // The regions each pass draws: the whole buffer, or one per layer of the atlas.
     std::vector<glm::ivec4> regions;
     if (layered)
@@ -424,9 +421,9 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     else
       regions.emplace_back(0, 0, plan.buffer_w, plan.buffer_h);
 
-    // Mapping: G-buffer -> reduced G-buffer.
-    if (through_library) {
-      if (Status s = m.foveator->map(library_plan, m.gbuffer.textures(), tg.fbo.id()); !s) return s.error();
+    // Mapping: G-buffer -> reduced G-buffer; RMFR's (also full through the lens) is foveal-rmfr's.
+    if (plan.method == Method::rmfr) {
+      if (Status s = m.foveator->map(rmfr_plan(plan), m.gbuffer.textures(), tg.fbo.id()); !s) return s.error();
     } else {
       glBindFramebuffer(GL_FRAMEBUFFER, tg.fbo.id());
       const GLuint mp = m.map_progs[variant].id();
@@ -454,9 +451,9 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     m.timer.mark(Pass::lighting);
 
     // Resolve into this eye's half of the output. KFR's angle axis wraps around.
-    if (through_library) {
+    if (plan.method == Method::rmfr) {  // foveal-rmfr's resolve
       const rmfr::Lens l = rmfr_lens(lens);
-      if (Status s = m.foveator->resolve(library_plan, rs.texture.id(), m.output.fbo.id(), eye_origin.x, eye_origin.y,
+      if (Status s = m.foveator->resolve(rmfr_plan(plan), rs.texture.id(), m.output.fbo.id(), eye_origin.x, eye_origin.y,
                                          distort ? &l : nullptr);
           !s)
         return s.error();
