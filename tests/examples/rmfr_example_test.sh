@@ -41,15 +41,17 @@ PKG_CONFIG_PATH=$(dirname "$(find "$prefix" -name foveal-rmfr.pc)")
 cat > "$work/plan.cpp" <<'CPP'
 #include <foveal/rmfr.hpp>
 #include <cstdio>
+#include <string>
 int main() {
   auto p = foveal::rmfr::plan_eye({.width = 1440, .height = 1600, .sigma = 2.0});
   if (!p) return std::fprintf(stderr, "%s\n", p.error().message.c_str()), 1;
-  std::printf("  pkg-config: foveal-rmfr %s plans %dx%d\n", foveal::rmfr::version(), p->buffer_w, p->buffer_h);
-  return p->buffer_w == 720 && p->buffer_h == 800 ? 0 : 1;
+  const std::string glsl = foveal::rmfr::glsl_directory();  // the prefix's, found from the library's place
+  std::printf("  pkg-config: foveal-rmfr %s plans %dx%d, GLSL in %s\n", foveal::rmfr::version(), p->buffer_w, p->buffer_h, glsl.c_str());
+  return p->buffer_w == 720 && p->buffer_h == 800 && glsl.rfind(PREFIX, 0) == 0 ? 0 : 1;
 }
 CPP
 # shellcheck disable=SC2046
-c++ -std=c++20 -Wall -Wextra -Werror "$work/plan.cpp" -o "$work/plan" $(pkg-config --cflags --libs foveal-rmfr) \
+c++ -std=c++20 -Wall -Wextra -Werror -DPREFIX="\"$prefix\"" "$work/plan.cpp" -o "$work/plan" $(pkg-config --cflags --libs foveal-rmfr) \
   -Wl,-rpath,"$(pkg-config --variable=libdir foveal-rmfr)" || fail "the pkg-config program does not build"
 "$work/plan" || fail "the pkg-config program failed"
 
