@@ -96,6 +96,14 @@ Status run_calibration_window(Calibration& cal, const CalibrationWindowOptions& 
       f.eyes[0].sigma = test_phase ? p.sigma_left : 1.0;
       f.eyes[1].sigma = test_phase ? p.sigma_right : 1.0;
       if (auto r = comp->render(*scene, f); !r) return r.error();
+      // Validation trials carry a fixation target straight ahead in each eye: the gaze
+      // recorded meanwhile gives the accuracy and precision (calibrate --gaze-log).
+      if (p.stage == CalibrationStage::validation) {
+        const int dot = std::max(4, comp->eye_width() / 120);
+        for (int x0 : {0, comp->eye_width()})
+          fill(comp->output_framebuffer(), x0 + comp->eye_width() / 2 - dot / 2, comp->height() / 2 - dot / 2, dot, dot,
+               0.95f, 0.2f, 0.1f);
+      }
     }
     window->present(comp->output_framebuffer(), comp->width(), comp->height());
     // Every answer given since the last frame, in order; one that does not fit the

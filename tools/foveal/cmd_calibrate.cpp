@@ -1,13 +1,18 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 
 #include "calibration_window.hpp"
 #include "commands.hpp"
+#include "foveal/core/gaze_log.hpp"
 #include "foveal/core/json_file.hpp"
 #include "foveal/core/read_file.hpp"
+#include "foveal/quality/gaze_quality.hpp"
+#include "foveal/quality/quality_targets.hpp"
 #include "foveal/runtime/calibration.hpp"
 #include "foveal/runtime/profile.hpp"
 #include "foveal/tools/cli.hpp"
@@ -41,11 +46,61 @@ Result<std::vector<ScriptedAnswer>> read_answers(const std::string& path) {
   return out;
 }
 
+double mean_finite(const std::vector<double>& v) {
+  double sum = 0;
+  int n = 0;
+  for (double x : v)
+    if (std::isfinite(x)) sum += x, ++n;
+  return n ? sum / n : ProfileGazeQuality::kNaN;
+}
+
+// The validation trials' gaze (docs/calibration.md, "Gaze accuracy and precision"): a log
+// recorded while the fixation targets were shown, and the targets' times and places;
+// without a targets file the whole log is one fixation straight ahead, the validation
+// stimulus's central target. Precision is the mean over the targets of their RMS-S2S
+// and STD, accuracy the mean of their offsets; data loss is the whole log's.
+Result<ProfileGazeQuality> validation_gaze_quality(const std::string& log, const std::string& targets_file) {
+  GazeLogHeader header;
+  auto samples = read_gaze_log(log, &header);
+  if (!samples) return samples.error();
+  if (samples->size() < 2) return bad_input(log + ": too few samples to measure the validation gaze");
+  QualityOptions qo;
+  if (!targets_file.empty()) {
+    auto t = read_quality_targets(targets_file);
+    if (!t) return t.error();
+    qo.targets = std::move(*t);
+  } else {
+    const double duration_s = static_cast<double>(samples->back().t_ns - samples->front().t_ns) / 1e9;
+    qo.targets = {QualityTarget{0.0, duration_s, FickAngles{0, 0}, log + " (straight ahead)"}};
+  }
+  auto q = compute_gaze_quality(*samples, header.rate_hz, qo);
+  if (!q) return Error{q.error().kind, log + ": " + q.error().message};
+  ProfileGazeQuality out;
+  out.source = log;
+  out.targets = static_cast<int>(q->targets.size());
+  for (std::size_t c = 0; c < out.channels.size(); ++c) {
+    std::vector<double> rms, sd;
+    for (const TargetQuality& t : q->targets) {
+      rms.push_back(t.channels[c].rms_s2s_deg);
+      sd.push_back(t.channels[c].std_deg);
+    }
+    out.channels[c] = {q->accuracy[c].offset_deg, mean_finite(rms), mean_finite(sd), q->channels[c].data_loss_pct};
+  }
+  return out;
+}
+
+nlohmann::json gaze_quality_json(const ProfileGazeQuality& g) {
+  // As the profile stores it (NaN: null).
+  Profile p;
+  p.gaze_quality = g;
+  return p.to_json()["gaze_quality"];
+}
+
 }  // namespace
 
 void add_calibrate(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string profile, answers, monitor, scene;
+    std::string profile, answers, monitor, scene, gaze_log, gaze_targets;
     bool json = false, dry_run = false;
   };
   auto a = std::make_shared<Args>();
@@ -57,10 +112,22 @@ void add_calibrate(CLI::App& app, int& exit_code) {
                   "without it: the in-headset window (keys L/R, S/D, Esc; gamepad LB/RB, A/B)");
   sub->add_option("--monitor", a->monitor, "In-headset mode: fullscreen on the monitor whose name contains this");
   sub->add_option("--scene", a->scene, "In-headset mode: the scene of the comparisons (default: the bundled Dungeon)");
+  sub->add_option("--gaze-log", a->gaze_log,
+                  "Native gaze log recorded during the validation trials: accuracy and precision go into the profile");
+  sub->add_option("--gaze-targets", a->gaze_targets,
+                  "Targets CSV for --gaze-log (start_s,end_s,azimuth_deg,elevation_deg; default: all straight ahead)")
+      ->needs("--gaze-log");
   sub->add_flag("--dry-run", a->dry_run, "Report the result without saving it");
   sub->add_flag("--json", a->json, "Print the result as JSON");
   sub->callback([a, &exit_code] {
     auto fail = [&exit_code](const Error& e) { exit_code = cli::report(e); };
+    // The gaze figures first: a bad log stops the command before anyone is asked anything.
+    std::optional<ProfileGazeQuality> gaze;
+    if (!a->gaze_log.empty()) {
+      auto g = validation_gaze_quality(a->gaze_log, a->gaze_targets);
+      if (!g) return fail(g.error());
+      gaze = *g;
+    }
     Calibration cal;
     std::vector<nlohmann::json> steps;
     if (a->answers.empty()) {
@@ -107,6 +174,7 @@ void add_calibrate(CLI::App& app, int& exit_code) {
     p.dominant_eye = r.dominant_eye;
     p.sigma_d = r.sigma_uniform;
     p.sigma_nd = r.sigma_non_dominant;
+    if (gaze) p.gaze_quality = gaze;
     const bool save = r.passed() && !a->dry_run;
     nlohmann::json j = {{"profile", name},
                         {"dominant_eye", eye_name(r.dominant_eye)},
@@ -114,16 +182,24 @@ void add_calibrate(CLI::App& app, int& exit_code) {
                         {"sigma_d", r.sigma_uniform},
                         {"sigma_nd", r.sigma_non_dominant},
                         {"validation", {{"trials", r.validation_trials}, {"failures", r.validation_failures}, {"passed", r.passed()}}},
+                        {"gaze_quality", gaze ? gaze_quality_json(*gaze) : nlohmann::json(nullptr)},
                         {"saved", save},
                         {"steps", steps}};
     if (save)
       if (Status st = store.save(p); !st) return fail(st.error());
     if (a->json) cli::print_json(j);
-    else
+    else {
       std::printf("dominant eye %s%s, sigma_d %.1f, sigma_nd %.1f; validation %d/%d identical pairs right -> %s\n",
                   eye_name(r.dominant_eye), r.dominant_consistent ? "" : " (trials disagreed)", r.sigma_uniform,
                   r.sigma_non_dominant, r.validation_trials - r.validation_failures, r.validation_trials,
                   save ? ("saved to profile " + name).c_str() : a->dry_run ? "not saved (dry run)" : "NOT saved");
+      if (gaze)
+        std::printf("gaze in the validation trials (%d targets): accuracy L %.3f R %.3f deg, precision RMS-S2S "
+                    "L %.3f R %.3f deg, STD L %.3f R %.3f deg, data loss L %.1f%% R %.1f%%\n",
+                    gaze->targets, gaze->channels[0].accuracy_deg, gaze->channels[1].accuracy_deg,
+                    gaze->channels[0].rms_s2s_deg, gaze->channels[1].rms_s2s_deg, gaze->channels[0].std_deg,
+                    gaze->channels[1].std_deg, gaze->channels[0].data_loss_pct, gaze->channels[1].data_loss_pct);
+    }
     if (!r.passed())
       return fail(bad_input("calibration rejected: " + std::to_string(r.validation_failures) + " of " +
                             std::to_string(r.validation_trials) +
