@@ -4,12 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <span>
 #include <sstream>
 
 #include "calibration_window.hpp"
 #include "commands.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/core/json_file.hpp"
+#include "foveal/drivers/probe.hpp"
 #include "foveal/core/read_file.hpp"
 #include "foveal/quality/gaze_quality.hpp"
 #include "foveal/quality/quality_targets.hpp"
@@ -54,29 +56,18 @@ double mean_finite(const std::vector<double>& v) {
   return n ? sum / n : ProfileGazeQuality::kNaN;
 }
 
-// The validation trials' gaze (docs/calibration.md, "Gaze accuracy and precision"): a log
-// recorded while the fixation targets were shown, and the targets' times and places;
-// without a targets file the whole log is one fixation straight ahead, the validation
-// stimulus's central target. Precision is the mean over the targets of their RMS-S2S
-// and STD, accuracy the mean of their offsets; data loss is the whole log's.
-Result<ProfileGazeQuality> validation_gaze_quality(const std::string& log, const std::string& targets_file) {
-  GazeLogHeader header;
-  auto samples = read_gaze_log(log, &header);
-  if (!samples) return samples.error();
-  if (samples->size() < 2) return bad_input(log + ": too few samples to measure the validation gaze");
+// The validation trials' gaze (docs/calibration.md, "Gaze accuracy and precision"):
+// precision is the mean over the fixation targets of their RMS-S2S and STD, accuracy the
+// mean of their offsets; data loss is over all the samples.
+Result<ProfileGazeQuality> validation_gaze_quality(std::span<const GazeSample> samples, double rate_hz,
+                                                   std::vector<QualityTarget> targets, const std::string& source) {
+  if (samples.size() < 2) return bad_input(source + ": too few gaze samples to measure the validation trials");
   QualityOptions qo;
-  if (!targets_file.empty()) {
-    auto t = read_quality_targets(targets_file);
-    if (!t) return t.error();
-    qo.targets = std::move(*t);
-  } else {
-    const double duration_s = static_cast<double>(samples->back().t_ns - samples->front().t_ns) / 1e9;
-    qo.targets = {QualityTarget{0.0, duration_s, FickAngles{0, 0}, log + " (straight ahead)"}};
-  }
-  auto q = compute_gaze_quality(*samples, header.rate_hz, qo);
-  if (!q) return Error{q.error().kind, log + ": " + q.error().message};
+  qo.targets = std::move(targets);
+  auto q = compute_gaze_quality(samples, rate_hz, qo);
+  if (!q) return Error{q.error().kind, source + ": " + q.error().message};
   ProfileGazeQuality out;
-  out.source = log;
+  out.source = source;
   out.targets = static_cast<int>(q->targets.size());
   for (std::size_t c = 0; c < out.channels.size(); ++c) {
     std::vector<double> rms, sd;
@@ -87,6 +78,41 @@ Result<ProfileGazeQuality> validation_gaze_quality(const std::string& log, const
     out.channels[c] = {q->accuracy[c].offset_deg, mean_finite(rms), mean_finite(sd), q->channels[c].data_loss_pct};
   }
   return out;
+}
+
+// A log recorded while the fixation targets were shown, and the targets' times and
+// places; without a targets file the whole log is one fixation straight ahead, the
+// validation stimulus's central target.
+Result<ProfileGazeQuality> logged_gaze_quality(const std::string& log, const std::string& targets_file) {
+  GazeLogHeader header;
+  auto samples = read_gaze_log(log, &header);
+  if (!samples) return samples.error();
+  std::vector<QualityTarget> targets;
+  if (!targets_file.empty()) {
+    auto t = read_quality_targets(targets_file);
+    if (!t) return t.error();
+    targets = std::move(*t);
+  } else if (!samples->empty()) {
+    const double duration_s = static_cast<double>(samples->back().t_ns - samples->front().t_ns) / 1e9;
+    targets = {QualityTarget{0.0, duration_s, FickAngles{0, 0}, log + " (straight ahead)"}};
+  }
+  return validation_gaze_quality(*samples, header.rate_hz, std::move(targets), log);
+}
+
+// The headset's validation trials read live: each trial's fixation window is a target
+// straight ahead.
+Result<ProfileGazeQuality> live_gaze_quality(const ValidationGaze& g, double rate_hz, const std::string& spec) {
+  if (g.samples.size() < 2) return validation_gaze_quality(g.samples, rate_hz, {}, spec);
+  const TimeNs t0 = g.samples.front().t_ns, t1 = g.samples.back().t_ns;
+  std::vector<QualityTarget> targets;
+  for (const auto& [from, to] : g.fixations) {
+    const TimeNs a = std::max(from, t0), b = std::min(to, t1);
+    if (b > a)
+      targets.push_back({static_cast<double>(a - t0) / 1e9, static_cast<double>(b - t0) / 1e9, FickAngles{0, 0},
+                         spec + " validation trial " + std::to_string(targets.size() + 1)});
+  }
+  if (targets.empty()) return bad_input(spec + ": no gaze samples during the validation trials' fixation targets");
+  return validation_gaze_quality(g.samples, rate_hz, std::move(targets), spec);
 }
 
 nlohmann::json gaze_quality_json(const ProfileGazeQuality& g) {
@@ -100,7 +126,7 @@ nlohmann::json gaze_quality_json(const ProfileGazeQuality& g) {
 
 void add_calibrate(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string profile, answers, monitor, scene, gaze_log, gaze_targets;
+    std::string profile, answers, monitor, scene, gaze_log, gaze_targets, gaze;
     bool json = false, dry_run = false;
   };
   auto a = std::make_shared<Args>();
@@ -114,6 +140,11 @@ void add_calibrate(CLI::App& app, int& exit_code) {
   sub->add_option("--scene", a->scene, "In-headset mode: the scene of the comparisons (default: the bundled Dungeon)");
   sub->add_option("--gaze-log", a->gaze_log,
                   "Native gaze log recorded during the validation trials: accuracy and precision go into the profile");
+  sub->add_option("--gaze", a->gaze,
+                  "In-headset mode: read this gaze source (e.g. auto, hid, psvr2) during the validation trials "
+                  "for their accuracy and precision")
+      ->excludes("--gaze-log")
+      ->excludes("--answers");
   sub->add_option("--gaze-targets", a->gaze_targets,
                   "Targets CSV for --gaze-log (start_s,end_s,azimuth_deg,elevation_deg; default: all straight ahead)")
       ->needs("--gaze-log");
@@ -124,7 +155,7 @@ void add_calibrate(CLI::App& app, int& exit_code) {
     // The gaze figures first: a bad log stops the command before anyone is asked anything.
     std::optional<ProfileGazeQuality> gaze;
     if (!a->gaze_log.empty()) {
-      auto g = validation_gaze_quality(a->gaze_log, a->gaze_targets);
+      auto g = logged_gaze_quality(a->gaze_log, a->gaze_targets);
       if (!g) return fail(g.error());
       gaze = *g;
     }
@@ -135,10 +166,30 @@ void add_calibrate(CLI::App& app, int& exit_code) {
       CalibrationWindowOptions wo;
       wo.monitor = a->monitor;
       wo.scene = a->scene;
-      if (Status st = run_calibration_window(cal, wo); !st) {
+      std::optional<probe::OpenedSource> source;
+      ValidationGaze live;
+      if (!a->gaze.empty()) {
+        auto spec = probe::parse_source_spec(a->gaze);
+        if (!spec) return fail(spec.error());
+        auto opened = probe::make_source(*spec);
+        if (!opened) return fail(opened.error());
+        source.emplace(std::move(*opened));
+        if (Status st = source->source->open(); !st) return fail(st.error());
+        if (Status st = source->source->start(); !st) return fail(st.error());
+        wo.gaze = source->source.get();
+      }
+      Status st = run_calibration_window(cal, wo, source ? &live : nullptr);
+      if (source) source->source->close();
+      if (!st) {
         Error e = st.error();
         if (e.kind == ErrorKind::unsupported) e.message += " (no display? the scripted mode works headless: --answers FILE)";
         return fail(e);
+      }
+      if (source) {
+        const double rate = source->source->info().nominal_rate_hz > 0 ? source->source->info().nominal_rate_hz : 120;
+        auto g = live_gaze_quality(live, rate, a->gaze);
+        if (!g) return fail(g.error());
+        gaze = *g;
       }
     }
     std::vector<ScriptedAnswer> scripted;
