@@ -275,5 +275,41 @@ TEST(StudyRun, BadResponsesAndOptionsExitTwoWithoutOutput) {
   EXPECT_FALSE(std::filesystem::exists(d.path("out/trials.csv")));
 }
 
+
+// The headset mode on a virtual X server (Xvfb, xdotool: scripts/bootstrap.sh), with
+// real key presses: a 2AFC test trial and a validation trial, answered as planned.
+TEST(StudyRun, HeadsetWindowTakesTheKeyboard) {
+  for (const char* tool : {"/usr/bin/xvfb-run", "/usr/bin/xdotool"})
+    ASSERT_TRUE(std::filesystem::exists(tool)) << tool << " is missing: install xvfb, xauth and xdotool";
+  StudyOptions o = two_afc_options();
+  o.conditions = {{"rmfr", 2.6, 2.6, 0.3}, {"kfr", 2.6, 2.6, 0.3}};
+  o.repeats = 1;
+  o.validation_share = 0.5;
+  auto plan = plan_study(o);
+  ASSERT_TRUE(plan);
+  ASSERT_EQ(plan->size(), 2u);
+  std::string keys;
+  // Side a both times (the test trial's rmfr, the validation trial's full): the first
+  // presentation (key 1) or the second (the right arrow).
+  for (const PlannedTrial& t : *plan) keys += t.b_first ? " Right" : " 1";
+  test::TempDir d;
+  const std::string run = common_args(o, " --condition rmfr:2.6 --condition kfr:2.6") + " --out " + d.path("out") +
+                          " --json > " + d.path("out.json") + " 2> " + d.path("err.txt") + " & P=\\$!; " +
+                          // Escaped: the inner shell under xvfb-run expands these, not the outer one.
+                          "W=\\$(xdotool search --sync --name 'foveal study' | head -1); sleep 0.5; "
+                          "xdotool windowfocus --sync \\$W; xdotool key --delay 400" + keys + "; wait \\$P";
+  const auto r = test::run("timeout 120 xvfb-run -a -s '-screen 0 1280x720x24' sh -c \"" + run + "\"");
+  ASSERT_EQ(r.exit_code, 0) << r.err << test::read_file(d.path("err.txt"));
+  const auto summary = nlohmann::json::parse(test::read_file(d.path("out.json")));
+  EXPECT_EQ(summary["mode"], "headset");
+  EXPECT_EQ(summary["validation"]["failures"], 0);
+  const auto rows = csv_rows(test::read_file(d.path("out/trials.csv")));
+  ASSERT_EQ(rows.size(), 3u);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i][11], "a") << "trial " << i;
+    EXPECT_GT(std::stod(rows[i][16]), 0.0) << "trial " << i;  // a measured response time
+  }
+}
+
 }  // namespace
 }  // namespace foveal
