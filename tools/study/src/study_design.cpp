@@ -11,12 +11,6 @@ namespace foveal {
 
 namespace {
 
-std::string number_text(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 std::optional<double> parse_double(const std::string& s) {
   double v = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
@@ -50,12 +44,18 @@ void shuffle(std::vector<T>& v, std::mt19937_64& rng) {
 
 }  // namespace
 
+std::string level_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 std::string StudyCondition::label() const {
   if (method == "full") return "full";
   std::string s = method;
-  if (uniform()) s += " sigma=" + number_text(sigma_d);
-  else s += " sigma_d=" + number_text(sigma_d) + " sigma_nd=" + number_text(sigma_nd);
-  return s + " f=" + number_text(f);
+  if (uniform()) s += " sigma=" + level_text(sigma_d);
+  else s += " sigma_d=" + level_text(sigma_d) + " sigma_nd=" + level_text(sigma_nd);
+  return s + " f=" + level_text(f);
 }
 
 Result<StudyCondition> parse_study_condition(const std::string& spec, const std::string& what) {

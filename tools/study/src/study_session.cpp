@@ -6,16 +6,6 @@
 
 namespace foveal {
 
-namespace {
-
-std::string number_text(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-}  // namespace
-
 Result<StudyResponse> parse_study_response(const std::string& word) {
   StudyResponse r;
   const std::size_t at = word.find('@');
@@ -78,14 +68,14 @@ std::string study_trials_csv(const StudySession& s) {
     if (two_afc) {
       // A 2AFC condition is uniform: one sigma for both eyes.
       for (const StudyCondition* c : {&t.a, &t.b})
-        row += c->method + "," + (c->method == "full" ? "1" : number_text(c->sigma_d)) + "," +
-               (c->method == "full" ? "" : number_text(c->f)) + ",";
+        row += c->method + "," + (c->method == "full" ? "1" : level_text(c->sigma_d)) + "," +
+               (c->method == "full" ? "" : level_text(c->f)) + ",";
       row += std::string(t.b_first ? "ba" : "ab") + "," + (r.chose_a ? "a" : "b") + ",,,,,";
     } else {
       const StudyCondition& c = t.b;
       row += ",,,,,,";
       row += std::string(t.b_first ? "test-first" : "reference-first") + ",," + c.label() + "," +
-             number_text(c.sigma_d) + "," + number_text(c.sigma_nd) + "," + std::to_string(r.score) + ",";
+             level_text(c.sigma_d) + "," + level_text(c.sigma_nd) + "," + std::to_string(r.score) + ",";
     }
     char rt[32] = "";
     if (r.response.response_s) std::snprintf(rt, sizeof rt, "%.3f", *r.response.response_s);

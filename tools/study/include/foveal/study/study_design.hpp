@@ -23,6 +23,9 @@ struct StudyCondition {
   std::string label() const;
 };
 
+/// A level or f as labels and the trials CSV write it: the shortest form, "2.6", "3".
+std::string level_text(double v);
+
 /// METHOD[:SIGMA[/SIGMA_ND]][:F], e.g. "full", "kfr:2.6", "rmfr:2.6:0.25", "rmfr:2/3".
 /// The method name is not checked here (the renderer knows its methods). Errors name `what`.
 Result<StudyCondition> parse_study_condition(const std::string& spec, const std::string& what);
