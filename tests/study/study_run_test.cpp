@@ -288,16 +288,18 @@ TEST(StudyRun, HeadsetWindowTakesTheKeyboard) {
   auto plan = plan_study(o);
   ASSERT_TRUE(plan);
   ASSERT_EQ(plan->size(), 2u);
-  std::string keys;
   // Side a both times (the test trial's rmfr, the validation trial's full): the first
-  // presentation (key 1) or the second (the right arrow).
-  for (const PlannedTrial& t : *plan) keys += t.b_first ? " Right" : " 1";
+  // presentation (key 1) or the second (the right arrow), each once the window asks.
   test::TempDir d;
+  std::string keys;
+  for (const PlannedTrial& t : *plan)
+    keys += "until grep -q 'trial " + std::to_string(t.index) + " of 2: waiting' " + d.path("err.txt") +
+            "; do sleep 0.05; done; xdotool key " + (t.b_first ? "Right" : "1") + "; ";
   const std::string run = common_args(o, " --condition rmfr:2.6 --condition kfr:2.6") + " --out " + d.path("out") +
                           " --json > " + d.path("out.json") + " 2> " + d.path("err.txt") + " & P=\\$!; " +
                           // Escaped: the inner shell under xvfb-run expands these, not the outer one.
                           "W=\\$(xdotool search --sync --name 'foveal study' | head -1); sleep 0.5; "
-                          "xdotool windowfocus --sync \\$W; xdotool key --delay 400" + keys + "; wait \\$P";
+                          "xdotool windowfocus --sync \\$W; " + keys + "wait \\$P";
   const auto r = test::run("timeout 120 xvfb-run -a -s '-screen 0 1280x720x24' sh -c \"" + run + "\"");
   ASSERT_EQ(r.exit_code, 0) << r.err << test::read_file(d.path("err.txt"));
   const auto summary = nlohmann::json::parse(test::read_file(d.path("out.json")));

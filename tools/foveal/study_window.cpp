@@ -5,6 +5,7 @@
 
 #include <array>
 #include <chrono>
+#include <cstdio>
 #include <optional>
 
 namespace foveal::cmd {
@@ -71,6 +72,12 @@ Status run_study_window(StudySession& session, StudyFrames& frames, render::Wind
     phase = p;
     phase_start = Clock::now();
     drawn = false;
+    // The operator's console follows the run (and a test knows when to press).
+    if (p == Phase::respond)
+      std::fprintf(stderr, "study: trial %d of %zu: waiting for the answer\n", session.trial().index, session.planned());
+    if (p == Phase::pause)
+      std::fprintf(stderr, "study: pause after a failed validation trial (%d so far): Enter, Space or Start goes on\n",
+                   session.validation_failures());
   };
   if (session.pause_requested()) enter(Phase::pause);
   while (!session.done()) {
