@@ -265,7 +265,8 @@ void add_study_run(CLI::App& study, int& exit_code) {
   sub->add_option("--answers", a->answers,
                   "Scripted mode, headless: one response per trial (1/2 for 2AFC, 1-5 for scores; KEY@SECONDS "
                   "gives the response time); without it: the headset window");
-  sub->add_option("--frames-out", a->frames_out, "Scripted mode: save each presentation as DIR/trial_NNN_P.png");
+  sub->add_option("--frames-out", a->frames_out, "Scripted mode: save each presentation as DIR/trial_NNN_P.png")
+      ->needs("--answers");
   sub->add_option("--monitor", a->monitor, "Headset mode: fullscreen on the monitor whose name contains this");
   sub->add_option("--out,-o", a->out, "Directory for trials.csv and summary.json")->required();
   sub->add_flag("--json", a->json, "Print the summary as JSON");
