@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite, after scripts/bootstrap.sh has built ./build:
-#   1. every test of the normal build (CPU, GL on llvmpipe, VM device tests): ctest
+#   1. every test of the normal build (CPU, GL on llvmpipe, VM device tests, the one-node
+#      Slurm cluster of label `cluster`): ctest
 #   2. the CPU unit tests under ASan + UBSan (build-asan/)
 #   3. the threaded runtime tests under TSan (build-tsan/)
 #   4. every libFuzzer target for a short fixed time on its seed corpus (build-fuzz/)
