@@ -5,7 +5,8 @@
 # Usage: tools/cluster/submit_bench.sh [--wait] N OUT_DIR BENCH_OPTIONS...
 #   --wait: return when the merge has finished, with its exit status.
 # Extra sbatch options (partition, time, CPUs per task) go in SBATCH_* variables, e.g.
-# SBATCH_PARTITION=gpu, SBATCH_TIMELIMIT=2:00:00; FOVEAL names the binary.
+# SBATCH_PARTITION=gpu, SBATCH_TIMELIMIT=2:00:00 (they apply to the merge job too);
+# FOVEAL_CPUS_PER_TASK (default 1) the CPUs of each shard; FOVEAL names the binary.
 set -euo pipefail
 here=$(dirname "$(readlink -f "$0")")
 wait=()
@@ -21,7 +22,7 @@ foveal=$(command -v "${FOVEAL:-foveal}") || { echo "$0: no foveal binary (set FO
 foveal=$(readlink -f "$foveal")
 mkdir -p "$out/logs"
 out=$(readlink -f "$out")
-array=$(sbatch --parsable --array=0-$((n - 1)) --export=ALL,FOVEAL_SWEEP_OUT="$out",FOVEAL="$foveal" \
+array=$(sbatch --parsable --array=0-$((n - 1)) --cpus-per-task="${FOVEAL_CPUS_PER_TASK:-1}" --export=ALL,FOVEAL_SWEEP_OUT="$out",FOVEAL="$foveal" \
   --output="$out/logs/shard-%a.out" "$here/bench_array.sbatch" "$@")
 array=${array%%;*}  # "ID;CLUSTER" on multi-cluster set-ups
 shards=()
