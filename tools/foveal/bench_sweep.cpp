@@ -6,6 +6,18 @@
 
 namespace foveal::bench {
 
+namespace {
+
+// After the rows of the same and earlier points: a point's rows keep the order they were
+// added in, and a run that adds rows out of point order still stores them in it.
+template <class Rows, class Row>
+void insert_in_point_order(Rows& rows, Row row) {
+  const auto at = std::upper_bound(rows.begin(), rows.end(), row.point, [](std::size_t p, const auto& r) { return p < r.point; });
+  rows.insert(at, std::move(row));
+}
+
+}  // namespace
+
 Result<Shard> parse_shard(const std::string& text) {
   const auto slash = text.find('/');
   auto integer = [](const std::string& s, int& v) {
@@ -21,10 +33,18 @@ Result<Shard> parse_shard(const std::string& text) {
   return s;
 }
 
+bool SweepRows::mine(std::size_t point) const {
+  return static_cast<int>(point % static_cast<std::size_t>(shard_.n)) == shard_.k - 1;
+}
+
 bool SweepRows::take() {
-  running_ = static_cast<int>(next_ % static_cast<std::size_t>(shard_.n)) == shard_.k - 1;
-  ++next_;
+  running_ = mine(next_++);
   return running_;
+}
+
+bool SweepRows::take(std::size_t* point) {
+  *point = next_;
+  return take();
 }
 
 std::size_t SweepRows::current() const {
@@ -32,14 +52,34 @@ std::size_t SweepRows::current() const {
   return next_ - 1;
 }
 
+// Each point's rows come from one shard in their own order: a stable sort by point
+// gives the single run's order.
+void SweepRows::sort() {
+  auto by_point = [](const auto& a, const auto& b) { return a.point < b.point; };
+  for (auto& [file, t] : tables_) std::stable_sort(t.lines.begin(), t.lines.end(), by_point);
+  for (auto& [name, items] : lists_) std::stable_sort(items.begin(), items.end(), by_point);
+}
+
 void SweepRows::table(const std::string& file, const std::string& header) { tables_[file].header = header; }
 
 void SweepRows::add_line(const std::string& file, std::string line) {
   assert(tables_.count(file) && "declare the table first");
-  tables_[file].lines.push_back({current(), std::move(line)});
+  insert_in_point_order(tables_[file].lines, Tagged<std::string>{current(), std::move(line)});
 }
 
-void SweepRows::add_item(const std::string& list, nlohmann::json item) { lists_[list].push_back({current(), std::move(item)}); }
+void SweepRows::add_item(const std::string& list, nlohmann::json item) {
+  insert_in_point_order(lists_[list], Tagged<nlohmann::json>{current(), std::move(item)});
+}
+
+void SweepRows::add_line(const std::string& file, std::string line, std::size_t point) {
+  assert(tables_.count(file) && point < next_ && mine(point) && "a point this shard took");
+  insert_in_point_order(tables_[file].lines, Tagged<std::string>{point, std::move(line)});
+}
+
+void SweepRows::add_item(const std::string& list, nlohmann::json item, std::size_t point) {
+  assert(point < next_ && mine(point) && "a point this shard took");
+  insert_in_point_order(lists_[list], Tagged<nlohmann::json>{point, std::move(item)});
+}
 
 std::vector<std::string> SweepRows::tables() const {
   std::vector<std::string> out;
@@ -164,11 +204,7 @@ Result<SweepRows> SweepRows::merge(const std::vector<SweepRows>& parts, const st
   for (int k = 1; k <= n; ++k)
     if (seen[static_cast<std::size_t>(k)] < 0) missing += (missing.empty() ? "" : ", ") + std::to_string(k) + "/" + std::to_string(n);
   if (!missing.empty()) return bad_input("merge: shard " + missing + " missing (every one of the " + std::to_string(n) + " is needed)");
-  // Each point's rows come from one shard in their own order: a stable sort by point
-  // restores the single run's order.
-  auto by_point = [](const auto& a, const auto& b) { return a.point < b.point; };
-  for (auto& [file, t] : out.tables_) std::stable_sort(t.lines.begin(), t.lines.end(), by_point);
-  for (auto& [name, items] : out.lists_) std::stable_sort(items.begin(), items.end(), by_point);
+  out.sort();
   return out;
 }
 

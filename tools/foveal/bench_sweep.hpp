@@ -5,7 +5,10 @@
 // modulo N (round robin, so that cheap and dear points spread evenly) and tags every row
 // it writes with its point. `foveal bench merge` sorts the shards' rows back into the
 // single run's order. Nothing here knows what the grid is: a new axis or experiment
-// only calls take() at each of its points and adds its rows there.
+// only calls take() at each of its points and adds its rows there. An experiment whose
+// loop visits its points again and again (frame by frame, say) takes them all first,
+// keeping the index take(&point) gives, and adds rows naming that point. Every table and
+// list, in a run as in a merge, is in point order (a point's rows in the order added).
 #include <cstddef>
 #include <map>
 #include <string>
@@ -34,11 +37,15 @@ class SweepRows {
   /// Starts the next point of the grid; true when this shard runs it (and then adds the
   /// point's rows before the next take()).
   bool take();
+  bool take(std::size_t* point);  ///< also: the point's index
   /// Declares a table: written (header only) even when this shard adds no row to it.
   void table(const std::string& file, const std::string& header);
   /// A CSV line (no newline) or a list item of the point take() started.
   void add_line(const std::string& file, std::string line);
   void add_item(const std::string& list, nlohmann::json item);
+  /// The same for a point taken earlier (its index from take(&point)).
+  void add_line(const std::string& file, std::string line, std::size_t point);
+  void add_item(const std::string& list, nlohmann::json item, std::size_t point);
 
   const Shard& shard() const { return shard_; }
   /// Points seen so far: the grid's size once the sweep has run.
@@ -68,6 +75,8 @@ class SweepRows {
     std::vector<Tagged<std::string>> lines;
   };
   std::size_t current() const;
+  bool mine(std::size_t point) const;
+  void sort();
 
   Shard shard_;
   std::size_t next_ = 0;
