@@ -19,7 +19,6 @@ constexpr const char* kShardFormat = "foveal bench shard";
 constexpr int kShardVersion = 1;
 
 double number(const nlohmann::json& v) { return v.is_string() ? INFINITY : v.get<double>(); }
-nlohmann::json jnum(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json("inf"); }
 
 // Each scene's automatic f against the best point of its f grid. The grid's points are
 // points of the sweep of their own (other shards' perhaps), so the best point and the
@@ -43,7 +42,7 @@ Result<nlohmann::json> auto_f_results(const SweepRows& rows) {
     a.erase("scene_index");
     a["grid_best_fx"] = best_fx;
     a["grid_best_fy"] = best_fy;
-    a["grid_best_fpsnr_db"] = jnum(best);
+    a["grid_best_fpsnr_db"] = json_number(best);
     a["grid_ms"] = grid_ms;
     a["cost_ratio"] = a["auto_ms"].get<double>() / grid_ms;
     out.push_back(std::move(a));
@@ -65,6 +64,8 @@ Status make_dir(const std::string& dir) {
 }
 
 }  // namespace
+
+nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json("inf"); }
 
 int write_outputs(const std::string& dir, const SweepRows& rows, nlohmann::json summary, bool charts, bool json) {
   auto fail = [](const Error& e) { return cli::report(e); };

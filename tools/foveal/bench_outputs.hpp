@@ -12,6 +12,9 @@
 
 namespace foveal::bench {
 
+/// A figure as bench.json holds it: the number, or "inf" (a PSNR of identical images).
+nlohmann::json json_number(double v);
+
 /// `summary`: the run's facts besides the rows (renderer, size, frames, fovea, peak RSS).
 /// Writes every table, then bench.json (summary + rows + auto_f), then the charts unless
 /// `charts` is false; prints the summary as JSON or a line. Returns the exit code.

@@ -61,8 +61,6 @@ std::string num(double v) {
   return s.str();
 }
 
-nlohmann::json jnum(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json("inf"); }
-
 Result<std::vector<double>> parse_range(const std::string& s, const std::string& what) {
   std::vector<double> out;
   if (s.find(':') != std::string::npos) {
@@ -300,7 +298,7 @@ int run(const Args& a, const std::string& sweep) {
                              {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu},
                              {"passes_ms", {{"shadow", t.shadow}, {"gbuffer", t.gbuffer}, {"mapping", t.mapping},
                                             {"lighting", t.lighting}, {"inverse", t.inverse}}},
-                             {"psnr_db", jnum(c.psnr_db)}, {"ssim", c.ssim}, {"fpsnr_db", jnum(c.fpsnr_db)}});
+                             {"psnr_db", bench::json_number(c.psnr_db)}, {"ssim", c.ssim}, {"fpsnr_db", bench::json_number(c.fpsnr_db)}});
       return {};
     };
     if (rows.take()) {
@@ -331,7 +329,7 @@ int run(const Args& a, const std::string& sweep) {
           const double ms = r->median.cpu + std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
           rows.add_line("fgrid.csv", name + "," + num(a.grid_sigma) + "," + num(fx) + "," + num(fy) + "," + num(q->combined.fpsnr_db) +
                                          "," + num(q->combined.psnr_db) + "," + num(q->combined.ssim));
-          rows.add_item("fgrid_points", {{"scene_index", scene_index}, {"fx", fx}, {"fy", fy}, {"fpsnr_db", jnum(q->combined.fpsnr_db)}, {"ms", ms}});
+          rows.add_item("fgrid_points", {{"scene_index", scene_index}, {"fx", fx}, {"fy", fy}, {"fpsnr_db", bench::json_number(q->combined.fpsnr_db)}, {"ms", ms}});
         }
       if (rows.take()) {
         if (Status s = reference(); !s) return fail(s.error());
@@ -342,7 +340,7 @@ int run(const Args& a, const std::string& sweep) {
         auto q = image::compute_stereo_metrics(full->image, r->image, mo);
         if (!q) return fail(q.error());
         rows.add_item("auto_f", {{"scene_index", scene_index}, {"scene", name}, {"sigma", a.grid_sigma}, {"auto_fx", est->fx},
-                                 {"auto_fy", est->fy}, {"auto_fpsnr_db", jnum(q->combined.fpsnr_db)}, {"auto_ms", est->ms},
+                                 {"auto_fy", est->fy}, {"auto_fpsnr_db", bench::json_number(q->combined.fpsnr_db)}, {"auto_ms", est->ms},
                                  {"auto_evaluations", est->evaluations}});
       }
     }
