@@ -63,6 +63,11 @@ def main():
               ", ".join(bench_rows.timing_columns(d("single", "bench.csv"))) + ")" + "".join("\n      " + x for x in diffs[:10]))
         for chart in ("pareto.png", "table.md", "fgrid.png", "rotation.png"):
             check(os.path.exists(d("merged", chart)), f"the merge draws {chart} as a single run does")
+        # One part of one: a shard too (what an array of one task writes), merged alone.
+        r = run(a.foveal, ["bench", "--shard", "1/1", "--out", d("one")] + SWEEP)
+        check(r.returncode == 0 and os.path.exists(d("one", "shard.json")), "--shard 1/1 writes a shard " + r.stderr.strip())
+        r = run(a.foveal, ["bench", "merge", "--no-png", "--out", d("one-merged"), d("one")])
+        check(r.returncode == 0 and not bench_rows.differences(d("single"), d("one-merged")), "a merge of 1/1 equals the single run")
 
         # Bad input: exit 2, a message naming it, no output.
         r = run(a.foveal, ["bench"] + SWEEP[:2] + ["--sigmas", "3", "--size", "64x36", "--frames", "1", "--shard", "2/4",

@@ -23,7 +23,6 @@ namespace foveal::bench {
 /// `--shard K/N`: the K-th of N disjoint parts; 1/1 is the whole sweep.
 struct Shard {
   int k = 1, n = 1;
-  bool whole() const { return n == 1; }
   std::string text() const { return std::to_string(k) + "/" + std::to_string(n); }
 };
 Result<Shard> parse_shard(const std::string& text);

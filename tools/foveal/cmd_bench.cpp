@@ -410,7 +410,8 @@ int run(const Args& a, const std::string& sweep) {
   ::getrusage(RUSAGE_SELF, &ru);
   const nlohmann::json summary = {{"renderer", comp->renderer()}, {"size", {co.width, co.height}}, {"frames", a.frames},
                                   {"fovea", {fovea->first, fovea->second}}, {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
-  if (!shard->whole()) return bench::write_shard(a.out, rows, summary, sweep, a.json);
+  // --shard given (1/1 too): a part for `bench merge`.
+  if (!a.shard.empty()) return bench::write_shard(a.out, rows, summary, sweep, a.json);
   return bench::write_outputs(a.out, rows, summary, !a.no_png, a.json);
 }
 
