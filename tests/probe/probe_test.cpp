@@ -145,3 +145,44 @@ TEST(RecordCli, RecordsAnySourceTheProberKnows) {
 
 }  // namespace
 }  // namespace foveal
+
+namespace foveal {
+namespace {
+
+TEST(PoseSpec, ParsesEveryFormAndNamesTheKnownOnes) {
+  ASSERT_TRUE(probe::parse_pose_spec("auto"));
+  EXPECT_FALSE(probe::parse_pose_spec("auto:1"));
+  ASSERT_TRUE(probe::parse_pose_spec("psvr2"));
+  EXPECT_FALSE(probe::parse_pose_spec("psvr2:x"));
+#ifdef FOVEAL_TEST_HAVE_HID
+  auto v = probe::parse_pose_spec("vive:/dev/hidraw7");
+  ASSERT_TRUE(v) << v.error().message;
+  EXPECT_EQ(v->driver, "vive");
+  EXPECT_EQ(v->arg, "/dev/hidraw7");
+  EXPECT_EQ(v->text(), "vive:/dev/hidraw7");
+#endif
+  auto bad = probe::parse_pose_spec("oculus");
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().kind, ErrorKind::bad_input);
+  EXPECT_NE(bad.error().message.find("psvr2"), std::string::npos) << bad.error().message;
+  EXPECT_NE(probe::pose_spec_help().find("auto"), std::string::npos);
+}
+
+TEST(PoseSpec, AbsentHeadsetsFailToOpenWithAMessage) {
+  // No headset on this machine: opening says so (the pose thread would wait and retry).
+  for (const char* text : {"psvr2", "auto"}) {
+    auto spec = probe::parse_pose_spec(text);
+    ASSERT_TRUE(spec);
+    auto dev = probe::make_pose_device(*spec);
+    ASSERT_TRUE(dev) << dev.error().message;
+    Status s = dev->device->open();
+    EXPECT_FALSE(s) << text;
+    EXPECT_FALSE(s.error().message.empty());
+  }
+  auto rows = probe::list_hmds();
+  ASSERT_TRUE(rows) << rows.error().message;
+  EXPECT_TRUE(rows->empty());
+}
+
+}  // namespace
+}  // namespace foveal
