@@ -143,11 +143,25 @@ TEST(RecordCli, RecordsAnySourceTheProberKnows) {
   EXPECT_FALSE(std::filesystem::exists(d.path("n.csv")));
 }
 
-}  // namespace
-}  // namespace foveal
-
-namespace foveal {
-namespace {
+TEST(RecordCli, RecordsTheHeadPoseColumnsWithHead) {
+  // No headset here: the log is v2, its head columns empty (waiting for the headset).
+  test::TempDir d;
+  const auto r = test::run(test::bin("foveal") + " record --source synthetic:5 --head auto --duration 1 --json --out " +
+                           d.path("h.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["head"]["head"], "auto");
+  EXPECT_EQ(j["head"]["poses"], 0);
+  const std::string log = test::read_file(d.path("h.csv"));
+  EXPECT_EQ(log.rfind("# foveal-gaze-log v2", 0), 0u) << log.substr(0, 40);
+  EXPECT_NE(log.find("head=auto"), std::string::npos);
+  const auto v = test::run(test::bin("foveal") + " log validate --json " + d.path("h.csv"));
+  ASSERT_EQ(v.exit_code, 0) << v.err;
+  const auto bad = test::run(test::bin("foveal") + " record --source synthetic --head oculus --out " + d.path("n.csv"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("unknown head-pose source 'oculus'"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(d.path("n.csv")));
+}
 
 TEST(PoseSpec, ParsesEveryFormAndNamesTheKnownOnes) {
   ASSERT_TRUE(probe::parse_pose_spec("auto"));
