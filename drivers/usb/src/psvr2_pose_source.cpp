@@ -143,7 +143,9 @@ void Psvr2PoseSource::on_status(const std::uint8_t* data, int length, TimeNs arr
     r.status = ReadStatus::sample;
     r.has_imu = true;
     r.imu = psvr2_imu_to_sample(m);
-    r.imu.t_ns = clock_.map(arrival, wrap_.unwrap_ns(m.vts_us));
+    r.imu.device_t_ns = wrap_.unwrap_ns(m.vts_us);
+    r.imu.has_device_time = true;
+    r.imu.t_ns = clock_.map(arrival, r.imu.device_t_ns);
     if (queue_.size() >= kQueueMax) queue_.pop_front();
     queue_.push_back(r);
     ++counters_.imu_samples;

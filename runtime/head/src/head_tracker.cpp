@@ -59,6 +59,7 @@ void HeadTracker::run() {
       lock.lock();
       ++stats_.reconnects;
       stats_.device = device_.info();
+      motion_.velocity_m_s = glm::vec3(0.0f);  // from the poses before the gap: stale
       // The filter keeps its orientation and bias: the gap is not integrated, and the
       // head starts from where it was held.
       lock.unlock();
