@@ -5,7 +5,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "le_bytes.hpp"
+#include "foveal/core/le_bytes.hpp"
 
 namespace foveal::usb {
 namespace {

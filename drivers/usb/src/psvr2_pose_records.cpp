@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "le_bytes.hpp"
+#include "foveal/core/le_bytes.hpp"
 
 namespace foveal::usb {
 namespace {

@@ -4,20 +4,13 @@
 
 #include <cmath>
 
+#include "foveal/core/le_bytes.hpp"
+
 namespace foveal::vive {
 namespace {
 
 Error at(const char* what, std::size_t offset, const std::string& why) {
   return bad_input(std::string("vive ") + what + ": byte " + std::to_string(offset) + ": " + why);
-}
-
-std::int16_t i16(std::span<const std::uint8_t> d, std::size_t at) {
-  return static_cast<std::int16_t>(d[at] | d[at + 1] << 8);
-}
-
-std::uint32_t u32(std::span<const std::uint8_t> d, std::size_t at) {
-  return static_cast<std::uint32_t>(d[at]) | static_cast<std::uint32_t>(d[at + 1]) << 8 |
-         static_cast<std::uint32_t>(d[at + 2]) << 16 | static_cast<std::uint32_t>(d[at + 3]) << 24;
 }
 
 /// The slot holding the oldest of three consecutive sequence numbers, if they are.
@@ -41,14 +34,15 @@ Result<ImuReport> parse_imu_report(std::span<const std::uint8_t> data) {
               (data.size() < kImuReportBytes ? "truncated: " : "too long: ") + std::to_string(data.size()) + " of " +
                   std::to_string(kImuReportBytes) + " bytes");
   ImuReport r;
+  const LeBytes b(data);
   for (std::size_t i = 0; i < 3; ++i) {
     const std::size_t o = 1 + i * kImuSampleBytes;
     ImuRawSample& s = r.samples[i];
     for (std::size_t k = 0; k < 3; ++k) {
-      s.accel[k] = i16(data, o + 2 * k);
-      s.gyro[k] = i16(data, o + 6 + 2 * k);
+      s.accel[k] = b.i16(o + 2 * k);
+      s.gyro[k] = b.i16(o + 6 + 2 * k);
     }
-    s.time = u32(data, o + 12);
+    s.time = b.u32(o + 12);
     s.seq = data[o + 16];
   }
   if (!oldest_slot(r)) return at("IMU report", 17, "the three sequence numbers are not consecutive");

@@ -1,12 +1,12 @@
 #pragma once
-// Little-endian reads at fixed offsets of a USB record (the caller checked the length).
+// Little-endian reads at fixed offsets of a device record (the caller checked the length).
 #include <cstdint>
 #include <cstring>
 #include <span>
 
 #include <glm/vec3.hpp>
 
-namespace foveal::usb {
+namespace foveal {
 
 class LeBytes {
  public:
@@ -31,4 +31,4 @@ class LeBytes {
   std::span<const std::uint8_t> d_;
 };
 
-}  // namespace foveal::usb
+}  // namespace foveal
