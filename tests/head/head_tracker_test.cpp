@@ -88,6 +88,49 @@ TEST(HeadTracker, FusesPredictsHoldsAndRecovers) {
   EXPECT_EQ(t.stats().state, HeadState::stopped);
 }
 
+/// A 6DoF device moving along x at 1 m/s: poses 10 ms apart on its own clock, read in
+/// bursts whose runtime times are 1 µs apart (as after a delivery stall).
+class ScriptedSlam final : public PoseDevice {
+ public:
+  int k = 0;
+  Status open() override { return {}; }
+  void close() override {}
+  Status start() override { return {}; }
+  void stop() override {}
+  PoseReading next(std::chrono::nanoseconds) override {
+    PoseReading r;
+    if (k >= 40) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      return r;  // timeout
+    }
+    r.status = ReadStatus::sample;
+    r.has_pose = true;
+    r.pose.t_ns = kNsPerSec + (k / 8) * 80 * kNsPerMs + (k % 8) * 1000;
+    r.pose.pose.position_m = {0.01f * static_cast<float>(k), 1.6f, 0.0f};
+    r.pose_has_device_time = true;
+    r.pose_device_t_ns = 7 * kNsPerSec + k * 10 * kNsPerMs;
+    ++k;
+    return r;
+  }
+  PoseDeviceInfo info() const override {
+    PoseDeviceInfo i;
+    i.driver = "scripted";
+    i.position = i.orientation = true;
+    return i;
+  }
+};
+
+TEST(HeadTracker, VelocityIsOverTheDevicesClock) {
+  ScriptedSlam slam;
+  HeadTracker t(slam, /*wait_for_device=*/false);
+  t.start();
+  ASSERT_TRUE(wait_for([&] { return t.stats().poses == 40; }, 2000));
+  t.stop();
+  const MotionEstimate m = t.motion();
+  EXPECT_NEAR(m.velocity_m_s.x, 1.0f, 1e-3f);  // on the runtime times it would be ~10000 m/s
+  EXPECT_NEAR(m.velocity_m_s.y, 0.0f, 1e-6f);
+}
+
 TEST(HeadTracker, WaitsForAnAbsentDevice) {
   ScriptedImu imu;
   imu.plugged = false;

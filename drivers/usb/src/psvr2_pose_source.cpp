@@ -172,6 +172,8 @@ void Psvr2PoseSource::on_slam(const std::uint8_t* data, int length, TimeNs arriv
     // The SLAM timestamp is on the IMU's clock; before the first IMU record, on arrival.
     const std::int64_t device_ns = wrap_.unwrap_ns(rec->vts_us);
     r.pose.t_ns = clock_.anchored() ? std::min<TimeNs>(clock_.to_runtime(device_ns), arrival) : arrival;
+    r.pose_has_device_time = true;
+    r.pose_device_t_ns = device_ns;
     if (queue_.size() >= kQueueMax) queue_.pop_front();
     queue_.push_back(r);
     ++counters_.poses;

@@ -89,12 +89,16 @@ void HeadTracker::handle(const PoseReading& r, bool fuse) {
   if (r.has_pose) {
     measured = r.pose;
     have_pose = true;
-    if (have_position_ && r.pose.t_ns > last_position_.t_ns) {
-      velocity = (r.pose.pose.position_m - last_position_.pose.position_m) /
-                 (static_cast<float>(r.pose.t_ns - last_position_.t_ns) * 1e-9f);
+    // Over the device's clock when both poses have it: the runtime times of a burst
+    // that arrived late are bunched together.
+    const std::int64_t t = r.pose_has_device_time ? r.pose_device_t_ns : r.pose.t_ns;
+    if (have_position_ && last_position_device_ == r.pose_has_device_time && t > last_position_t_) {
+      velocity = (r.pose.pose.position_m - last_position_.position_m) / (static_cast<float>(t - last_position_t_) * 1e-9f);
       have_velocity = true;
     }
-    last_position_ = r.pose;
+    last_position_ = r.pose.pose;
+    last_position_t_ = t;
+    last_position_device_ = r.pose_has_device_time;
     have_position_ = true;
   }
   const bool pushed = have_pose && track_.push(measured);

@@ -31,6 +31,10 @@ struct PoseReading {
   ReadStatus status = ReadStatus::timeout;
   bool has_pose = false;
   TimedPose pose{};  ///< tracking frame, runtime clock
+  /// The pose's time on the device's own clock (unwrapped, ns), when it has one: what
+  /// velocities are computed over (runtime times bunch after a delivery stall).
+  bool pose_has_device_time = false;
+  std::int64_t pose_device_t_ns = 0;
   bool has_imu = false;
   ImuSample imu{};
   Error error{};

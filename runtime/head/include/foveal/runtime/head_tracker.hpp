@@ -66,8 +66,11 @@ class HeadTracker {
   mutable std::mutex mutex_;  // guards motion_ and stats_
   MotionEstimate motion_;
   HeadTrackerStats stats_;
-  TimedPose last_position_{};  // pose thread: for the velocity of tracked positions
-  bool have_position_ = false;
+  // Pose thread: the last tracked position and its time (device clock if it has one),
+  // for the velocity.
+  Pose last_position_{};
+  std::int64_t last_position_t_ = 0;
+  bool last_position_device_ = false, have_position_ = false;
 };
 
 }  // namespace foveal
