@@ -23,7 +23,7 @@ cmake -S . -B build-asan -G Ninja "${fast[@]}" -DFOVEAL_SANITIZE=address,undefin
 ninja -C build-asan -j"$jobs" foveal_core_tests foveal_profile_tests foveal_control_tests foveal_exchange_tests \
   foveal_daemon_tests foveal_calibration_tests foveal_filter_tests foveal_hid_tests foveal_usb_tests \
   foveal_image_tests foveal_gltf_tests foveal_probe_tests foveal_quality_tests foveal_quality_cli_tests \
-  foveal_study_tests foveal_fuzz_regressions foveal_client_tests foveal foveald \
+  foveal_study_tests foveal_fuzz_regressions foveal_client_tests foveal_rmfr_tests foveal foveald \
   foveal_head_tests foveal_vive_tests
 # foveald's integration tests render through Mesa, whose allocations outlive the process
 # by design: they run in the normal build; every other CPU test runs with leak checks.

@@ -1,6 +1,8 @@
 // foveal record: reads a tracker and writes what it delivers as a native gaze log,
-// riding out unplugs (retry with backoff) until the duration is over or Ctrl-C; with
-// --head, the headset's own pose goes with each sample (log v2).
+// riding out unplugs (retry with backoff) until the duration is over or Ctrl-C. With
+// --control it serves a control socket whose `mark` requests become marker rows of the
+// log; at the end it reports the recording's data quality (docs/quality.md). With
+// --head, the headset's own pose goes with each sample (log v2, docs/headset.md).
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -15,8 +17,12 @@
 #include "commands.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/drivers/probe.hpp"
+#include "foveal/quality/quality_targets.hpp"
+#include "foveal/runtime/control_server.hpp"
 #include "foveal/runtime/head_tracker.hpp"
 #include "foveal/tools/cli.hpp"
+#include "foveal/tools/trace_markers.hpp"
+#include "quality_report.hpp"
 
 namespace foveal::cmd {
 
@@ -33,6 +39,41 @@ double estimate_rate(const std::vector<GazeSample>& s) {
   std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
   const TimeNs median = d[d.size() / 2];
   return median > 0 ? 1e9 / static_cast<double>(median) : 0;
+}
+
+// The recording's control requests: `mark` (stamped now, on the samples' clock) and
+// `status`; replies as foveald's (docs/daemon.md).
+nlohmann::json record_request(const nlohmann::json& req, cli::MarkerQueue& markers, std::uint64_t samples,
+                              const std::string& out) {
+  const std::string cmd = req["cmd"].get<std::string>();
+  if (cmd == "status")
+    return {{"ok", true}, {"recording", out}, {"samples", samples}, {"markers", markers.pushed()}};
+  if (cmd == "mark") {
+    const auto text = req.find("text");
+    if (text == req.end() || !text->is_string()) return {{"ok", false}, {"error", "mark: expected \"text\": a string"}};
+    if (Status st = check_marker_text(text->get<std::string>()); !st) return {{"ok", false}, {"error", st.error().message}};
+    const TimeNs now = monotonic_now_ns();
+    if (!markers.push({now, text->get<std::string>()}))
+      return {{"ok", false}, {"error", "mark: " + std::to_string(cli::MarkerQueue::kMaxWaiting) +
+                                           " markers wait for the next sample already; refused"}};
+    return {{"ok", true}, {"t_ns", now}, {"markers", markers.pushed()}};
+  }
+  return {{"ok", false}, {"error", "unknown request '" + cmd + "' (a recording answers status and mark)"}};
+}
+
+/// The recording's quality, read back from the committed log; null with the reason when
+/// it has none (no valid samples, a target outside it).
+nlohmann::json recording_quality(const std::string& path, const std::vector<QualityTarget>& targets, bool print) {
+  GazeLogHeader header;
+  auto samples = read_gaze_log(path, &header);
+  if (!samples) return {{"error", samples.error().message}};
+  auto q = compute_gaze_quality(*samples, header.rate_hz, QualityOptions{std::nullopt, std::nullopt, targets});
+  if (!q) {
+    if (print) std::printf("  no quality figures: %s\n", q.error().message.c_str());
+    return {{"error", q.error().message}};
+  }
+  if (print) print_quality_text(path, *q);
+  return quality_json(path, *q);
 }
 
 /// How long a gaze sample waits for the head pose of its time before it is written
@@ -57,6 +98,7 @@ class HeadRecorder {
   ~HeadRecorder() { tracker_->stop(); }
 
   void add(const GazeSample& s) { waiting_.push_back(s); }
+  std::size_t waiting() const { return waiting_.size(); }
   /// The samples whose pose is in (or that waited long enough), with it; all with `all`.
   std::vector<GazeSample> ready(bool all) {
     std::vector<GazeSample> out;
@@ -90,9 +132,10 @@ class HeadRecorder {
 
 void add_record(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string source, device, out, head;
+    std::string source, device, out, targets, head;
+    std::string control_socket;
     double duration_s = 10;
-    bool json = false;
+    bool control = false, json = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand("record", "Record a tracker's gaze into a native gaze log");
@@ -102,6 +145,12 @@ void add_record(CLI::App& app, int& exit_code) {
   sub->add_option("--out,-o", args->out, "Output native gaze log (written atomically)")->required();
   sub->add_option("--head", args->head, "Also record the headset's own pose with each sample (native log v2):\n" + probe::pose_spec_help());
   sub->add_option("--duration", args->duration_s, "Seconds to record (Ctrl-C stops early)")->capture_default_str();
+  sub->add_flag("--control", args->control,
+                "Serve a control socket while recording (default " + default_record_socket_path() +
+                    "): `foveal ctl mark TEXT` puts a marker row into the log");
+  sub->add_option("--control-socket", args->control_socket, "Serve the control socket at this path instead");
+  sub->add_option("--targets", args->targets,
+                  "Targets CSV (start_s,end_s,azimuth_deg,elevation_deg): the end report gives accuracy");
   sub->add_flag("--json", args->json, "Print the summary as JSON");
   sub->callback([args, &exit_code] {
     if (!(args->duration_s > 0)) {
@@ -120,6 +169,26 @@ void add_record(CLI::App& app, int& exit_code) {
       exit_code = cli::report(device.error());
       return;
     }
+    std::vector<QualityTarget> targets;
+    if (!args->targets.empty()) {
+      auto t = read_quality_targets(args->targets);
+      if (!t) {
+        exit_code = cli::report(t.error());
+        return;
+      }
+      targets = std::move(t.value());
+    }
+    std::optional<ControlServer> control;
+    if (args->control || !args->control_socket.empty()) {
+      auto c = ControlServer::listen(args->control_socket.empty() ? default_record_socket_path() : args->control_socket);
+      if (!c) {
+        exit_code = cli::report(c.error());
+        return;
+      }
+      control.emplace(std::move(c.value()));
+      control->set_logger([](const std::string& line) { cli::warn("control: " + line); });
+    }
+    cli::MarkerQueue markers;
     std::unique_ptr<HeadRecorder> head_rec;
     if (!args->head.empty()) {
       auto h = HeadRecorder::create(args->head);
@@ -148,6 +217,23 @@ void add_record(CLI::App& app, int& exit_code) {
     std::optional<GazeLogWriter> writer;
     TimeNs last_t = 0;
     std::uint64_t reconnects = 0;
+    // Markers go in before the first sample stamped later than them: the log stays in
+    // time order. One stamped before the last written row (a source's clock running
+    // ahead) is moved up to that row's time.
+    TimeNs last_row_t = INT64_MIN;
+    auto write_markers_until = [&](TimeNs t) -> Status {
+      for (GazeMarker m : markers.take_until(t)) {
+        m.t_ns = std::max(m.t_ns, last_row_t);
+        if (Status st = writer->mark(m); !st) return st;
+        last_row_t = m.t_ns;
+      }
+      return {};
+    };
+    auto write_sample = [&](const GazeSample& s) -> Status {
+      if (Status st = write_markers_until(s.t_ns); !st) return st;
+      last_row_t = s.t_ns;
+      return writer->write(s);
+    };
     auto open_writer = [&]() -> Status {
       GazeLogHeader h;
       if (head_rec) h.version = kGazeLogV2;
@@ -161,22 +247,29 @@ void add_record(CLI::App& app, int& exit_code) {
       if (!w) return w.error();
       writer.emplace(std::move(w.value()));
       for (const GazeSample& s : first_second)
-        if (Status st = writer->write(s); !st) return st;
+        if (Status st = write_sample(s); !st) return st;
       first_second.clear();
       return {};
     };
-    const TimeNs first_second_until = monotonic_now_ns() + kNsPerSec;
     // A sample goes to the log, or to the first second's buffer until the rate is known.
     auto take = [&](const GazeSample& s) -> Status {
-      if (writer) return writer->write(s);
+      if (writer) return write_sample(s);
       first_second.push_back(s);
       return {};
     };
+    const TimeNs first_second_until = monotonic_now_ns() + kNsPerSec;
     while (!g_interrupted.load() && monotonic_now_ns() < t_end) {
-      const auto r = src.next(std::chrono::milliseconds(50));
+      if (control)
+        control->poll(0, [&](const nlohmann::json& req) {
+          return record_request(req, markers,
+                                (writer ? writer->samples_written() : 0) + first_second.size() +
+                                    (head_rec ? head_rec->waiting() : 0),
+                                args->out);
+        });
+      const auto r = src.next(std::chrono::milliseconds(control ? 20 : 50));
       if (r.status == ReadStatus::sample && r.sample.t_ns > last_t) {
         last_t = r.sample.t_ns;
-        if (head_rec) head_rec->add(r.sample);
+        if (head_rec) head_rec->add(r.sample);  // waits for its pose
         else if (Status st = take(r.sample); !st) {
           exit_code = cli::report(st.error());
           return;
@@ -213,19 +306,24 @@ void add_record(CLI::App& app, int& exit_code) {
         exit_code = cli::report(st.error());
         return;
       }
-    if (Status st = writer->commit(); !st) {
+    control.reset();  // no marks after the end; removes the socket
+    Status st = write_markers_until(INT64_MAX);
+    if (st) st = writer->commit();
+    if (!st) {
       exit_code = cli::report(st.error());
       return;
     }
     nlohmann::json j = {{"output", args->out},  {"driver", info.driver},     {"device", info.path},
                         {"samples", writer->samples_written()}, {"reconnects", reconnects},
-                        {"driver_counters", device->counters()}};
+                        {"markers", markers.pushed()}, {"driver_counters", device->counters()}};
     if (head_rec) j["head"] = head_rec->json();
-    if (args->json) cli::print_json(j);
-    else
-      std::printf("recorded %llu samples from %s %s -> %s (%llu reconnects)\n",
-                  static_cast<unsigned long long>(writer->samples_written()), info.driver.c_str(), info.path.c_str(),
+    if (!args->json)
+      std::printf("recorded %llu samples, %llu markers from %s %s -> %s (%llu reconnects)\n",
+                  static_cast<unsigned long long>(writer->samples_written()),
+                  static_cast<unsigned long long>(markers.pushed()), info.driver.c_str(), info.path.c_str(),
                   args->out.c_str(), static_cast<unsigned long long>(reconnects));
+    j["quality"] = recording_quality(args->out, targets, !args->json);
+    if (args->json) cli::print_json(j);
   });
 }
 

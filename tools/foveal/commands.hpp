@@ -25,5 +25,6 @@ void add_outputs(CLI::App& app, int& exit_code);
 void add_devices(CLI::App& app, int& exit_code);
 void add_record(CLI::App& app, int& exit_code);
 void add_study(CLI::App& app, int& exit_code);
+void add_study_run(CLI::App& study, int& exit_code);  // `study run`, called by add_study
 
 }  // namespace foveal::cmd
