@@ -1,12 +1,14 @@
 // foveal record: reads a tracker and writes what it delivers as a native gaze log,
 // riding out unplugs (retry with backoff) until the duration is over or Ctrl-C. With
 // --control it serves a control socket whose `mark` requests become marker rows of the
-// log; at the end it reports the recording's data quality (docs/quality.md).
+// log; at the end it reports the recording's data quality (docs/quality.md). With
+// --head, the headset's own pose goes with each sample (log v2, docs/headset.md).
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <atomic>
+#include <deque>
 #include <csignal>
 #include <cstdio>
 #include <optional>
@@ -17,6 +19,7 @@
 #include "foveal/drivers/probe.hpp"
 #include "foveal/quality/quality_targets.hpp"
 #include "foveal/runtime/control_server.hpp"
+#include "foveal/runtime/head_tracker.hpp"
 #include "foveal/tools/cli.hpp"
 #include "foveal/tools/trace_markers.hpp"
 #include "quality_report.hpp"
@@ -73,11 +76,63 @@ nlohmann::json recording_quality(const std::string& path, const std::vector<Qual
   return quality_json(path, *q);
 }
 
+/// How long a gaze sample waits for the head pose of its time before it is written
+/// with the newest one there is (held).
+constexpr TimeNs kPoseWaitNs = 100 * kNsPerMs;
+
+/// The head-pose side of a recording: a pose thread on the headset and the samples
+/// waiting for their pose.
+class HeadRecorder {
+ public:
+  static Result<std::unique_ptr<HeadRecorder>> create(const std::string& spec_text) {
+    auto spec = probe::parse_pose_spec(spec_text);
+    if (!spec) return spec.error();
+    auto dev = probe::make_pose_device(*spec);
+    if (!dev) return dev.error();
+    std::unique_ptr<HeadRecorder> h(new HeadRecorder());
+    h->device_.emplace(std::move(*dev));
+    h->tracker_ = std::make_unique<HeadTracker>(*h->device_->device, /*wait_for_device=*/true);
+    h->tracker_->start();
+    return h;
+  }
+  ~HeadRecorder() { tracker_->stop(); }
+
+  void add(const GazeSample& s) { waiting_.push_back(s); }
+  std::size_t waiting() const { return waiting_.size(); }
+  /// The samples whose pose is in (or that waited long enough), with it; all with `all`.
+  std::vector<GazeSample> ready(bool all) {
+    std::vector<GazeSample> out;
+    const auto newest = tracker_->track().newest();
+    const TimeNs now = monotonic_now_ns();
+    while (!waiting_.empty()) {
+      GazeSample& s = waiting_.front();
+      if (!all && !(newest && newest->t_ns >= s.t_ns) && now - s.t_ns < kPoseWaitNs) break;
+      const PoseAt p = tracker_->track().pose_at(s.t_ns);
+      if (p.valid) s.head = {true, p.pose};
+      out.push_back(s);
+      waiting_.pop_front();
+    }
+    return out;
+  }
+  nlohmann::json json() {
+    tracker_->stop();
+    const HeadTrackerStats st = tracker_->stats();
+    return {{"head", device_->spec.text()},   {"device", st.device.name}, {"poses", st.poses},
+            {"imu_samples", st.imu_samples}, {"reconnects", st.reconnects}, {"counters", device_->counters()}};
+  }
+
+ private:
+  HeadRecorder() = default;
+  std::optional<probe::OpenedPoseDevice> device_;
+  std::unique_ptr<HeadTracker> tracker_;
+  std::deque<GazeSample> waiting_;
+};
+
 }  // namespace
 
 void add_record(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string source, device, out, targets;
+    std::string source, device, out, targets, head;
     std::string control_socket;
     double duration_s = 10;
     bool control = false, json = false;
@@ -88,6 +143,7 @@ void add_record(CLI::App& app, int& exit_code) {
   sub->add_option("--device,-d", args->device, "Short form: an id from `foveal devices`, a hidraw path, psvr2, or auto")
       ->excludes("--source");
   sub->add_option("--out,-o", args->out, "Output native gaze log (written atomically)")->required();
+  sub->add_option("--head", args->head, "Also record the headset's own pose with each sample (native log v2):\n" + probe::pose_spec_help());
   sub->add_option("--duration", args->duration_s, "Seconds to record (Ctrl-C stops early)")->capture_default_str();
   sub->add_flag("--control", args->control,
                 "Serve a control socket while recording (default " + default_record_socket_path() +
@@ -133,6 +189,15 @@ void add_record(CLI::App& app, int& exit_code) {
       control->set_logger([](const std::string& line) { cli::warn("control: " + line); });
     }
     cli::MarkerQueue markers;
+    std::unique_ptr<HeadRecorder> head_rec;
+    if (!args->head.empty()) {
+      auto h = HeadRecorder::create(args->head);
+      if (!h) {
+        exit_code = cli::report(h.error());
+        return;
+      }
+      head_rec = std::move(*h);
+    }
     GazeSource& src = *device->source;
     if (Status s = src.open(); !s) {
       exit_code = cli::report(s.error());
@@ -148,7 +213,7 @@ void add_record(CLI::App& app, int& exit_code) {
     const TimeNs t_end = monotonic_now_ns() + static_cast<TimeNs>(args->duration_s * 1e9);
     // The log header needs the rate: buffer the first second in case the device only
     // tells it in a status input report, or not at all.
-    std::vector<GazeSample> head;
+    std::vector<GazeSample> first_second;
     std::optional<GazeLogWriter> writer;
     TimeNs last_t = 0;
     std::uint64_t reconnects = 0;
@@ -171,36 +236,43 @@ void add_record(CLI::App& app, int& exit_code) {
     };
     auto open_writer = [&]() -> Status {
       GazeLogHeader h;
-      h.rate_hz = src.info().nominal_rate_hz > 0 ? src.info().nominal_rate_hz : estimate_rate(head);
+      if (head_rec) h.version = kGazeLogV2;
+      h.rate_hz = src.info().nominal_rate_hz > 0 ? src.info().nominal_rate_hz : estimate_rate(first_second);
       if (!(h.rate_hz > 0)) h.rate_hz = 120;  // nothing to go on: the common tracker rate
       h.meta["driver"] = info.driver;
       h.meta["source"] = info.path;
       h.meta["device"] = info.name;
+      if (head_rec) h.meta["head"] = args->head;
       auto w = GazeLogWriter::create(args->out, h);
       if (!w) return w.error();
       writer.emplace(std::move(w.value()));
-      for (const GazeSample& s : head)
+      for (const GazeSample& s : first_second)
         if (Status st = write_sample(s); !st) return st;
-      head.clear();
+      first_second.clear();
       return {};
     };
-    const TimeNs head_until = monotonic_now_ns() + kNsPerSec;
+    // A sample goes to the log, or to the first second's buffer until the rate is known.
+    auto take = [&](const GazeSample& s) -> Status {
+      if (writer) return write_sample(s);
+      first_second.push_back(s);
+      return {};
+    };
+    const TimeNs first_second_until = monotonic_now_ns() + kNsPerSec;
     while (!g_interrupted.load() && monotonic_now_ns() < t_end) {
       if (control)
         control->poll(0, [&](const nlohmann::json& req) {
-          return record_request(req, markers, (writer ? writer->samples_written() : 0) + head.size(), args->out);
+          return record_request(req, markers,
+                                (writer ? writer->samples_written() : 0) + first_second.size() +
+                                    (head_rec ? head_rec->waiting() : 0),
+                                args->out);
         });
       const auto r = src.next(std::chrono::milliseconds(control ? 20 : 50));
-      if (r.status == ReadStatus::sample) {
-        if (r.sample.t_ns <= last_t) continue;
+      if (r.status == ReadStatus::sample && r.sample.t_ns > last_t) {
         last_t = r.sample.t_ns;
-        if (writer) {
-          if (Status st = write_sample(r.sample); !st) {
-            exit_code = cli::report(st.error());
-            return;
-          }
-        } else {
-          head.push_back(r.sample);
+        if (head_rec) head_rec->add(r.sample);  // waits for its pose
+        else if (Status st = take(r.sample); !st) {
+          exit_code = cli::report(st.error());
+          return;
         }
       } else if (r.status == ReadStatus::disconnected) {
         if (reopen_with_backoff(src, [&] { return g_interrupted.load() || monotonic_now_ns() >= t_end; })) ++reconnects;
@@ -210,13 +282,25 @@ void add_record(CLI::App& app, int& exit_code) {
         exit_code = cli::report(r.error);
         return;
       }
-      if (!writer && monotonic_now_ns() >= head_until)
+      if (head_rec)
+        for (const GazeSample& s : head_rec->ready(false))
+          if (Status st = take(s); !st) {
+            exit_code = cli::report(st.error());
+            return;
+          }
+      if (!writer && monotonic_now_ns() >= first_second_until)
         if (Status st = open_writer(); !st) {
           exit_code = cli::report(st.error());
           return;
         }
     }
     src.close();
+    if (head_rec)
+      for (const GazeSample& s : head_rec->ready(true))
+        if (Status st = take(s); !st) {
+          exit_code = cli::report(st.error());
+          return;
+        }
     if (!writer)
       if (Status st = open_writer(); !st) {
         exit_code = cli::report(st.error());
@@ -232,6 +316,7 @@ void add_record(CLI::App& app, int& exit_code) {
     nlohmann::json j = {{"output", args->out},  {"driver", info.driver},     {"device", info.path},
                         {"samples", writer->samples_written()}, {"reconnects", reconnects},
                         {"markers", markers.pushed()}, {"driver_counters", device->counters()}};
+    if (head_rec) j["head"] = head_rec->json();
     if (!args->json)
       std::printf("recorded %llu samples, %llu markers from %s %s -> %s (%llu reconnects)\n",
                   static_cast<unsigned long long>(writer->samples_written()),

@@ -48,10 +48,23 @@ PoseAt PoseTrack::pose_at(TimeNs t_ns) const {
   }
   PoseAt r;
   r.valid = true;
+  r.t_ns = t_ns;
   r.pose = b.t_ns == a.t_ns ? a.pose
                             : interpolate(a.pose, b.pose, static_cast<double>(t_ns - a.t_ns) / static_cast<double>(b.t_ns - a.t_ns));
   r.relative = relative_to(anchor, r.pose);
   return r;
+}
+
+std::optional<TimedPose> PoseTrack::newest() const {
+  std::lock_guard lock(mutex_);
+  if (count_ == 0) return std::nullopt;
+  return at(count_ - 1);
+}
+
+std::optional<Pose> PoseTrack::anchor() const {
+  std::lock_guard lock(mutex_);
+  if (count_ == 0) return std::nullopt;
+  return anchor_;
 }
 
 void PoseTrack::reset() {

@@ -1,6 +1,7 @@
 #pragma once
 // The seam between whatever knows the head pose (the gaze thread replaying a log with
-// poses, later an HMD's IMU driver) and the renderer, which asks once per frame. The
+// poses, a headset's own tracking through runtime/head's pose thread) and the renderer,
+// which asks once per frame. The
 // compositor only ever sees the Pose it is handed (render::FrameParams::head), so a new
 // pose source plugs in here without touching it.
 #include "foveal/core/clock.hpp"
@@ -16,6 +17,8 @@ struct PoseAt {
   /// This is what moves the camera (render::FrameParams::head): the first pose shows
   /// the scene's own view.
   Pose relative{};
+  /// The time the pose is for (the time asked, or a prediction's display time); 0 when invalid.
+  TimeNs t_ns = 0;
 };
 
 /// Thread safety: pose_at() is called from the render thread while producers run, so
