@@ -43,7 +43,10 @@ int run_probe(int min_reports, double timeout_s);
 int run_replug(const std::string& udc_file, const std::string& udc_name, int cycles);
 int run_uhid();
 int run_verify_log(const std::string& path, int min_samples, const std::string& name);
-int run_psvr2_gadget(const std::string& ffs_dir);
+/// `pose`: with the head-tracking interfaces (SLAM, status with IMU records).
+int run_psvr2_gadget(const std::string& ffs_dir, bool pose);
+/// The Vive-class headset's IMU device (vm_vive.cpp) on the FunctionFS instance at `ffs_dir`.
+int run_vive_gadget(const std::string& ffs_dir);
 int run_psvr2_probe(int min_samples, double timeout_s);
 int run_hex2bin(const std::string& in, const std::string& out);
 /// foveald on a live source: `kind` hid or psvr2, the gadget plugged in, out and back
