@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 
 packages=(
   build-essential cmake ninja-build pkg-config git
-  libhidapi-dev libusb-1.0-0-dev
+  libhidapi-dev libusb-1.0-0-dev zlib1g-dev  # zlib: the Vive config (docs/headset.md)
   libglfw3-dev libglm-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libdrm-dev libgbm-dev  # direct mode (EGL on GBM, KMS)
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev

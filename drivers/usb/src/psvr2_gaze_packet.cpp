@@ -1,33 +1,16 @@
 #include "foveal/drivers/usb/psvr2_gaze_packet.hpp"
 
 #include <cmath>
-#include <cstring>
 #include <string>
 
 #include <glm/geometric.hpp>
 
+#include "le_bytes.hpp"
+
 namespace foveal::usb {
 namespace {
 
-/// Bounds-checked little-endian reads at fixed offsets (the caller checked the length).
-class Reader {
- public:
-  explicit Reader(std::span<const std::uint8_t> d) : d_(d) {}
-  std::uint32_t u32(std::size_t at) const {
-    return static_cast<std::uint32_t>(d_[at]) | static_cast<std::uint32_t>(d_[at + 1]) << 8 |
-           static_cast<std::uint32_t>(d_[at + 2]) << 16 | static_cast<std::uint32_t>(d_[at + 3]) << 24;
-  }
-  float f32(std::size_t at) const {
-    const std::uint32_t bits = u32(at);
-    float f;
-    std::memcpy(&f, &bits, sizeof f);
-    return f;
-  }
-  glm::vec3 vec3(std::size_t at) const { return {f32(at), f32(at + 4), f32(at + 8)}; }
-
- private:
-  std::span<const std::uint8_t> d_;
-};
+using Reader = LeBytes;
 
 Error at(std::size_t offset, const std::string& what) {
   return bad_input("psvr2 gaze record: byte " + std::to_string(offset) + ": " + what);

@@ -58,4 +58,8 @@ class GazeSource {
 /// through here: the gaze loop's, `foveal record`'s.
 bool reopen_with_backoff(GazeSource& source, const std::function<bool()>& should_stop);
 
+/// The backoff loop itself: calls `attempt` (50 ms doubling to 400 ms between tries)
+/// until it returns true (true) or `should_stop` says so (false). Pose devices share it.
+bool retry_with_backoff(const std::function<bool()>& attempt, const std::function<bool()>& should_stop);
+
 }  // namespace foveal
