@@ -9,10 +9,9 @@
 #include <glm/vec3.hpp>
 
 #include "foveal/core/clock.hpp"
+#include "foveal/core/imu_sample.hpp"
 
 namespace foveal::vmtest {
-
-constexpr double kGravity = 9.80665;  // m/s^2
 
 struct HeadMotion {
   glm::dvec3 position_m{0.0};
@@ -33,7 +32,7 @@ HeadMotion yaw_motion(double t, double yaw_rate, double pitch, Position position
   m.position_m = position(t);
   const glm::dquat to_head = glm::conjugate(m.orientation);
   m.angular_velocity_head = to_head * glm::dvec3(0, yaw_rate, 0);
-  m.specific_force_head = to_head * (accel(t) + glm::dvec3(0, kGravity, 0));
+  m.specific_force_head = to_head * (accel(t) + glm::dvec3(0, double(kGravity), 0));
   return m;
 }
 

@@ -31,6 +31,11 @@ bool wait_for(Pred pred, TimeNs timeout_ns, TimeNs period_ns = kNsPerMs) {
   return true;
 }
 
+/// Starts `args` as a child with stdout and stderr in `log`; -1 if it cannot start.
+int spawn_logged(const std::vector<std::string>& args, const std::string& log);
+/// The child has exited (its wait status in `status`); does not block.
+bool exited(int pid, int& status);
+
 /// Writes a gadget's UDC file: the controller's name plugs the device in, "" unplugs it.
 bool write_udc(const std::string& file, const std::string& value);
 /// A hidraw device exists (sysfs).
@@ -53,5 +58,11 @@ int run_hex2bin(const std::string& in, const std::string& out);
 /// through `udc_file`, `foveald` (its arguments) started with --out and --control added.
 int run_live(const std::string& kind, const std::string& udc_file, const std::string& udc_name, const std::string& out,
              std::vector<std::string> foveald);
+
+/// foveald following an emulated headset's head (vm_hmd.cpp): `kind` psvr2 or vive.
+int run_hmd(const std::string& kind, const std::string& udc_file, const std::string& udc_name, const std::string& out,
+            std::vector<std::string> foveald);
+/// The emulated headsets' bytes through foveal's parsers, on the host (vm_hmd_selftest.cpp).
+int run_hmd_selftest();
 
 }  // namespace foveal::vmtest

@@ -40,8 +40,8 @@ std::vector<ffs::Interface> psvr2_interfaces(bool pose) {
     ffs::Interface itf;
     itf.number = i;
     if (i == 5) itf.endpoints.push_back({});
-    if (pose && i == kPsvr2SlamInterface) itf.endpoints.push_back({});
-    if (pose && i == kPsvr2StatusInterface) {
+    if (pose && i == usb::psvr2::kSlamInterface) itf.endpoints.push_back({});
+    if (pose && i == usb::psvr2::kStatusInterface) {
       itf.alt = 1;
       itf.endpoints.push_back({true, USB_ENDPOINT_XFER_INT, 64, 1024, 1, 1});
     }

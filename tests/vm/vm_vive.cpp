@@ -1,4 +1,4 @@
-// vm vive-gadget: an emulated Vive-class headset's IMU device (28de:2000) as a USB HID
+// vm vive-gadget: an emulated Vive Pro's sensor device (28de:2300) as a USB HID
 // function through FunctionFS, so the host sees it the way it sees the headset: usbhid,
 // a hidraw node, feature reports as GET_REPORT control requests. (The kernel's own HID
 // gadget, usb_f_hid, answers GET_REPORT with zeros in Linux 6.1: no configuration could
@@ -6,7 +6,6 @@
 // reports of vive_pattern.hpp (the configuration zlib-compressed, in 62-byte pieces)
 // and streams IMU reports while configured.
 #include <unistd.h>
-#include <zlib.h>
 
 #include <atomic>
 #include <csignal>
@@ -27,14 +26,7 @@ void on_term(int) { g_stop.store(true); }
 
 constexpr std::uint8_t kHidRequestGetReport = 0x01, kHidReportFeature = 3, kHidDescriptorHid = 0x21,
                        kHidDescriptorReport = 0x22;
-
-std::vector<std::uint8_t> compressed(const std::string& text) {
-  uLongf n = compressBound(text.size());
-  std::vector<std::uint8_t> out(n);
-  if (compress2(out.data(), &n, reinterpret_cast<const Bytef*>(text.data()), text.size(), 9) != Z_OK) return {};
-  out.resize(n);
-  return out;
-}
+constexpr std::uint8_t kFirmwareReportId = 0x05;  // answered, not read by foveal
 
 /// The HID class descriptor for a report descriptor of `length` bytes.
 std::vector<std::uint8_t> hid_descriptor(std::size_t length) {
@@ -58,8 +50,8 @@ std::string vive_config_json(const ViveConfig& c) {
                         {"center_y", c.center_y},
                         {"coeffs", {c.coeffs[ch][0], c.coeffs[ch][1], c.coeffs[ch][2], 0.0}},
                         {"type", "DISTORT_DPOLY3"}};
-    eye["grow_for_undistort"] = 0.6;
-    eye["undistort_r2_cutoff"] = 1.15;
+    eye["grow_for_undistort"] = c.grow_for_undistort;
+    eye["undistort_r2_cutoff"] = c.undistort_r2_cutoff;
     eyes.push_back(eye);
   }
   json j;
@@ -69,7 +61,7 @@ std::string vive_config_json(const ViveConfig& c) {
   j["lens_separation"] = c.lens_separation_m;
   j["device"] = {{"eye_target_width_in_pixels", c.eye_width},
                  {"eye_target_height_in_pixels", c.eye_height},
-                 {"physical_aspect_x_over_y", 0.8},
+                 {"physical_aspect_x_over_y", c.aspect_x_over_y},
                  {"persistence", 0.0116}};
   j["imu"] = {{"acc_bias", vec(c.acc_bias)},   {"acc_scale", vec(c.acc_scale)},
               {"gyro_bias", vec(c.gyro_bias)}, {"gyro_scale", vec(c.gyro_scale)},
@@ -86,10 +78,10 @@ std::vector<std::uint8_t> vive_report_descriptor() {
                                  0x15, 0x00,        //   Logical Minimum (0)
                                  0x26, 0xff, 0x00,  //   Logical Maximum (255)
                                  0x75, 0x08,        //   Report Size (8)
-                                 0x85, kViveImuReport, 0x95, static_cast<std::uint8_t>(kViveImuReportBytes - 1), 0x09,
-                                 kViveImuReport, 0x81, 0x02};  // the IMU input report
-  for (std::uint8_t id : {kViveRangeReport, kViveFirmwareReport, kViveConfigStart, kViveConfigRead}) {
-    const std::uint8_t item[] = {0x85, id, 0x95, static_cast<std::uint8_t>(kViveFeatureBytes - 1), 0x09, id, 0xb1, 0x02};
+                                 0x85, vive::kImuReportId, 0x95, static_cast<std::uint8_t>(vive::kImuReportBytes - 1),
+                                 0x09, vive::kImuReportId, 0x81, 0x02};  // the IMU input report
+  for (std::uint8_t id : {vive::kRangeReportId, kFirmwareReportId, vive::kConfigStartReportId, vive::kConfigReadReportId}) {
+    const std::uint8_t item[] = {0x85, id, 0x95, static_cast<std::uint8_t>(vive::kConfigReportBytes - 1), 0x09, id, 0xb1, 0x02};
     d.insert(d.end(), std::begin(item), std::end(item));  // a feature report
   }
   d.push_back(0xc0);  // End Collection
@@ -99,14 +91,14 @@ std::vector<std::uint8_t> vive_report_descriptor() {
 int run_vive_gadget(const std::string& dir) {
   const auto report_desc = vive_report_descriptor();
   const std::string config_text = vive_config_json(vive_config());
-  const auto config = compressed(config_text);
+  const auto config = test::vive_config_reports(config_text);
   ffs::Interface hid;
   hid.cls = 3;  // HID, no boot protocol
   hid.class_descriptor = hid_descriptor(report_desc.size());
   hid.endpoints.push_back({true, USB_ENDPOINT_XFER_INT, 64, 64, 1, 1});
   const int ep0 = ffs::open_ep0(dir, {hid}, "Lighthouse FPGA RX");
-  if (ep0 < 0 || config.empty()) return 1;
-  std::printf("vive-gadget: config %zu bytes of JSON, %zu compressed\n", config_text.size(), config.size());
+  if (ep0 < 0) return 1;
+  std::printf("vive-gadget: config %zu bytes of JSON in %zu feature reports\n", config_text.size(), config.size());
   std::fflush(stdout);
   std::signal(SIGTERM, on_term);
   std::atomic<bool> configured{false};
@@ -127,23 +119,22 @@ int run_vive_gadget(const std::string& dir) {
     if (c.bRequest == USB_REQ_GET_DESCRIPTOR && type == kHidDescriptorHid) return hid_descriptor(report_desc.size());
     if (c.bRequest != kHidRequestGetReport) return std::vector<std::uint8_t>(c.wLength, 0);  // GET_IDLE and such
     if (type != kHidReportFeature) return vive_imu_report(static_cast<std::uint64_t>(monotonic_now_ns() / kViveSamplePeriodNs));
-    std::vector<std::uint8_t> r(kViveFeatureBytes, 0);
+    if (id == vive::kConfigReadReportId) {
+      // The next piece; past the end, the empty one that ends the read again.
+      ++config_reads;
+      return config[std::min(config_at++, config.size() - 1)];
+    }
+    std::vector<std::uint8_t> r(vive::kConfigReportBytes, 0);
     r[0] = id;
-    if (id == kViveRangeReport) {
-      r[1] = kViveGyroRangeIndex;
-      r[2] = kViveAccelRangeIndex;
-    } else if (id == kViveFirmwareReport) {
+    if (id == vive::kRangeReportId) {
+      r[1] = kViveGyroRangeCode;
+      r[2] = kViveAccelRangeCode;
+    } else if (id == kFirmwareReportId) {
       r[1] = 0x2a;  // firmware version 1578 (little-endian uint32)
       r[2] = 0x06;
-    } else if (id == kViveConfigStart) {
+    } else if (id == vive::kConfigStartReportId) {
       config_at = 0;
       ++config_starts;
-    } else if (id == kViveConfigRead) {
-      const std::size_t n = std::min(kViveConfigChunk, config.size() - config_at);
-      r[1] = static_cast<std::uint8_t>(n);
-      std::copy_n(config.begin() + static_cast<std::ptrdiff_t>(config_at), n, r.begin() + 2);
-      config_at += n;
-      ++config_reads;
     } else {
       return std::nullopt;  // no such report: stall
     }

@@ -1,0 +1,252 @@
+#include "vm_hmd_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <glm/vec2.hpp>
+
+#include "hmd_motion.hpp"
+#include "vive_pattern.hpp"
+
+namespace foveal::vmtest {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string f;
+  while (std::getline(ss, f, ',')) out.push_back(f);
+  return out;
+}
+
+glm::dvec3 forward(const glm::dquat& q) { return q * glm::dvec3(0, 0, -1); }
+/// Heading about the vertical: 0 facing -z, positive turning towards -x (a positive yaw about +y).
+double heading(const glm::dquat& q) {
+  const glm::dvec3 f = forward(q);
+  return std::atan2(-f.x, -f.z);
+}
+double pitch(const glm::dquat& q) { return std::asin(std::clamp(forward(q).y, -1.0, 1.0)); }
+double roll(const glm::dquat& q) { return std::asin(std::clamp((q * glm::dvec3(1, 0, 0)).y, -1.0, 1.0)); }
+/// The angle of the rotation from a to b (from the vector part: acos near 1 loses digits).
+double angle_between(const glm::dquat& a, const glm::dquat& b) {
+  const glm::dquat d = glm::conjugate(a) * b;
+  return 2 * std::asin(std::min(1.0, glm::length(glm::dvec3(d.x, d.y, d.z))));
+}
+
+glm::dquat dq(const Pose& p) { return glm::dquat(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z); }
+TimeNs ref_time(const HeadRow& r) { return r.pose_t_ns ? r.pose_t_ns : r.t_ns; }
+bool in(const std::vector<Window>& ws, TimeNs t) {
+  return std::any_of(ws.begin(), ws.end(), [&](const Window& w) { return t >= w.from && t <= w.to; });
+}
+/// No pose yet: the frame shows the scene's own view (the identity).
+bool has_pose(const HeadRow& r) { return !(r.pose == Pose{}); }
+
+}  // namespace
+
+std::vector<HeadRow> read_head_rows(const std::string& path, std::string& problem) {
+  std::vector<HeadRow> rows;
+  std::ifstream f(path);
+  std::string line;
+  if (!std::getline(f, line)) {
+    problem = path + ": empty or missing";
+    return rows;
+  }
+  std::map<std::string, std::size_t> col;
+  const auto names = split(line);
+  for (std::size_t i = 0; i < names.size(); ++i) col[names[i]] = i;
+  for (const char* need : {"frame", "t_ns", "head_x", "head_y", "head_z", "head_qw", "head_qx", "head_qy", "head_qz"})
+    if (!col.count(need)) {
+      problem = path + ": no column " + need;
+      return rows;
+    }
+  const bool has_pose_time = col.count("head_t_ns") > 0;
+  while (std::getline(f, line)) {
+    const auto v = split(line);
+    if (v.size() < names.size()) continue;  // a row being written
+    HeadRow r;
+    r.frame = std::stoull(v[col["frame"]]);
+    r.t_ns = std::stoll(v[col["t_ns"]]);
+    if (has_pose_time) r.pose_t_ns = std::stoll(v[col["head_t_ns"]]);
+    r.pose.position_m = {std::stof(v[col["head_x"]]), std::stof(v[col["head_y"]]), std::stof(v[col["head_z"]])};
+    r.pose.orientation = glm::quat(std::stof(v[col["head_qw"]]), std::stof(v[col["head_qx"]]), std::stof(v[col["head_qy"]]),
+                                   std::stof(v[col["head_qz"]]));
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+std::string FollowCheck::summary() const {
+  char b[300];
+  std::snprintf(b, sizeof b, "rows=%zu checked=%zu bad=%zu max_pos_m=%.4f max_angle_deg=%.2f max_time_s=%.3f rate=%.4f %s",
+                rows, checked, bad, max_position_m, max_angle_deg, max_time_s, rate, problem.c_str());
+  return b;
+}
+
+FollowCheck check_psvr2_rows(const std::vector<HeadRow>& rows, const std::vector<Window>& windows) {
+  FollowCheck c;
+  c.rows = rows.size();
+  const double w = kPsvr2YawRate;
+  const bool timed = !rows.empty() && rows.front().pose_t_ns != 0;
+  const double time_tol = timed ? kPsvr2TimeTolS : 1.5;
+  for (const HeadRow& r : rows) {
+    if (!has_pose(r) || !in(windows, ref_time(r))) continue;
+    ++c.checked;
+    const glm::dquat q = dq(r.pose);
+    const double t_ref = seconds(ref_time(r)), h = heading(q);
+    const double turns = std::round((w * t_ref - h) / (2 * M_PI));
+    const double t = (h + 2 * M_PI * turns) / w;
+    const HeadMotion m = psvr2_motion(static_cast<TimeNs>(t * 1e9));
+    const double dp = glm::length(glm::dvec3(r.pose.position_m) - m.position_m);
+    const double da = angle_between(q, m.orientation) / kDeg, dt = std::abs(t - t_ref);
+    c.max_position_m = std::max(c.max_position_m, dp);
+    c.max_angle_deg = std::max(c.max_angle_deg, da);
+    c.max_time_s = std::max(c.max_time_s, dt);
+    if (dp > kPositionTolM || da > kAngleTolDeg || dt > time_tol) {
+      if (c.bad++ == 0) {
+        char b[200];
+        std::snprintf(b, sizeof b, "first bad: frame %llu pos_err=%.4f angle_err=%.2f time_err=%.3f",
+                      static_cast<unsigned long long>(r.frame), dp, da, dt);
+        c.problem = b;
+      }
+    }
+  }
+  return c;
+}
+
+FollowCheck check_vive_rows(const std::vector<HeadRow>& rows, const std::vector<Window>& windows) {
+  FollowCheck c;
+  c.rows = rows.size();
+  double worst_rate = 0;
+  for (const Window& win : windows) {
+    // Heading (unwrapped) against time, fitted by a line.
+    std::vector<std::pair<double, double>> pts;
+    for (const HeadRow& r : rows) {
+      if (!has_pose(r) || ref_time(r) < win.from || ref_time(r) > win.to) continue;
+      ++c.checked;
+      const glm::dquat q = dq(r.pose);
+      const double dpitch = std::abs(pitch(q) - kVivePitch) / kDeg, droll = std::abs(roll(q)) / kDeg;
+      c.max_angle_deg = std::max({c.max_angle_deg, dpitch, droll});
+      if (dpitch > kAngleTolDeg || droll > kAngleTolDeg) {
+        if (c.bad++ == 0) {
+          char b[160];
+          std::snprintf(b, sizeof b, "first bad: frame %llu pitch_err=%.2f roll_err=%.2f deg ",
+                        static_cast<unsigned long long>(r.frame), dpitch, droll);
+          c.problem += b;
+        }
+      }
+      double h = heading(q);
+      if (!pts.empty())
+        while (h - pts.back().second > M_PI) h -= 2 * M_PI;
+      if (!pts.empty())
+        while (pts.back().second - h > M_PI) h += 2 * M_PI;
+      pts.emplace_back(seconds(ref_time(r)), h);
+    }
+    if (pts.size() < 3 || pts.back().first - pts.front().first < 2.0) {
+      c.problem += "a window has fewer than 3 poses over 2 s ";
+      ++c.bad;
+      continue;
+    }
+    double st = 0, sh = 0, stt = 0, sth = 0;
+    const double n = static_cast<double>(pts.size()), t0 = pts.front().first;
+    for (auto [t, h] : pts) {
+      st += t - t0, sh += h, stt += (t - t0) * (t - t0), sth += (t - t0) * h;
+    }
+    const double slope = (n * sth - st * sh) / (n * stt - st * st), icpt = (sh - slope * st) / n;
+    double max_res = 0;
+    for (auto [t, h] : pts) max_res = std::max(max_res, std::abs(h - (icpt + slope * (t - t0))) / kDeg);
+    c.max_angle_deg = std::max(c.max_angle_deg, max_res);
+    if (std::abs(slope - kViveYawRate) > std::abs(worst_rate - kViveYawRate)) worst_rate = slope;
+    if (std::abs(slope - kViveYawRate) > kViveRateTol * kViveYawRate || max_res > kAngleTolDeg) {
+      ++c.bad;
+      char b[160];
+      std::snprintf(b, sizeof b, "window of %zu poses: yaw rate %.4f rad/s (motion %.4f), residual up to %.2f deg ", pts.size(),
+                    slope, kViveYawRate, max_res);
+      c.problem += b;
+    }
+  }
+  c.rate = worst_rate;
+  return c;
+}
+
+ModelCheck check_vive_model(const nlohmann::json& m) {
+  const ViveConfig& c = vive_config();
+  std::string why;
+  auto num = [&](const char* pointer) {
+    const nlohmann::json::json_pointer p(pointer);
+    if (!m.is_object() || !m.contains(p) || !m.at(p).is_number()) {
+      why += std::string("no number at ") + pointer + "; ";
+      return std::nan("");
+    }
+    return m.at(p).get<double>();
+  };
+  auto near = [&](const char* what, double got, double want, double tol) {
+    if (!(std::abs(got - want) <= tol)) {
+      char b[160];
+      std::snprintf(b, sizeof b, "%s %.6g, the config says %.6g; ", what, got, want);
+      why += b;
+    }
+  };
+  near("eye_width", num("/eye_width"), c.eye_width, 0);
+  near("eye_height", num("/eye_height"), c.eye_height, 0);
+  near("ipd_mm", num("/ipd_mm"), c.lens_separation_m * 1000, 1e-3);
+  double rms[2] = {0, 0}, worst[2] = {0, 0};
+  for (int e = 0; e < 2; ++e) {
+    const std::string side = e ? "right" : "left";
+    // The frustum: the intrinsics (normalised by half the eye's size) grown by grow_for_undistort.
+    const double grow = 1 + c.grow_for_undistort, fx = c.fx / grow, fy = c.fy / grow, cx = c.cx[e] / grow, cy = c.cy / grow;
+    const double tan_l = -(1 - cx) / fx, tan_r = (1 + cx) / fx, tan_b = -(1 - cy) / fy, tan_t = (1 + cy) / fy;
+    const std::string t = "/" + side + "/tangents/";
+    near((side + " tan left").c_str(), num((t + "left").c_str()), tan_l, 1e-5);
+    near((side + " tan right").c_str(), num((t + "right").c_str()), tan_r, 1e-5);
+    near((side + " tan bottom").c_str(), num((t + "bottom").c_str()), tan_b, 1e-5);
+    near((side + " tan top").c_str(), num((t + "top").c_str()), tan_t, 1e-5);
+    const std::string d = "/distortion/" + side + "/";
+    const glm::dvec2 centre(num((d + "center/0").c_str()), num((d + "center/1").c_str()));
+    const double k1 = num((d + "k/0").c_str()), k2 = num((d + "k/1").c_str()), k3 = num((d + "k/2").c_str());
+    const double scale[3] = {num((d + "channel_scale/0").c_str()), num((d + "channel_scale/1").c_str()),
+                             num((d + "channel_scale/2").c_str())};
+    const glm::dvec2 span(tan_r - tan_l, tan_t - tan_b);
+    // Where channel ch of panel point (u, v) samples the rendered image: the
+    // configuration's DISTORT_DPOLY3 (Monado's reading) against the model's polynomial.
+    const double a = c.aspect_x_over_y, f = 0.5 / grow;
+    double sum = 0;
+    int n = 0;
+    for (int i = 0; i <= 40; ++i)
+      for (int j = 0; j <= 40; ++j) {
+        const glm::dvec2 p(i / 40.0, j / 40.0);
+        const double gx = 2 * p.x - 1 - c.center_x[e], gy = (2 * p.y - 1) / a - c.center_y;
+        if (gx * gx + gy * gy > c.undistort_r2_cutoff) continue;
+        for (int ch = 0; ch < 3; ++ch) {
+          const double x = 2 * p.x - 1 - c.center_x[e], y = (2 * p.y - 1) / a - c.center_y, r2 = x * x + y * y;
+          const double* k = c.coeffs[ch];
+          const double s = 1 / (1 + r2 * (k[0] + r2 * (k[1] + r2 * k[2])));
+          const glm::dvec2 want(0.5 + (x * s + c.center_x[e]) * f, 0.5 + (y * s + c.center_y) * f * a);
+          const glm::dvec2 q = (p - centre) * span;
+          const double q2 = q.x * q.x + q.y * q.y;
+          const glm::dvec2 got = centre + (p - centre) * (scale[ch] * (1 + q2 * (k1 + q2 * (k2 + q2 * k3))));
+          const double err = glm::length((got - want) * glm::dvec2(c.eye_width, c.eye_height));
+          sum += err * err;
+          ++n;
+          worst[e] = std::max(worst[e], err);
+        }
+      }
+    rms[e] = n ? std::sqrt(sum / n) : 1e9;
+    if (!(rms[e] <= 1.0 && worst[e] <= 4.0)) {
+      char b[160];
+      std::snprintf(b, sizeof b, "%s distortion off the config's by rms %.2f px, max %.2f px; ", side.c_str(), rms[e], worst[e]);
+      why += b;
+    }
+  }
+  char b[200];
+  std::snprintf(b, sizeof b, "size %.0fx%.0f ipd %.2f mm, distortion rms %.2f/%.2f px max %.2f/%.2f px ", num("/eye_width"),
+                num("/eye_height"), num("/ipd_mm"), rms[0], rms[1], worst[0], worst[1]);
+  return {why.empty(), b + why};
+}
+
+}  // namespace foveal::vmtest
