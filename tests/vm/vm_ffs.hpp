@@ -56,12 +56,11 @@ void serve_ep0(int ep0, const std::atomic<bool>& stop, const Handlers& h);
 /// Calls `make(t, fd)` at t = now + period, + 2 periods, ... on endpoint file `file`
 /// while `enabled` (the host configured the device) until `stop`; after a stall it goes
 /// on from now, as a sensor would, instead of bursting through the missed periods (a
-/// write blocks while the host does not read). Returns how many calls wrote.
+/// write blocks while the host does not read). `written` counts the calls that wrote.
 template <class Make>
-std::uint64_t stream(const std::atomic<bool>& stop, const std::string& file, const std::atomic<bool>& enabled, TimeNs period,
-                     Make make) {
+void stream(const std::atomic<bool>& stop, const std::string& file, const std::atomic<bool>& enabled, TimeNs period,
+            std::atomic<std::uint64_t>& written, Make make) {
   const int fd = ::open(file.c_str(), O_RDWR);
-  std::uint64_t written = 0;
   TimeNs next = monotonic_now_ns();
   while (fd >= 0 && !stop.load()) {
     next += period;
@@ -70,10 +69,9 @@ std::uint64_t stream(const std::atomic<bool>& stop, const std::string& file, con
       next = monotonic_now_ns();
       continue;
     }
-    if (make(next, fd)) ++written;
+    if (make(next, fd)) written.fetch_add(1);
     if (monotonic_now_ns() - next > 50 * kNsPerMs) next = monotonic_now_ns();
   }
-  return written;
 }
 
 /// Writes all of `data` to an endpoint file (blocks while the host does not read);

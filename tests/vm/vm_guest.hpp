@@ -62,6 +62,8 @@ int run_live(const std::string& kind, const std::string& udc_file, const std::st
 /// foveald following an emulated headset's head (vm_hmd.cpp): `kind` psvr2 or vive.
 int run_hmd(const std::string& kind, const std::string& udc_file, const std::string& udc_name, const std::string& out,
             std::vector<std::string> foveald);
+/// The plugged-in emulated headset through libusb / hidraw directly (vm_hmd_probe.cpp).
+int run_hmd_probe(const std::string& kind);
 /// The emulated headsets' bytes through foveal's parsers, on the host (vm_hmd_selftest.cpp).
 int run_hmd_selftest();
 

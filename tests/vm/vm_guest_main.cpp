@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
   if (cmd == "psvr2-gadget") return run_psvr2_gadget(arg(2, "/dev/ffs-gaze"), arg(3, "") == "--pose");
   if (cmd == "vive-gadget") return run_vive_gadget(arg(2, "/dev/ffs-vive"));
   if (cmd == "hmd-selftest") return run_hmd_selftest();
+  if (cmd == "hmd-probe") return run_hmd_probe(arg(2, "psvr2"));
   if (cmd == "hmd" && argc > 7 && std::string(argv[6]) == "--")
     return run_hmd(argv[2], argv[3], argv[4], argv[5], std::vector<std::string>(argv + 7, argv + argc));
   if (cmd == "psvr2-probe") return run_psvr2_probe(std::atoi(arg(2, "500").c_str()), std::atof(arg(3, "30").c_str()));
@@ -58,6 +59,7 @@ int main(int argc, char** argv) {
                "usage: foveal_vm_guest feed NODE | probe MIN_REPORTS TIMEOUT_S | replug UDC_FILE UDC_NAME CYCLES |\n"
                "       uhid | verify-log LOG MIN_SAMPLES [NAME] | psvr2-gadget FFS_DIR [--pose] | psvr2-probe MIN_SAMPLES TIMEOUT_S |\n"
                "       vive-gadget FFS_DIR | hex2bin IN OUT | live hid|psvr2 UDC_FILE UDC_NAME OUT -- FOVEALD ARGS... |\n"
-               "       hmd psvr2|vive UDC_FILE UDC_NAME OUT -- FOVEALD ARGS... | hmd-selftest\n");
+               "       hmd psvr2|vive UDC_FILE UDC_NAME OUT -- FOVEALD ARGS... | hmd-selftest |\n"
+               "       hmd-probe psvr2|vive\n");
   return 2;
 }

@@ -62,20 +62,20 @@ int run_psvr2_gadget(const std::string& dir, bool pose) {
   const std::string ep = dir + "/ep";
   writers.emplace_back([&] {
     std::uint64_t k = 0;
-    gaze_written = ffs::stream(g_stop, ep + (pose ? "2" : "1"), configured, 8'333'000, [&](TimeNs, int fd) {
+    ffs::stream(g_stop, ep + (pose ? "2" : "1"), configured, 8'333'000, gaze_written, [&](TimeNs, int fd) {
       return ffs::write_all(fd, psvr2_record(k++));
     });
   });
   if (pose) {
     writers.emplace_back([&] {
-      slam_written = ffs::stream(g_stop, ep + "1", configured, kPsvr2SlamPeriodNs, [](TimeNs t, int fd) {
+      ffs::stream(g_stop, ep + "1", configured, kPsvr2SlamPeriodNs, slam_written, [](TimeNs t, int fd) {
         // A record fills a high-speed packet: a zero-length packet ends the transfer.
         return ffs::write_all(fd, psvr2_slam_record(t)) && ::write(fd, nullptr, 0) == 0;
       });
     });
     writers.emplace_back([&] {
       constexpr TimeNs batch = kPsvr2ImuPeriodNs * kPsvr2ImuPerTransfer;
-      status_written = ffs::stream(g_stop, ep + "3", configured, batch, [](TimeNs t, int fd) {
+      ffs::stream(g_stop, ep + "3", configured, batch, status_written, [](TimeNs t, int fd) {
         return ffs::write_all(fd, psvr2_status_transfer(t - batch + kPsvr2ImuPeriodNs, kPsvr2ImuPerTransfer));
       });
     });

@@ -105,7 +105,7 @@ int run_vive_gadget(const std::string& dir) {
   std::atomic<std::uint64_t> imu_written{0};
   std::thread writer([&] {
     // A report every third sample, its newest sample the one of now.
-    imu_written = ffs::stream(g_stop, dir + "/ep1", configured, 3 * kViveSamplePeriodNs, [](TimeNs t, int fd) {
+    ffs::stream(g_stop, dir + "/ep1", configured, 3 * kViveSamplePeriodNs, imu_written, [](TimeNs t, int fd) {
       return ffs::write_all(fd, vive_imu_report(static_cast<std::uint64_t>(t / kViveSamplePeriodNs)));
     });
   });
