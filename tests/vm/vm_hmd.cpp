@@ -1,8 +1,9 @@
 // vm hmd: foveald following an emulated headset's head (--head psvr2 or --head vive)
-// against the FunctionFS devices of vm_psvr2.cpp (--pose) and vm_vive.cpp. foveald is
-// started while the headset is unplugged (the head waits for it), the headset is
-// plugged in, pulled out for about a second and plugged back; then foveald is stopped
-// with SIGTERM and its outputs are checked:
+// against the FunctionFS devices of vm_psvr2.cpp (--pose) and vm_vive.cpp. The PS VR2 is
+// plugged in after foveald started (its head waits for it); the Vive before (foveald
+// reads the headset's display model when it starts). The headset is pulled out for
+// about a second and plugged back; then foveald is stopped with SIGTERM and its
+// outputs are checked:
 //   hmd_KIND         exit 0; frames.csv's head columns follow the motion script
 //                    (vm_hmd_check.hpp) before the unplug and after the replug; for the
 //                    Vive, foveald renders with the display model read from the headset
@@ -78,8 +79,6 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
   for (const std::string& a : foveald) cmdline += a + " ";
   std::printf("hmd: %s\n", cmdline.c_str());
   std::fflush(stdout);
-  const int pid = spawn_logged(foveald, out + ".log");
-  if (pid < 0) return fail("cannot start " + foveald[0]);
   int wstatus = 0;
   bool gone = false;
   json status;
@@ -88,8 +87,9 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
     if (r) status = *r;
     return static_cast<bool>(r);
   };
+  int pid = -1;
   auto alive = [&] {
-    if (!gone) gone = exited(pid, wstatus);
+    if (!gone) gone = pid < 0 || exited(pid, wstatus);
     return !gone;
   };
   auto head_state = [&] { return ask() ? str_at(status, "/head/state") : std::string("?"); };
@@ -100,12 +100,22 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
   TimeNs t_plug = 0, t_unplug = 0, t_replug = 0, t_back = 0, t_resumed = 0;
   bool saw_reconnecting = false, model_ok = true;
   std::uint64_t poses_at_unplug = 0;
-  // 1. Started before the headset is there: the head waits for it.
-  if (!wait_for([&] { return !alive() || ask(); }, 120 * kNsPerSec, kAskEveryNs) || !alive())
+  const bool plugged_first = vive;
+  if (plugged_first) {
+    t_plug = monotonic_now_ns();
+    if (!write_udc(udc_file, udc_name)) problem = "cannot bind " + udc_name;
+    else if (!wait_for(present, 10 * kNsPerSec) || !wait_for(hidraw_present, 10 * kNsPerSec)) problem = "the headset did not appear";
+  }
+  if (problem.empty()) pid = spawn_logged(foveald, out + ".log");
+  if (problem.empty() && pid < 0) problem = "cannot start " + foveald[0];
+  // 1. The PS VR2 is not there yet: the head waits for it.
+  if (problem.empty() && (!wait_for([&] { return !alive() || ask(); }, 120 * kNsPerSec, kAskEveryNs) || !alive()))
     problem = "foveald's control socket never answered";
   if (problem.empty()) {
     state_before = head_state();
-    std::printf("hmd: before the plug-in: %s\n", at(status, "/head").dump().c_str());
+    std::printf("hmd: after the start: %s\n", at(status, "/head").dump().c_str());
+  }
+  if (problem.empty() && !plugged_first) {
     // 2. Plugged in: poses flow, frames are rendered from them.
     t_plug = monotonic_now_ns();
     if (!write_udc(udc_file, udc_name)) problem = "cannot bind " + udc_name;
@@ -146,6 +156,7 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
     }, 120 * kNsPerSec, kAskEveryNs);
   }
   // 4. SIGTERM, then the outputs.
+  if (pid < 0) return fail(problem);
   if (alive()) ::kill(pid, SIGTERM);
   const TimeNs t_term = monotonic_now_ns();
   if (!wait_for([&] { return !alive(); }, 10 * kNsPerSec)) {
@@ -179,13 +190,15 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
       if (last_before && !(r.pose == last_before->pose)) ++during_moved;
     }
   }
+  // The Vive's display model is named after its model number (vive_config_json).
   const std::string display = str_at(summary, "/display_model");
-  const bool display_ok = !vive || display.rfind("vive_", 0) == 0;
+  const bool display_ok = !vive || display == "vive_vive_pro_mv";
   char details[1200];
   std::snprintf(details, sizeof details,
                 "exit=%d before_plug=%s frames=%zu %s display_model=%s %s %s", rc, state_before.c_str(), rows.size(),
                 follow.summary().c_str(), display.c_str(), rows_problem.c_str(), problem.c_str());
-  const bool pass = problem.empty() && rows_problem.empty() && rc == 0 && state_before == "waiting" && follow.bad == 0 &&
+  const bool pass = problem.empty() && rows_problem.empty() && rc == 0 && (plugged_first || state_before == "waiting") &&
+                    follow.bad == 0 &&
                     follow.checked >= 10 && display_ok && model_ok;
   verdict(name.c_str(), pass, details);
 
