@@ -16,6 +16,7 @@
 #include <signal.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -187,7 +188,9 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
     // last pose is held.
     if (t > t_unplug + 200 * kNsPerMs && t < t_replug && r.t_ns > 0) {
       ++during;
-      if (last_before && !(r.pose == last_before->pose)) ++during_moved;
+      if (last_before && (glm::length(r.pose.position_m - last_before->pose.position_m) > 1e-5f ||
+                          std::abs(glm::dot(r.pose.orientation, last_before->pose.orientation)) < 1 - 1e-6f))
+        ++during_moved;
     }
   }
   // The Vive's display model is named after its model number (vive_config_json).
