@@ -170,6 +170,30 @@ Result<DisplayModel> DisplayModel::load(const std::string& path) {
   return m;
 }
 
+std::string DisplayModel::to_json_text(const std::string& source) const {
+  nlohmann::ordered_json j;
+  j["format"] = "foveal-display-model v1";
+  j["name"] = name;
+  if (!source.empty()) j["source"] = source;
+  j["eye_width"] = eye_width;
+  j["eye_height"] = eye_height;
+  j["ipd_mm"] = ipd_mm;
+  j["refresh_hz"] = refresh_hz;
+  if (!edid_vendor.empty()) j["edid_vendor"] = edid_vendor;
+  for (Eye e : kEyes) {
+    const EyeFrustum& f = eye(e);
+    j[eye_name(e)]["tangents"] = {{"left", f.tan_left}, {"right", f.tan_right}, {"bottom", f.tan_bottom}, {"top", f.tan_top}};
+  }
+  if (distortion[0].enabled || distortion[1].enabled)
+    for (Eye e : kEyes) {
+      const LensDistortion& d = distortion[static_cast<std::size_t>(e)];
+      j["distortion"][eye_name(e)] = {{"center", {d.center.x, d.center.y}},
+                                      {"k", {d.k1, d.k2, d.k3}},
+                                      {"channel_scale", {d.channel_scale.x, d.channel_scale.y, d.channel_scale.z}}};
+    }
+  return j.dump(2) + "\n";
+}
+
 glm::vec2 LensDistortion::panel(glm::vec2 src, int c, const EyeFrustum& f) const {
   const glm::vec2 span(f.tan_right - f.tan_left, f.tan_top - f.tan_bottom);
   const glm::vec2 y = (src - center) * span;

@@ -54,6 +54,18 @@ PoseAt PoseTrack::pose_at(TimeNs t_ns) const {
   return r;
 }
 
+std::optional<TimedPose> PoseTrack::newest() const {
+  std::lock_guard lock(mutex_);
+  if (count_ == 0) return std::nullopt;
+  return at(count_ - 1);
+}
+
+std::optional<Pose> PoseTrack::anchor() const {
+  std::lock_guard lock(mutex_);
+  if (count_ == 0) return std::nullopt;
+  return anchor_;
+}
+
 void PoseTrack::reset() {
   std::lock_guard lock(mutex_);
   first_ = count_ = 0;

@@ -67,6 +67,9 @@ struct DisplayModel {
   static DisplayModel vive_pro_eye();
   /// Loads a display-model JSON file (format in docs/display-model.md).
   static Result<DisplayModel> load(const std::string& path);
+  /// The model in the file format load() reads (docs/display-model.md); `source` is
+  /// written as the free-text "source" key when not empty.
+  std::string to_json_text(const std::string& source = "") const;
   /// Checks sizes, ordering and finiteness of the tangents; message names `where`.
   Status validate(const std::string& where) const;
 };

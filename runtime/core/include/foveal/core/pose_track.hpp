@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <mutex>
+#include <optional>
 
 #include "foveal/core/pose_source.hpp"
 
@@ -31,6 +32,10 @@ class PoseTrack final : public PoseSource {
   /// a unit quaternion (is_unit); a kept orientation is renormalised (renormalized()).
   bool push(const TimedPose& p);
   PoseAt pose_at(TimeNs t_ns) const override;
+  /// The newest pose pushed (nullopt: none yet). Its time says how fresh the track is.
+  std::optional<TimedPose> newest() const;
+  /// The anchor of PoseAt::relative (nullopt: no pose pushed yet).
+  std::optional<Pose> anchor() const;
   /// Forgets every pose and the anchor (e.g. a new source).
   void reset();
   /// Poses accepted and dropped by push() since construction.

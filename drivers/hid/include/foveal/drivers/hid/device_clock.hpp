@@ -1,30 +1,8 @@
 #pragma once
-// Maps a device's own timestamps onto the runtime clock, so that reports read in a
-// burst keep their real spacing: t = device_time + offset, where offset is the
-// smallest (arrival - device_time) seen (the least-delayed report). Delivered times
-// always increase; a device clock that jumps back or drifts away re-anchors the offset.
-#include <cstdint>
-#include <optional>
-
-#include "foveal/core/clock.hpp"
+// The device clock mapping moved to foveal/core (every driver with device timestamps
+// uses it); the HID driver keeps its name for it.
+#include "foveal/core/device_clock.hpp"
 
 namespace foveal::hid {
-
-class DeviceClock {
- public:
-  /// Re-anchor when a mapped time would lag its arrival by more than this.
-  static constexpr TimeNs kMaxLagNs = 50'000'000;
-
-  /// The runtime time of a report that arrived at `arrival_ns` carrying `device_ns`
-  /// (nullopt: the device gave no timestamp, the arrival time is used).
-  TimeNs map(TimeNs arrival_ns, std::optional<std::int64_t> device_ns);
-  void reset() { *this = DeviceClock{}; }
-
- private:
-  bool anchored_ = false;
-  std::int64_t offset_ = 0;
-  std::int64_t last_device_ = 0;
-  TimeNs last_out_ = 0;
-};
-
+using DeviceClock = foveal::DeviceClock;
 }  // namespace foveal::hid

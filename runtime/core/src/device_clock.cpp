@@ -1,6 +1,6 @@
-#include "foveal/drivers/hid/device_clock.hpp"
+#include "foveal/core/device_clock.hpp"
 
-namespace foveal::hid {
+namespace foveal {
 
 TimeNs DeviceClock::map(TimeNs arrival_ns, std::optional<std::int64_t> device_ns) {
   TimeNs t = arrival_ns;
@@ -24,4 +24,4 @@ TimeNs DeviceClock::map(TimeNs arrival_ns, std::optional<std::int64_t> device_ns
   return t;
 }
 
-}  // namespace foveal::hid
+}  // namespace foveal
