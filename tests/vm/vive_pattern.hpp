@@ -35,10 +35,11 @@ struct ViveConfig {
   glm::dvec3 acc_bias{0.05, -0.03, 0.08}, acc_scale{1.01, 0.99, 1.02};
   int eye_width = 1200, eye_height = 1280;
   double lens_separation_m = 0.0655;
-  double aspect_x_over_y = 0.8;
+  double aspect_x_over_y = 0.9;
   double eye_x_m[2] = {-0.0321, 0.0321};  ///< eye_to_head translation, x
-  /// intrinsics [[fx, 0, cx], [0, fy, cy], [0, 0, -1]] per eye
-  double fx = 1.05, fy = 1.18, cx[2] = {-0.06, 0.06}, cy = 0.004;
+  /// intrinsics [[fx, 0, cx], [0, fy, cy], [0, 0, -1]] per eye (fy = fx * aspect: square
+  /// pixels, as a headset's are)
+  double fx = 1.05, fy = 0.945, cx[2] = {-0.06, 0.06}, cy = 0.004;
   /// per colour (red, green, blue): the lens centre and coefficients k1..k3
   double center_x[2] = {-0.012, 0.012}, center_y = 0.006;
   double coeffs[3][3] = {{0.205, 0.245, 0.020}, {0.220, 0.240, 0.015}, {0.238, 0.236, 0.011}};

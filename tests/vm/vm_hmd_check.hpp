@@ -54,10 +54,10 @@ FollowCheck check_psvr2_rows(const std::vector<HeadRow>& rows, const std::vector
 FollowCheck check_vive_rows(const std::vector<HeadRow>& rows, const std::vector<Window>& windows);
 
 /// A display-model file against the emulated configuration (vive_pattern.hpp): size,
-/// IPD, each eye's frustum from the intrinsics (grown by grow_for_undistort), and the
-/// distortion: over the panel points within the cutoff, where each channel samples
-/// the rendered image by the model's polynomial against the configuration's
-/// DISTORT_DPOLY3 (both written out here), rms and max in rendered pixels.
+/// IPD, and the optics: over the panel points within the cutoff, the direction each
+/// colour channel shows by the model's frustum and polynomial against the
+/// configuration's (the intrinsics grown by grow_for_undistort, DISTORT_DPOLY3; both
+/// written out here), rms and max in rendered pixels.
 struct ModelCheck {
   bool pass = false;
   std::string details;

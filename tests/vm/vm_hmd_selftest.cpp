@@ -8,6 +8,7 @@
 
 #include "foveal/drivers/usb/psvr2_pose_records.hpp"
 #include "foveal/drivers/vive/vive_config.hpp"
+#include "foveal/drivers/vive/vive_display_model.hpp"
 #include "foveal/drivers/vive/vive_reports.hpp"
 #include "psvr2_pose_pattern.hpp"
 #include "vive_pattern.hpp"
@@ -93,6 +94,21 @@ void vive_bytes() {
       ++samples;
     }
   }
+  // The display model foveal makes of the configuration passes the VM test's check of
+  // the written file, and a model from another configuration does not.
+  vive::DistortionFit fit;
+  const auto model = vive::vive_display_model(*cfg, &fit);
+  const ModelCheck good = model ? check_vive_model(nlohmann::json::parse(model->to_json_text()))
+                                : ModelCheck{false, model.error().message};
+  expect(good.pass, "vive: the display model converted from the configuration matches it: " + good.details +
+                        "(the conversion's own fit: " + vive::vive_model_source(*cfg, fit) + ")");
+  auto other = *cfg;
+  other.eyes[0].rgb[1].coeffs[0] += 0.05;
+  other.ipd_m += 0.001;
+  const auto wrong = vive::vive_display_model(other);
+  const ModelCheck bad = wrong ? check_vive_model(nlohmann::json::parse(wrong->to_json_text())) : ModelCheck{};
+  expect(wrong && !bad.pass && bad.details.find("left eye shows") != std::string::npos,
+         "vive: a model of another lens (k1 + 0.05 on the left) and IPD does not: " + bad.details);
   char b[200];
   std::snprintf(b, sizeof b, "vive: %zu IMU samples decode to the motion through the calibration (gyro %.2g rad/s, accel %.2g m/s2)",
                 samples, gyro, accel);
