@@ -61,9 +61,12 @@ int run_psvr2_gadget(const std::string& dir, bool pose) {
   std::vector<std::thread> writers;
   const std::string ep = dir + "/ep";
   writers.emplace_back([&] {
-    std::uint64_t k = 0;
-    ffs::stream(g_stop, ep + (pose ? "2" : "1"), configured, 8'333'000, gaze_written, [&](TimeNs, int fd) {
-      return ffs::write_all(fd, psvr2_record(k++));
+    // Record k is the one of the k-th period since the start: the count goes on while
+    // nobody reads, as a sensor's would.
+    constexpr TimeNs period = 8'333'000;
+    const TimeNs t0 = monotonic_now_ns();
+    ffs::stream(g_stop, ep + (pose ? "2" : "1"), configured, period, gaze_written, [&](TimeNs t, int fd) {
+      return ffs::write_all(fd, psvr2_record(static_cast<std::uint64_t>((t - t0) / period)));
     });
   });
   if (pose) {
