@@ -23,15 +23,17 @@ cmake -S . -B build-asan -G Ninja "${fast[@]}" -DFOVEAL_SANITIZE=address,undefin
 ninja -C build-asan -j"$jobs" foveal_core_tests foveal_profile_tests foveal_control_tests foveal_exchange_tests \
   foveal_daemon_tests foveal_calibration_tests foveal_filter_tests foveal_hid_tests foveal_usb_tests \
   foveal_image_tests foveal_gltf_tests foveal_probe_tests foveal_quality_tests foveal_quality_cli_tests \
-  foveal_study_tests foveal_fuzz_regressions foveal foveald
+  foveal_study_tests foveal_fuzz_regressions foveal_client_tests foveal foveald \
+  foveal_head_tests foveal_vive_tests
 # foveald's integration tests render through Mesa, whose allocations outlive the process
 # by design: they run in the normal build; every other CPU test runs with leak checks.
 ctest --test-dir build-asan -L cpu -E 'Foveald' --output-on-failure -j"$jobs"
 
 step "TSan: threaded runtime tests"
 cmake -S . -B build-tsan -G Ninja "${fast[@]}" -DFOVEAL_SANITIZE=thread > /dev/null
-ninja -C build-tsan -j"$jobs" foveal_exchange_tests foveal_daemon_tests foveal_control_tests
-ctest --test-dir build-tsan -R 'SeqLock|FoveaShm|PoseTrack|GazeLoop|LatencyHistogram|ControlSocket' --output-on-failure -j"$jobs"
+ninja -C build-tsan -j"$jobs" foveal_exchange_tests foveal_daemon_tests foveal_control_tests foveal_client_tests \
+  foveal_head_tests
+ctest --test-dir build-tsan -R 'SeqLock|FoveaShm|PoseTrack|GazeLoop|LatencyHistogram|ControlSocket|FovealClient|HeadTracker' --output-on-failure -j"$jobs"
 
 step "libFuzzer: each target ${FOVEAL_FUZZ_SECONDS:-15} s"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DFOVEAL_FUZZ=ON "${fast[@]}" > /dev/null

@@ -276,6 +276,22 @@ TEST_F(Foveald, BadSourceSpecsAreNamed) {
   EXPECT_FALSE(std::filesystem::exists(dir_.path("out/summary.json")));
 }
 
+TEST_F(Foveald, HeadsetPoseSourceWaitsForItsHeadsetAndBadHeadSpecsAreNamed) {
+  // No headset here: foveald runs, the camera stays at the scene's view, the state says so.
+  const auto r = run_foveald(dir_.path(""), "--source synthetic --duration 1 --head auto --no-render --no-control --no-shm -q --out " +
+                                                dir_.path("out"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(test::read_file(dir_.path("out/summary.json")));
+  EXPECT_EQ(j["head"]["mode"], "auto");
+  EXPECT_EQ(j["head"]["state"], "waiting") << j["head"].dump();
+  EXPECT_EQ(j["head"]["poses"], 0);
+  EXPECT_TRUE(j["head"].contains("prediction"));
+  auto bad = run_foveald(dir_.path(""), "--source synthetic --head oculus --no-render --out " + dir_.path("bad"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("unknown head-pose source 'oculus'"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_.path("bad/summary.json")));
+}
+
 #ifdef FOVEAL_TEST_HAVE_HID
 TEST_F(Foveald, ALiveSourceWaitsForItsDevice) {
   // No such tracker: foveald keeps running, answers, and says what it waits for.

@@ -13,6 +13,9 @@ struct FakeHidState {
   hid::HidDeviceEntry entry;
   bool present = true;
   std::map<std::uint8_t, std::vector<std::uint8_t>> features;  ///< GET_REPORT replies by ID
+  /// Replies given once each, in order, before `features` (a device that streams a
+  /// long value through repeated GET_REPORTs, as the Vive's configuration).
+  std::map<std::uint8_t, std::deque<std::vector<std::uint8_t>>> feature_sequences;
   std::vector<std::vector<std::uint8_t>> sent;                  ///< SET_REPORT requests
   std::deque<std::vector<std::uint8_t>> inputs;
   int open_handles = 0;
@@ -24,6 +27,11 @@ class FakeHidDevice final : public hid::HidDevice {
   ~FakeHidDevice() override { --s_->open_handles; }
   Result<std::vector<std::uint8_t>> get_feature(std::uint8_t id, std::size_t) override {
     if (!s_->present) return Error{ErrorKind::device, "gone"};
+    if (auto seq = s_->feature_sequences.find(id); seq != s_->feature_sequences.end() && !seq->second.empty()) {
+      auto r = seq->second.front();
+      seq->second.pop_front();
+      return r;
+    }
     auto it = s_->features.find(id);
     if (it == s_->features.end()) return Error{ErrorKind::device, "stall"};
     return it->second;

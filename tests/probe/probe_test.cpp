@@ -143,5 +143,60 @@ TEST(RecordCli, RecordsAnySourceTheProberKnows) {
   EXPECT_FALSE(std::filesystem::exists(d.path("n.csv")));
 }
 
+TEST(RecordCli, RecordsTheHeadPoseColumnsWithHead) {
+  // No headset here: the log is v2, its head columns empty (waiting for the headset).
+  test::TempDir d;
+  const auto r = test::run(test::bin("foveal") + " record --source synthetic:5 --head auto --duration 1 --json --out " +
+                           d.path("h.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["head"]["head"], "auto");
+  EXPECT_EQ(j["head"]["poses"], 0);
+  const std::string log = test::read_file(d.path("h.csv"));
+  EXPECT_EQ(log.rfind("# foveal-gaze-log v2", 0), 0u) << log.substr(0, 40);
+  EXPECT_NE(log.find("head=auto"), std::string::npos);
+  const auto v = test::run(test::bin("foveal") + " log validate --json " + d.path("h.csv"));
+  ASSERT_EQ(v.exit_code, 0) << v.err;
+  const auto bad = test::run(test::bin("foveal") + " record --source synthetic --head oculus --out " + d.path("n.csv"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("unknown head-pose source 'oculus'"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(d.path("n.csv")));
+}
+
+TEST(PoseSpec, ParsesEveryFormAndNamesTheKnownOnes) {
+  ASSERT_TRUE(probe::parse_pose_spec("auto"));
+  EXPECT_FALSE(probe::parse_pose_spec("auto:1"));
+  ASSERT_TRUE(probe::parse_pose_spec("psvr2"));
+  EXPECT_FALSE(probe::parse_pose_spec("psvr2:x"));
+#ifdef FOVEAL_TEST_HAVE_HID
+  auto v = probe::parse_pose_spec("vive:/dev/hidraw7");
+  ASSERT_TRUE(v) << v.error().message;
+  EXPECT_EQ(v->driver, "vive");
+  EXPECT_EQ(v->arg, "/dev/hidraw7");
+  EXPECT_EQ(v->text(), "vive:/dev/hidraw7");
+#endif
+  auto bad = probe::parse_pose_spec("oculus");
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().kind, ErrorKind::bad_input);
+  EXPECT_NE(bad.error().message.find("psvr2"), std::string::npos) << bad.error().message;
+  EXPECT_NE(probe::pose_spec_help().find("auto"), std::string::npos);
+}
+
+TEST(PoseSpec, AbsentHeadsetsFailToOpenWithAMessage) {
+  // No headset on this machine: opening says so (the pose thread would wait and retry).
+  for (const char* text : {"psvr2", "auto"}) {
+    auto spec = probe::parse_pose_spec(text);
+    ASSERT_TRUE(spec);
+    auto dev = probe::make_pose_device(*spec);
+    ASSERT_TRUE(dev) << dev.error().message;
+    Status s = dev->device->open();
+    EXPECT_FALSE(s) << text;
+    EXPECT_FALSE(s.error().message.empty());
+  }
+  auto rows = probe::list_hmds();
+  ASSERT_TRUE(rows) << rows.error().message;
+  EXPECT_TRUE(rows->empty());
+}
+
 }  // namespace
 }  // namespace foveal

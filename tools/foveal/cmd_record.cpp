@@ -1,10 +1,12 @@
 // foveal record: reads a tracker and writes what it delivers as a native gaze log,
-// riding out unplugs (retry with backoff) until the duration is over or Ctrl-C.
+// riding out unplugs (retry with backoff) until the duration is over or Ctrl-C; with
+// --head, the headset's own pose goes with each sample (log v2).
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <atomic>
+#include <deque>
 #include <csignal>
 #include <cstdio>
 #include <optional>
@@ -13,6 +15,7 @@
 #include "commands.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/drivers/probe.hpp"
+#include "foveal/runtime/head_tracker.hpp"
 #include "foveal/tools/cli.hpp"
 
 namespace foveal::cmd {
@@ -32,11 +35,62 @@ double estimate_rate(const std::vector<GazeSample>& s) {
   return median > 0 ? 1e9 / static_cast<double>(median) : 0;
 }
 
+/// How long a gaze sample waits for the head pose of its time before it is written
+/// with the newest one there is (held).
+constexpr TimeNs kPoseWaitNs = 100 * kNsPerMs;
+
+/// The head-pose side of a recording: a pose thread on the headset and the samples
+/// waiting for their pose.
+class HeadRecorder {
+ public:
+  static Result<std::unique_ptr<HeadRecorder>> create(const std::string& spec_text) {
+    auto spec = probe::parse_pose_spec(spec_text);
+    if (!spec) return spec.error();
+    auto dev = probe::make_pose_device(*spec);
+    if (!dev) return dev.error();
+    std::unique_ptr<HeadRecorder> h(new HeadRecorder());
+    h->device_.emplace(std::move(*dev));
+    h->tracker_ = std::make_unique<HeadTracker>(*h->device_->device, /*wait_for_device=*/true);
+    h->tracker_->start();
+    return h;
+  }
+  ~HeadRecorder() { tracker_->stop(); }
+
+  void add(const GazeSample& s) { waiting_.push_back(s); }
+  /// The samples whose pose is in (or that waited long enough), with it; all with `all`.
+  std::vector<GazeSample> ready(bool all) {
+    std::vector<GazeSample> out;
+    const auto newest = tracker_->track().newest();
+    const TimeNs now = monotonic_now_ns();
+    while (!waiting_.empty()) {
+      GazeSample& s = waiting_.front();
+      if (!all && !(newest && newest->t_ns >= s.t_ns) && now - s.t_ns < kPoseWaitNs) break;
+      const PoseAt p = tracker_->track().pose_at(s.t_ns);
+      if (p.valid) s.head = {true, p.pose};
+      out.push_back(s);
+      waiting_.pop_front();
+    }
+    return out;
+  }
+  nlohmann::json json() {
+    tracker_->stop();
+    const HeadTrackerStats st = tracker_->stats();
+    return {{"head", device_->spec.text()},   {"device", st.device.name}, {"poses", st.poses},
+            {"imu_samples", st.imu_samples}, {"reconnects", st.reconnects}, {"counters", device_->counters()}};
+  }
+
+ private:
+  HeadRecorder() = default;
+  std::optional<probe::OpenedPoseDevice> device_;
+  std::unique_ptr<HeadTracker> tracker_;
+  std::deque<GazeSample> waiting_;
+};
+
 }  // namespace
 
 void add_record(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string source, device, out;
+    std::string source, device, out, head;
     double duration_s = 10;
     bool json = false;
   };
@@ -46,6 +100,7 @@ void add_record(CLI::App& app, int& exit_code) {
   sub->add_option("--device,-d", args->device, "Short form: an id from `foveal devices`, a hidraw path, psvr2, or auto")
       ->excludes("--source");
   sub->add_option("--out,-o", args->out, "Output native gaze log (written atomically)")->required();
+  sub->add_option("--head", args->head, "Also record the headset's own pose with each sample (native log v2):\n" + probe::pose_spec_help());
   sub->add_option("--duration", args->duration_s, "Seconds to record (Ctrl-C stops early)")->capture_default_str();
   sub->add_flag("--json", args->json, "Print the summary as JSON");
   sub->callback([args, &exit_code] {
@@ -65,6 +120,15 @@ void add_record(CLI::App& app, int& exit_code) {
       exit_code = cli::report(device.error());
       return;
     }
+    std::unique_ptr<HeadRecorder> head_rec;
+    if (!args->head.empty()) {
+      auto h = HeadRecorder::create(args->head);
+      if (!h) {
+        exit_code = cli::report(h.error());
+        return;
+      }
+      head_rec = std::move(*h);
+    }
     GazeSource& src = *device->source;
     if (Status s = src.open(); !s) {
       exit_code = cli::report(s.error());
@@ -80,38 +144,42 @@ void add_record(CLI::App& app, int& exit_code) {
     const TimeNs t_end = monotonic_now_ns() + static_cast<TimeNs>(args->duration_s * 1e9);
     // The log header needs the rate: buffer the first second in case the device only
     // tells it in a status input report, or not at all.
-    std::vector<GazeSample> head;
+    std::vector<GazeSample> first_second;
     std::optional<GazeLogWriter> writer;
     TimeNs last_t = 0;
     std::uint64_t reconnects = 0;
     auto open_writer = [&]() -> Status {
       GazeLogHeader h;
-      h.rate_hz = src.info().nominal_rate_hz > 0 ? src.info().nominal_rate_hz : estimate_rate(head);
+      if (head_rec) h.version = kGazeLogV2;
+      h.rate_hz = src.info().nominal_rate_hz > 0 ? src.info().nominal_rate_hz : estimate_rate(first_second);
       if (!(h.rate_hz > 0)) h.rate_hz = 120;  // nothing to go on: the common tracker rate
       h.meta["driver"] = info.driver;
       h.meta["source"] = info.path;
       h.meta["device"] = info.name;
+      if (head_rec) h.meta["head"] = args->head;
       auto w = GazeLogWriter::create(args->out, h);
       if (!w) return w.error();
       writer.emplace(std::move(w.value()));
-      for (const GazeSample& s : head)
+      for (const GazeSample& s : first_second)
         if (Status st = writer->write(s); !st) return st;
-      head.clear();
+      first_second.clear();
       return {};
     };
-    const TimeNs head_until = monotonic_now_ns() + kNsPerSec;
+    const TimeNs first_second_until = monotonic_now_ns() + kNsPerSec;
+    // A sample goes to the log, or to the first second's buffer until the rate is known.
+    auto take = [&](const GazeSample& s) -> Status {
+      if (writer) return writer->write(s);
+      first_second.push_back(s);
+      return {};
+    };
     while (!g_interrupted.load() && monotonic_now_ns() < t_end) {
       const auto r = src.next(std::chrono::milliseconds(50));
-      if (r.status == ReadStatus::sample) {
-        if (r.sample.t_ns <= last_t) continue;
+      if (r.status == ReadStatus::sample && r.sample.t_ns > last_t) {
         last_t = r.sample.t_ns;
-        if (writer) {
-          if (Status st = writer->write(r.sample); !st) {
-            exit_code = cli::report(st.error());
-            return;
-          }
-        } else {
-          head.push_back(r.sample);
+        if (head_rec) head_rec->add(r.sample);
+        else if (Status st = take(r.sample); !st) {
+          exit_code = cli::report(st.error());
+          return;
         }
       } else if (r.status == ReadStatus::disconnected) {
         if (reopen_with_backoff(src, [&] { return g_interrupted.load() || monotonic_now_ns() >= t_end; })) ++reconnects;
@@ -121,13 +189,25 @@ void add_record(CLI::App& app, int& exit_code) {
         exit_code = cli::report(r.error);
         return;
       }
-      if (!writer && monotonic_now_ns() >= head_until)
+      if (head_rec)
+        for (const GazeSample& s : head_rec->ready(false))
+          if (Status st = take(s); !st) {
+            exit_code = cli::report(st.error());
+            return;
+          }
+      if (!writer && monotonic_now_ns() >= first_second_until)
         if (Status st = open_writer(); !st) {
           exit_code = cli::report(st.error());
           return;
         }
     }
     src.close();
+    if (head_rec)
+      for (const GazeSample& s : head_rec->ready(true))
+        if (Status st = take(s); !st) {
+          exit_code = cli::report(st.error());
+          return;
+        }
     if (!writer)
       if (Status st = open_writer(); !st) {
         exit_code = cli::report(st.error());
@@ -140,6 +220,7 @@ void add_record(CLI::App& app, int& exit_code) {
     nlohmann::json j = {{"output", args->out},  {"driver", info.driver},     {"device", info.path},
                         {"samples", writer->samples_written()}, {"reconnects", reconnects},
                         {"driver_counters", device->counters()}};
+    if (head_rec) j["head"] = head_rec->json();
     if (args->json) cli::print_json(j);
     else
       std::printf("recorded %llu samples from %s %s -> %s (%llu reconnects)\n",

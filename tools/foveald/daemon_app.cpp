@@ -21,6 +21,18 @@ namespace {
 constexpr const char* kDefaultLog = "data/gaze/vive_pro_eye_TESTNA01.csv";
 constexpr std::uint64_t kWarmupFrames = 100;  // caches, driver pools and histograms are full by then
 
+/// The settings as other programs see them in the shared block (docs/fovea-shm.md).
+FoveaShmSettings shm_settings(const RenderSettings& r) {
+  FoveaShmSettings s{};
+  s.sigma_d = r.sigma_d;
+  s.sigma_nd = r.sigma_nd;
+  s.f_x = r.f_x;
+  s.f_y = r.f_y;
+  s.dominant_eye = r.dominant_eye;
+  s.generation = r.generation;
+  return s;
+}
+
 }  // namespace
 
 Result<Profile> DaemonApp::load_startup_profile() const {
@@ -46,7 +58,9 @@ Status DaemonApp::apply_profile(const Profile& p, const char* why) {
   }
   const bool filter_changed = p.filter != profile_.filter;
   profile_ = p;
-  settings_.store(RenderSettings::from(p, ++settings_generation_));
+  const RenderSettings rs = RenderSettings::from(p, ++settings_generation_);
+  settings_.store(rs);
+  if (shm_) shm_->publish_settings(shm_settings(rs));
   if (loop_ && filter_changed) loop_->set_mapper(make_mapper());
   log::info(std::string("profile '") + p.name + "' " + why + ": dominant " + eye_name(p.dominant_eye) +
             ", sigma_d " + std::to_string(p.sigma_d) + ", sigma_nd " + std::to_string(p.sigma_nd));
@@ -78,12 +92,32 @@ Status DaemonApp::setup_source() {
   // A file must be readable now; a device may come later (the gaze loop waits for it).
   if (!source_.live)
     if (Status s = source_.source->open(); !s) return s;
-  // The camera follows the head when the source knows its pose (docs/daemon.md, "Head pose").
+  return setup_head(so);
+}
+
+Status DaemonApp::setup_head(const probe::SourceOptions& so) {
+  // The camera follows the head when the source knows its pose, or a headset's own
+  // tracking (docs/daemon.md, "Head pose"; docs/headset.md).
   const bool has_pose = !source_.live && source_.source->info().head_pose;
-  if (o_.head == "recorded" && !has_pose)
-    return bad_input("--head recorded: " + source_text_ + " carries no head pose (a native log v2 with head columns has one)");
-  head_recorded_ = o_.head.empty() ? has_pose : o_.head == "recorded";
+  auto head = HeadSide::create(o_.head, has_pose, source_text_, so);
+  if (!head) return head.error();
+  head_ = std::move(*head);
+  // A headset's own lens data wins over the profile's model; --display over both.
+  if (const auto& d = head_->headset_display(); d && o_.display.empty()) {
+    model_ = d->model;
+    log::info("display model from the headset: " + d->source);
+  }
   return {};
+}
+
+double DaemonApp::refresh_hz() const {
+  // Direct mode knows the mode's rate; otherwise --fps, the display model's, or 90 Hz.
+  if (renderer_) {
+    const nlohmann::json out = renderer_->stats_json().value("output", nlohmann::json::object());
+    if (out.contains("mode") && out["mode"].value("refresh_hz", 0.0) > 0) return out["mode"]["refresh_hz"].get<double>();
+  }
+  if (o_.fps > 0) return o_.fps;
+  return model_.refresh_hz > 0 ? model_.refresh_hz : 90.0;
 }
 
 Status DaemonApp::setup() {
@@ -116,8 +150,14 @@ Status DaemonApp::setup() {
   }
   if (o_.shm) {
     auto s = FoveaShm::create(default_fovea_shm_name());
-    if (s) shm_.emplace(std::move(s.value()));
-    else log::warn(s.error().message + "; the fovea stream is off");
+    if (s) {
+      shm_.emplace(std::move(s.value()));
+      RenderSettings rs;
+      (void)settings_.load(rs);
+      shm_->publish_settings(shm_settings(rs));  // those of the startup profile, before any fovea
+    } else {
+      log::warn(s.error().message + "; the fovea stream is off");
+    }
   }
   return {};
 }
@@ -186,8 +226,9 @@ int DaemonApp::render_loop() {
     if (!loop_->latest().load(f)) f = FoveaFrame{};
     RenderSettings rs;
     (void)settings_.load(rs);
-    // The head where it was when the frame's gaze sample was taken.
-    const PoseAt head = head_recorded_ ? head_track_.pose_at(f.t_ns) : PoseAt{};
+    // Recorded: the head where it was when the frame's gaze sample was taken; a
+    // headset: where it will be when the frame is shown.
+    const PoseAt head = head_->for_frame(f.t_ns, refresh_hz());
     if (Status s = renderer_->render(f, rs, model_, head); !s) return cli::report(s.error(), "foveald");
     const std::uint64_t frames = renderer_->frames();
     if (frames == kWarmupFrames) warm_rss_mb_ = current_rss_mb(), warm_fds_ = open_fds();
@@ -223,13 +264,14 @@ int DaemonApp::run() {
       *source_.source, make_mapper(),
       [this, eye_w, eye_h, paced](const GazeSample& s, const FoveaFrame& f) {
         if (paced) pacing_.add(monotonic_now_ns() - s.t_ns);
-        if (head_recorded_ && s.head.valid) head_track_.push({s.t_ns, s.head.pose});
+        head_->push_recorded(s);
         trace_->write(f, markers_.take_until(f.t_ns));
         if (shm_) shm_->publish(f, eye_w, eye_h);
       },
       /*wait_for_source=*/source_.live);
   if (source_.live) log::info("source " + source_.spec.text() + ": waiting for the device");
   loop_->start(o_.rt_priority);
+  head_->start();
   control_thread_ = std::thread([this, sigfd] { control_thread(sigfd); });
 
   const int rc = render_loop();
@@ -245,6 +287,7 @@ int DaemonApp::run() {
 
 int DaemonApp::shutdown(int rc) {
   loop_->stop();
+  head_->stop();
   if (log::enabled(log::Level::info) && !o_.json && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
   const GazeLoopStats st = loop_->stats();
   if (st.failed) rc = cli::report(bad_input(st.last_error), "foveald");

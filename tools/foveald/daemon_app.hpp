@@ -25,6 +25,7 @@
 #include "foveal/tools/fovea_trace.hpp"
 #include "foveal/tools/trace_markers.hpp"
 #include "frame_renderer.hpp"
+#include "head_side.hpp"
 #include "options.hpp"
 #include "render_settings.hpp"
 
@@ -41,6 +42,8 @@ class DaemonApp {
   // Setup (main thread, before the other threads start).
   Status setup();
   Status setup_source();
+  Status setup_head(const probe::SourceOptions& so);
+  double refresh_hz() const;  // the output's, for the pose prediction horizon
   Status setup_renderer();
   Result<Profile> load_startup_profile() const;
   Status apply_profile(const Profile& p, const char* why);  // main, then control thread
@@ -77,8 +80,7 @@ class DaemonApp {
   std::string source_text_;             // the spec, for status
   probe::OpenedSource source_;
   std::unique_ptr<GazeLoop> loop_;
-  PoseTrack head_track_;      // gaze thread pushes the source's head poses, the renderer samples
-  bool head_recorded_ = false;  // the camera follows head_track_ (--head recorded)
+  std::unique_ptr<HeadSide> head_;  // the camera's pose: recorded, static or a headset (head_side.hpp)
   std::optional<cli::FoveaTrace> trace_;
   cli::MarkerQueue markers_;  // `ctl mark`: control thread in, gaze thread out into the trace
   std::optional<ControlServer> control_;  // control thread after setup

@@ -48,6 +48,7 @@ void DaemonApp::control_thread(int signal_fd) {
       ::poll(&p, 1, kPollMs);
     }
     handle_signals(signal_fd);
+    if (shm_) shm_->heartbeat();  // readers take a silent block for a dead foveald
     print_status_line();
     const TimeNs asked = stop_requested_at_.load();
     if (asked > 0 && monotonic_now_ns() - asked > kEmergencyAfterNs && claim_shutdown(control)) emergency_exit();
@@ -110,6 +111,7 @@ nlohmann::json DaemonApp::status_json() const {
           {"markers", markers_.pushed()},
           {"resident_mb", current_rss_mb()},
           {"render", renderer_ ? renderer_->stats_json() : nlohmann::json(nullptr)},
+          {"head", head_ ? head_->json() : nlohmann::json(nullptr)},
           {"control", {{"requests", control_ ? control_->requests_served() : 0}, {"bad_requests", control_ ? control_->bad_requests() : 0}}}};
 }
 
@@ -196,9 +198,6 @@ nlohmann::json DaemonApp::summary_json() const {
   j.erase("ok");
   j["display_model"] = model_.name;
   j["trace"] = o_.out + "/trace.csv";
-  j["head"] = {{"mode", head_recorded_ ? "recorded" : "static"},
-               {"poses", head_track_.accepted()},
-               {"poses_dropped", head_track_.dropped()}};
   j["peak_rss_mb"] = peak_rss_mb();
   // The driver's own counters; the gaze thread has stopped, so reading them is safe.
   if (loop_ && loop_->finished() && source_.counters) j["source"]["counters"] = source_.counters();
@@ -218,6 +217,7 @@ void DaemonApp::emergency_exit() {
   // will not touch the outputs again: it parks once it sees this thread owns shutdown.
   log::info("a frame is still in flight: finishing without it");
   loop_->stop();
+  head_->stop();
   int rc = cli::kExitOk;
   trace_->write_markers(markers_.take_all());
   Status s = trace_->commit();

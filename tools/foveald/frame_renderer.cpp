@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cinttypes>
 #include <cstdio>
+#include <utility>
 
 #include "foveal/core/data_paths.hpp"
 #include "foveal/image/auto_f.hpp"
@@ -49,7 +50,7 @@ Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions
   r->csv_->write(
       "frame,t_ns,generation,fovea_left_x,fovea_left_y,fovea_right_x,fovea_right_y,sigma_left,sigma_right,"
       "buffer_left_w,buffer_left_h,buffer_right_w,buffer_right_h,f_x,f_y,shadow_ms,gbuffer_ms,mapping_ms,lighting_ms,"
-      "inverse_ms,gpu_ms,cpu_ms,head_x,head_y,head_z,head_qw,head_qx,head_qy,head_qz\n");
+      "inverse_ms,gpu_ms,cpu_ms,head_x,head_y,head_z,head_qw,head_qx,head_qy,head_qz,head_t_ns\n");
   return r;
 }
 
@@ -92,12 +93,12 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
   char line[768];
   std::snprintf(line, sizeof line,
                 "%" PRIu64 ",%" PRId64 ",%u,%.5f,%.5f,%.5f,%.5f,%.3f,%.3f,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,"
-                "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
+                "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%" PRId64 "\n",
                 frames_, static_cast<std::int64_t>(fovea.t_ns), s.generation, p.eyes[0].fovea_x, p.eyes[0].fovea_y,
                 p.eyes[1].fovea_x, p.eyes[1].fovea_y, p.eyes[0].sigma, p.eyes[1].sigma, bl[0], bl[1], br[0], br[1], fx, fy,
                 t->shadow, t->gbuffer, t->mapping, t->lighting, t->inverse, t->gpu_total, t->cpu, double(hp.position_m.x),
                 double(hp.position_m.y), double(hp.position_m.z), double(hp.orientation.w), double(hp.orientation.x),
-                double(hp.orientation.y), double(hp.orientation.z));
+                double(hp.orientation.y), double(hp.orientation.z), static_cast<std::int64_t>(head.t_ns));
   if (Status st = output_->present(comp_->output_framebuffer(), comp_->width(), comp_->height()); !st) return st;
   {
     // A row once the frame is on its way to the screen, readable in the temporary file
@@ -109,6 +110,8 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
   }
   const bool save = frames_ == 0 || (o_.save_every > 0 && frames_ % static_cast<std::uint64_t>(o_.save_every) == 0);
   ++frames_;
+  // Built before taking the lock, so a status request never waits for it.
+  nlohmann::json output = output_->json();
   {
     std::lock_guard lock(snapshot_mutex_);
     snap_.frames = frames_;
@@ -119,7 +122,7 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
     snap_.generation = s.generation;
     if (generation_changed) ++snap_.settings_changes;
     if (auto_f_generation_) snap_.auto_f = {auto_fx_, auto_fy_};
-    snap_.output = output_->json();
+    snap_.output = std::move(output);
     snap_.targets_mb = static_cast<double>(comp_->memory().total()) / (1024.0 * 1024.0);
   }
   if (save) return save_frame();

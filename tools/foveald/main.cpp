@@ -19,8 +19,8 @@ int main(int argc, char** argv) {
                                              foveal::probe::source_spec_help());
   app.add_option("--replay", o.replay, "Short for --source replay:PATH");
   app.add_option("--duration", o.duration_s, "Stop after this many seconds, whatever the source");
-  app.add_option("--head", o.head, "Camera: recorded (the log's head pose moves it) or static (the scene's view); default: recorded when the log has a pose")
-      ->check(CLI::IsMember({"recorded", "static"}));
+  app.add_option("--head", o.head, "Camera: recorded (the log's head pose moves it), static (the scene's view), or a headset's own tracking, predicted to each frame's display time:\n" +
+                                       foveal::probe::pose_spec_help() + "default: recorded when the log has a pose, else static");
   app.add_option("--display", o.display, "Display-model JSON (default: the profile's, else HTC Vive Pro Eye)");
   app.add_option("--profile", o.profile, "User profile (default: the active one, else built-in defaults)");
   app.add_option("--out,-o", o.out, "Output directory: trace.csv, frames.csv, frame_*.png, summary.json")->capture_default_str();

@@ -10,7 +10,7 @@ struct Options {
   std::string source;         ///< source spec (drivers/probe); empty = replay of `replay`
   std::string replay;         ///< gaze log; empty = the bundled recording
   std::optional<double> duration_s;  ///< stop after this many seconds, whatever the source
-  std::string head;           ///< recorded, static; empty: recorded when the source has poses
+  std::string head;           ///< recorded, static or a pose spec (psvr2, vive[:PATH], auto); empty: recorded when the source has poses
   std::string display;        ///< display-model JSON; empty = from the profile / default
   std::string out = "foveald-out";
   std::string profile;        ///< empty = the active profile (or built-in defaults)

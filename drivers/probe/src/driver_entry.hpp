@@ -19,6 +19,20 @@ struct DriverEntry {
   std::function<Result<OpenedSource>(const std::string& arg, const SourceOptions&)> make;
 };
 
+/// One head-pose driver: how it lists its headsets and makes pose devices.
+struct PoseDriverEntry {
+  const char* name;
+  const char* usage;
+  const char* what;
+  std::function<Result<std::vector<HmdRow>>()> list;
+  std::function<Result<OpenedPoseDevice>(const std::string& arg, const SourceOptions&)> make;
+};
+
+/// Every pose driver of this build, in the order `auto` tries them.
+const std::vector<PoseDriverEntry>& pose_driver_list();
+PoseDriverEntry psvr2_pose_entry();
+PoseDriverEntry vive_pose_entry();
+
 /// Every driver of this build, live trackers in the order `auto` tries them.
 const std::vector<DriverEntry>& driver_list();
 

@@ -20,6 +20,20 @@ const std::vector<DriverEntry>& driver_list() {
   return list;
 }
 
+const std::vector<PoseDriverEntry>& pose_driver_list() {
+  static const std::vector<PoseDriverEntry> list = [] {
+    std::vector<PoseDriverEntry> l;
+#ifdef FOVEAL_HAVE_USB
+    l.push_back(psvr2_pose_entry());
+#endif
+#ifdef FOVEAL_HAVE_HID
+    l.push_back(vive_pose_entry());
+#endif
+    return l;
+  }();
+  return list;
+}
+
 const std::vector<std::string>& drivers_left_out() {
   static const std::vector<std::string> out = [] {
     std::vector<std::string> o;

@@ -48,6 +48,7 @@ PoseAt PoseTrack::pose_at(TimeNs t_ns) const {
   }
   PoseAt r;
   r.valid = true;
+  r.t_ns = t_ns;
   r.pose = b.t_ns == a.t_ns ? a.pose
                             : interpolate(a.pose, b.pose, static_cast<double>(t_ns - a.t_ns) / static_cast<double>(b.t_ns - a.t_ns));
   r.relative = relative_to(anchor, r.pose);

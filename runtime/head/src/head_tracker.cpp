@@ -122,6 +122,7 @@ PoseAt HeadTracker::predicted(TimeNs t_ns) const {
   if (!m.valid || !anchor) return {};
   PoseAt p;
   p.valid = true;
+  p.t_ns = t_ns;
   p.pose = predict_pose(m, t_ns);
   p.relative = relative_to(*anchor, p.pose);
   return p;

@@ -15,8 +15,11 @@ glm::quat rotation_vector_to_quat(const glm::vec3& v) {
 }
 
 double angle_between(const glm::quat& a, const glm::quat& b) {
-  const double d = std::fabs(double(a.w) * b.w + double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z);
-  return 2.0 * std::acos(std::min(1.0, d));
+  // From the vector part of a⁻¹b, in double: acos of the dot product loses the digits of
+  // small angles.
+  const glm::dquat d = glm::conjugate(glm::dquat(a.w, a.x, a.y, a.z)) * glm::dquat(b.w, b.x, b.y, b.z);
+  const double s = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  return 2.0 * std::atan2(s, std::fabs(d.w));
 }
 
 namespace {

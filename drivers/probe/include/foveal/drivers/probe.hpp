@@ -15,12 +15,15 @@
 // are driven by one thread at a time (GazeSource's rule).
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "foveal/core/display_model.hpp"
 #include "foveal/core/gaze_source.hpp"
+#include "foveal/core/pose_device.hpp"
 #include "foveal/drivers/replay_source.hpp"
 
 namespace foveal::probe {
@@ -79,5 +82,64 @@ struct DeviceRow {
 Result<std::vector<DeviceRow>> list_devices(bool probe_rate);
 
 nlohmann::json device_json(const DeviceRow& row);
+
+// ---- Head pose: the headsets' own tracking (docs/headset.md) ----
+// Specs (foveald --head, foveal record --head):
+//   psvr2        a PlayStation VR2's SLAM poses (6DoF) and IMU (for prediction)
+//   vive[:PATH]  an HTC Vive / Vive Pro's IMU (3DoF, fused), and its lens data
+//   auto         the first headset found (PS VR2, then Vive), chosen again at each open
+// (foveald also takes recorded and static, which need no device.)
+
+struct PoseSpec {
+  std::string driver;  ///< psvr2, vive or auto
+  std::string arg;
+  std::string text() const { return arg.empty() ? driver : driver + ":" + arg; }
+};
+
+/// Parses a head-pose device spec. Errors (bad_input) list the known forms.
+Result<PoseSpec> parse_pose_spec(const std::string& text);
+/// One line per form, for --help texts.
+std::string pose_spec_help();
+
+/// The headset's own display model as its driver read it (after open()), with a line
+/// for the model file's "source" key.
+struct HeadsetDisplay {
+  DisplayModel model;
+  std::string source;
+};
+
+struct OpenedPoseDevice {
+  std::unique_ptr<PoseDevice> device;
+  PoseSpec spec;
+  /// The driver's counters as JSON (call on the thread driving the device, or after).
+  std::function<nlohmann::json()> counters;
+  /// The display model read from the headset at the last open(), if its driver reads
+  /// one (Vive); nullopt otherwise. Same thread rule as counters.
+  std::function<std::optional<HeadsetDisplay>()> display;
+};
+
+/// Makes the pose device a spec names, not opened yet.
+Result<OpenedPoseDevice> make_pose_device(const PoseSpec& spec, const SourceOptions& options = {});
+
+/// A headset present and what it provides.
+struct HmdRow {
+  std::size_t id = 0;
+  std::string driver;     ///< psvr2, vive
+  std::string pose_spec;  ///< the --head spec for its pose
+  std::string gaze_spec;  ///< the --source spec for its gaze ("" if foveal reads none from it)
+  std::string path, vid_pid, name, serial;
+  std::vector<std::string> provides;  ///< e.g. "gaze", "6dof pose", "imu 2000 Hz", "display model"
+  std::string problem;
+};
+
+/// A Vive configuration JSON (as the headset stores it; `where` names it in errors)
+/// converted to a display model, without a device. Errors: bad_input naming the key,
+/// or a build without the Vive driver.
+Result<HeadsetDisplay> display_from_vive_config(const std::string& json, const std::string& where);
+
+/// Every headset with a pose present, in the order `auto` tries them. Errors: io_error
+/// when enumeration itself fails.
+Result<std::vector<HmdRow>> list_hmds();
+nlohmann::json hmd_json(const HmdRow& row);
 
 }  // namespace foveal::probe

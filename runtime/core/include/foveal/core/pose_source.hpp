@@ -16,6 +16,8 @@ struct PoseAt {
   /// This is what moves the camera (render::FrameParams::head): the first pose shows
   /// the scene's own view.
   Pose relative{};
+  /// The time the pose is for (the time asked, or a prediction's display time); 0 when invalid.
+  TimeNs t_ns = 0;
 };
 
 /// Thread safety: pose_at() is called from the render thread while producers run, so
