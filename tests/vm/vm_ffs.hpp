@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <linux/usb/ch9.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -54,23 +55,29 @@ int open_ep0(const std::string& dir, const std::vector<Interface>& interfaces, c
 void serve_ep0(int ep0, const std::atomic<bool>& stop, const Handlers& h);
 
 /// Calls `make(t, fd)` at t = now + period, + 2 periods, ... on endpoint file `file`
-/// while `enabled` (the host configured the device) until `stop`; after a stall it goes
-/// on from now, as a sensor would, instead of bursting through the missed periods (a
-/// write blocks while the host does not read). `written` counts the calls that wrote.
+/// while `enabled` (the host configured the device) until `stop`. A write blocks while
+/// the host does not read; after such a stall, with `max_step` 0 the next t is now
+/// once 50 ms behind (a sensor skipping what was not taken), else t advances by up to
+/// `max_step` a call until it is now again: no gap in the device's time longer than
+/// `max_step` (the emulation's stalls are the emulator's, not the headset's, which
+/// would go on sampling; a fusion takes a long gap for a lost device). `written` counts
+/// the calls that wrote.
 template <class Make>
 void stream(const std::atomic<bool>& stop, const std::string& file, const std::atomic<bool>& enabled, TimeNs period,
-            std::atomic<std::uint64_t>& written, Make make) {
+            TimeNs max_step, std::atomic<std::uint64_t>& written, Make make) {
   const int fd = ::open(file.c_str(), O_RDWR);
   TimeNs next = monotonic_now_ns();
   while (fd >= 0 && !stop.load()) {
-    next += period;
+    const TimeNs now = monotonic_now_ns();
+    if (max_step > 0 && now > next + period) next = std::min(now, next + max_step);
+    else next += period;
     sleep_until_ns(next);
     if (!enabled.load()) {
       next = monotonic_now_ns();
       continue;
     }
     if (make(next, fd)) written.fetch_add(1);
-    if (monotonic_now_ns() - next > 50 * kNsPerMs) next = monotonic_now_ns();
+    if (max_step == 0 && monotonic_now_ns() - next > 50 * kNsPerMs) next = monotonic_now_ns();
   }
 }
 

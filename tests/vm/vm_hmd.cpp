@@ -179,20 +179,21 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
   const std::vector<Window> windows{{t_plug + kSettleNs, t_unplug}, {t_back + kSettleNs, t_term}};
   const FollowCheck follow = vive ? check_vive_rows(rows, windows) : check_psvr2_rows(rows, windows);
   std::size_t after = 0, during = 0, during_moved = 0;
-  const HeadRow* last_before = nullptr;
+  const HeadRow* held = nullptr;
   for (const HeadRow& r : rows) {
     const TimeNs t = r.pose_t_ns ? r.pose_t_ns : r.t_ns;
-    if (t <= t_unplug) last_before = &r;
     if (t > t_back + kSettleNs) ++after;
-    // Rendered while nothing arrived (from 100 ms after the unplug to the replug): the
-    // last pose is held.
-    if (t > t_unplug + 200 * kNsPerMs && t < t_replug && r.t_ns > 0) {
+    // Rendered while nothing arrived (from 200 ms after the unplug, past the 100 ms after
+    // which a pose counts as held, to the replug): the same pose, held.
+    if (r.t_ns > t_unplug + 200 * kNsPerMs && r.t_ns < t_replug) {
       ++during;
-      if (last_before && (glm::length(r.pose.position_m - last_before->pose.position_m) > 1e-5f ||
-                          std::abs(glm::dot(r.pose.orientation, last_before->pose.orientation)) < 1 - 1e-6f))
+      if (!held) held = &r;
+      if (glm::length(r.pose.position_m - held->pose.position_m) > 1e-5f ||
+          std::abs(glm::dot(r.pose.orientation, held->pose.orientation)) < 1 - 1e-6f)
         ++during_moved;
     }
   }
+  if (follow.bad > 0) std::printf("hmd: the frames' head poses:\n%s", describe_rows(rows).c_str());
   // The Vive's display model is named after its model number (vive_config_json).
   const std::string display = str_at(summary, "/display_model");
   const bool display_ok = !vive || display == "vive_vive_pro_mv";
@@ -211,7 +212,7 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
                 saw_reconnecting ? 1 : 0, at(head, "/disconnects").dump().c_str(), at(head, "/reconnects").dump().c_str(),
                 static_cast<unsigned long long>(poses_at_unplug), ms(t_replug - t_unplug), ms(t_back - t_replug),
                 ms(t_resumed - t_back), during, during_moved, after, problem.c_str());
-  const bool replug_pass = problem.empty() && saw_reconnecting && u64_at(head, "/reconnects") >= 1 &&
+  const bool replug_pass = problem.empty() && saw_reconnecting && u64_at(head, "/reconnects") >= 1 && during >= 1 &&
                            during_moved == 0 && after >= 5;
   verdict(replug_name.c_str(), replug_pass, details);
   return pass && replug_pass ? 0 : 1;

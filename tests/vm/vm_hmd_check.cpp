@@ -81,6 +81,19 @@ std::vector<HeadRow> read_head_rows(const std::string& path, std::string& proble
   return rows;
 }
 
+std::string describe_rows(const std::vector<HeadRow>& rows) {
+  std::string out;
+  for (const HeadRow& r : rows) {
+    const glm::dquat q = dq(r.pose);
+    char b[200];
+    std::snprintf(b, sizeof b, "  frame %llu t=%.3f head_t=%.3f pos=(%.4f %.4f %.4f) heading=%.4f pitch=%.4f roll=%.4f\n",
+                  static_cast<unsigned long long>(r.frame), seconds(r.t_ns), seconds(r.pose_t_ns), r.pose.position_m.x,
+                  r.pose.position_m.y, r.pose.position_m.z, heading(q), pitch(q), roll(q));
+    out += b;
+  }
+  return out;
+}
+
 std::string FollowCheck::summary() const {
   char b[300];
   std::snprintf(b, sizeof b, "rows=%zu checked=%zu bad=%zu max_pos_m=%.4f max_angle_deg=%.2f max_time_s=%.3f rate=%.4f %s",

@@ -21,6 +21,9 @@ struct HeadRow {
 /// frames.csv's head columns (found by name in the header); `problem` says what is wrong.
 std::vector<HeadRow> read_head_rows(const std::string& path, std::string& problem);
 
+/// One line a row (times, position, heading, pitch, roll) for a failure's console log.
+std::string describe_rows(const std::vector<HeadRow>& rows);
+
 /// The tolerances (docs/vm-tests.md, vm_hmd_pose).
 constexpr double kPositionTolM = 0.02, kAngleTolDeg = 2.0;
 /// PS VR2: how far the time a pose shows may lie from the time foveald names for it.

@@ -27,6 +27,8 @@ namespace {
 std::atomic<bool> g_stop{false};
 void on_term(int) { g_stop.store(true); }
 
+constexpr TimeNs kMaxStepNs = 20 * kNsPerMs;  // the longest gap in the head streams' device time
+
 /// Interfaces 0..5 (gaze on 5) or, with the pose interfaces, 0..10 as the headset has
 /// them (Monado's driver claims 3, 5, 6, 7, 8, 9, 10): SLAM bulk IN on 3, gaze on 5,
 /// status interrupt IN on 7. The status interface is streamed in alternate setting 1,
@@ -65,20 +67,20 @@ int run_psvr2_gadget(const std::string& dir, bool pose) {
     // nobody reads, as a sensor's would.
     constexpr TimeNs period = 8'333'000;
     const TimeNs t0 = monotonic_now_ns();
-    ffs::stream(g_stop, ep + (pose ? "2" : "1"), configured, period, gaze_written, [&](TimeNs t, int fd) {
+    ffs::stream(g_stop, ep + (pose ? "2" : "1"), configured, period, 0, gaze_written, [&](TimeNs t, int fd) {
       return ffs::write_all(fd, psvr2_record(static_cast<std::uint64_t>((t - t0) / period)));
     });
   });
   if (pose) {
     writers.emplace_back([&] {
-      ffs::stream(g_stop, ep + "1", configured, kPsvr2SlamPeriodNs, slam_written, [](TimeNs t, int fd) {
+      ffs::stream(g_stop, ep + "1", configured, kPsvr2SlamPeriodNs, kMaxStepNs, slam_written, [](TimeNs t, int fd) {
         // A record fills a high-speed packet: a zero-length packet ends the transfer.
         return ffs::write_all(fd, psvr2_slam_record(t)) && ::write(fd, nullptr, 0) == 0;
       });
     });
     writers.emplace_back([&] {
       constexpr TimeNs batch = kPsvr2ImuPeriodNs * kPsvr2ImuPerTransfer;
-      ffs::stream(g_stop, ep + "3", configured, batch, status_written, [](TimeNs t, int fd) {
+      ffs::stream(g_stop, ep + "3", configured, batch, kMaxStepNs, status_written, [](TimeNs t, int fd) {
         return ffs::write_all(fd, psvr2_status_transfer(t - batch + kPsvr2ImuPeriodNs, kPsvr2ImuPerTransfer));
       });
     });

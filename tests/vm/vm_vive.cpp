@@ -104,8 +104,10 @@ int run_vive_gadget(const std::string& dir) {
   std::atomic<bool> configured{false};
   std::atomic<std::uint64_t> imu_written{0};
   std::thread writer([&] {
-    // A report every third sample, its newest sample the one of now.
-    ffs::stream(g_stop, dir + "/ep1", configured, 3 * kViveSamplePeriodNs, imu_written, [](TimeNs t, int fd) {
+    // A report every fourth sample (what dummy_hcd delivers with the kernel's 250 Hz
+    // tick), its newest sample the one of now; the filter sees steps of 1, 1 and 2 ms,
+    // at most 20 ms after a stall.
+    ffs::stream(g_stop, dir + "/ep1", configured, 4 * kViveSamplePeriodNs, 20 * kNsPerMs, imu_written, [](TimeNs t, int fd) {
       return ffs::write_all(fd, vive_imu_report(static_cast<std::uint64_t>(t / kViveSamplePeriodNs)));
     });
   });
