@@ -107,6 +107,7 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
     if (!write_udc(udc_file, udc_name)) problem = "cannot bind " + udc_name;
     else if (!wait_for(present, 10 * kNsPerSec) || !wait_for(hidraw_present, 10 * kNsPerSec)) problem = "the headset did not appear";
   }
+  const TimeNs t_spawn = monotonic_now_ns();
   if (problem.empty()) pid = spawn_logged(foveald, out + ".log");
   if (problem.empty() && pid < 0) problem = "cannot start " + foveald[0];
   // 1. The PS VR2 is not there yet: the head waits for it.
@@ -176,7 +177,8 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
   std::string rows_problem;
   const auto rows = read_head_rows(out + "/frames.csv", rows_problem);
   // Before the unplug and after the replug, once the orientation had time to settle.
-  const std::vector<Window> windows{{t_plug + kSettleNs, t_unplug}, {t_back + kSettleNs, t_term}};
+  // (The Vive is plugged in before foveald starts: its first frames are taken at the start.)
+  const std::vector<Window> windows{{std::max(t_plug, t_spawn) + kSettleNs, t_unplug}, {t_back + kSettleNs, t_term}};
   const FollowCheck follow = vive ? check_vive_rows(rows, windows) : check_psvr2_rows(rows, windows);
   std::size_t after = 0, during = 0, during_moved = 0;
   const HeadRow* held = nullptr;

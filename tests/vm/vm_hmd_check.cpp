@@ -106,7 +106,8 @@ FollowCheck check_psvr2_rows(const std::vector<HeadRow>& rows, const std::vector
   c.rows = rows.size();
   const double w = kPsvr2YawRate;
   const bool timed = !rows.empty() && rows.front().pose_t_ns != 0;
-  const double time_tol = timed ? kPsvr2TimeTolS : 1.5;
+  std::vector<double> lags;
+  const double late_tol = timed ? kPsvr2LateTolS : 1.5, early_tol = timed ? kPsvr2EarlyTolS : 1.5;
   for (const HeadRow& r : rows) {
     if (!has_pose(r) || !in(windows, ref_time(r))) continue;
     ++c.checked;
@@ -116,18 +117,25 @@ FollowCheck check_psvr2_rows(const std::vector<HeadRow>& rows, const std::vector
     const double t = (h + 2 * M_PI * turns) / w;
     const HeadMotion m = psvr2_motion(static_cast<TimeNs>(t * 1e9));
     const double dp = glm::length(glm::dvec3(r.pose.position_m) - m.position_m);
-    const double da = angle_between(q, m.orientation) / kDeg, dt = std::abs(t - t_ref);
+    const double da = angle_between(q, m.orientation) / kDeg, dt = t - t_ref;
     c.max_position_m = std::max(c.max_position_m, dp);
     c.max_angle_deg = std::max(c.max_angle_deg, da);
-    c.max_time_s = std::max(c.max_time_s, dt);
-    if (dp > kPositionTolM || da > kAngleTolDeg || dt > time_tol) {
+    c.max_time_s = std::max(c.max_time_s, std::abs(dt));
+    lags.push_back(-dt);
+    if (dp > kPositionTolM || da > kAngleTolDeg || dt < -late_tol || dt > early_tol) {
       if (c.bad++ == 0) {
         char b[200];
-        std::snprintf(b, sizeof b, "first bad: frame %llu pos_err=%.4f angle_err=%.2f time_err=%.3f",
+        std::snprintf(b, sizeof b, "first bad: frame %llu pos_err=%.4f angle_err=%.2f time_err=%+.3f",
                       static_cast<unsigned long long>(r.frame), dp, da, dt);
         c.problem = b;
       }
     }
+  }
+  if (!lags.empty()) {
+    std::sort(lags.begin(), lags.end());
+    char b[80];
+    std::snprintf(b, sizeof b, " lag p50 %.3f s max %.3f s", lags[lags.size() / 2], lags.back());
+    c.problem += b;
   }
   return c;
 }
@@ -139,9 +147,15 @@ FollowCheck check_vive_rows(const std::vector<HeadRow>& rows, const std::vector<
   for (const Window& win : windows) {
     // Heading (unwrapped) against time, fitted by a line.
     std::vector<std::pair<double, double>> pts;
+    const HeadRow* prev = nullptr;
     for (const HeadRow& r : rows) {
+      const HeadRow* before = prev;
+      prev = &r;
       if (!has_pose(r) || ref_time(r) < win.from || ref_time(r) > win.to) continue;
       ++c.checked;
+      // A pose repeated from the frame before was held (nothing new for 100 ms): checked
+      // for pitch and roll, left out of the heading's line.
+      const bool repeated = before && before->pose == r.pose;
       const glm::dquat q = dq(r.pose);
       const double dpitch = std::abs(pitch(q) - kVivePitch) / kDeg, droll = std::abs(roll(q)) / kDeg;
       c.max_angle_deg = std::max({c.max_angle_deg, dpitch, droll});
@@ -153,12 +167,16 @@ FollowCheck check_vive_rows(const std::vector<HeadRow>& rows, const std::vector<
           c.problem += b;
         }
       }
+      if (repeated) continue;
+      // Unwrapped towards where the motion's rate would have taken the previous heading,
+      // so that frames seconds apart keep their turns.
       double h = heading(q);
-      if (!pts.empty())
-        while (h - pts.back().second > M_PI) h -= 2 * M_PI;
-      if (!pts.empty())
-        while (pts.back().second - h > M_PI) h += 2 * M_PI;
-      pts.emplace_back(seconds(ref_time(r)), h);
+      const double t = seconds(ref_time(r));
+      if (!pts.empty()) {
+        const double expect = pts.back().second + kViveYawRate * (t - pts.back().first);
+        h += 2 * M_PI * std::round((expect - h) / (2 * M_PI));
+      }
+      pts.emplace_back(t, h);
     }
     if (pts.size() < 3 || pts.back().first - pts.front().first < 2.0) {
       c.problem += "a window has fewer than 3 poses over 2 s ";
@@ -171,15 +189,23 @@ FollowCheck check_vive_rows(const std::vector<HeadRow>& rows, const std::vector<
       st += t - t0, sh += h, stt += (t - t0) * (t - t0), sth += (t - t0) * h;
     }
     const double slope = (n * sth - st * sh) / (n * stt - st * st), icpt = (sh - slope * st) / n;
-    double max_res = 0;
-    for (auto [t, h] : pts) max_res = std::max(max_res, std::abs(h - (icpt + slope * (t - t0))) / kDeg);
+    // Residuals: ahead of the line by at most the angle tolerance (prediction
+    // overshooting), behind by at most the late tolerance's worth of turning (late or
+    // held measurements, as for the PS VR2).
+    double max_res = 0, max_behind = 0;
+    for (auto [t, h] : pts) {
+      const double res = (h - (icpt + slope * (t - t0))) / kDeg;
+      max_res = std::max(max_res, res);
+      max_behind = std::max(max_behind, -res);
+    }
     c.max_angle_deg = std::max(c.max_angle_deg, max_res);
     if (std::abs(slope - kViveYawRate) > std::abs(worst_rate - kViveYawRate)) worst_rate = slope;
-    if (std::abs(slope - kViveYawRate) > kViveRateTol * kViveYawRate || max_res > kAngleTolDeg) {
+    const double behind_tol = kViveYawRate * kPsvr2LateTolS / kDeg;
+    if (std::abs(slope - kViveYawRate) > kViveRateTol * kViveYawRate || max_res > kAngleTolDeg || max_behind > behind_tol) {
       ++c.bad;
-      char b[160];
-      std::snprintf(b, sizeof b, "window of %zu poses: yaw rate %.4f rad/s (motion %.4f), residual up to %.2f deg ", pts.size(),
-                    slope, kViveYawRate, max_res);
+      char b[200];
+      std::snprintf(b, sizeof b, "window of %zu poses: yaw rate %.4f rad/s (motion %.4f), up to %.2f deg ahead of the line, %.2f behind ",
+                    pts.size(), slope, kViveYawRate, max_res, max_behind);
       c.problem += b;
     }
   }

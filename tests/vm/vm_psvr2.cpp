@@ -27,7 +27,6 @@ namespace {
 std::atomic<bool> g_stop{false};
 void on_term(int) { g_stop.store(true); }
 
-constexpr TimeNs kMaxStepNs = 20 * kNsPerMs;  // the longest gap in the head streams' device time
 
 /// Interfaces 0..5 (gaze on 5) or, with the pose interfaces, 0..10 as the headset has
 /// them (Monado's driver claims 3, 5, 6, 7, 8, 9, 10): SLAM bulk IN on 3, gaze on 5,
@@ -73,14 +72,14 @@ int run_psvr2_gadget(const std::string& dir, bool pose) {
   });
   if (pose) {
     writers.emplace_back([&] {
-      ffs::stream(g_stop, ep + "1", configured, kPsvr2SlamPeriodNs, kMaxStepNs, slam_written, [](TimeNs t, int fd) {
+      ffs::stream(g_stop, ep + "1", configured, kPsvr2SlamPeriodNs, 0, slam_written, [](TimeNs t, int fd) {
         // A record fills a high-speed packet: a zero-length packet ends the transfer.
         return ffs::write_all(fd, psvr2_slam_record(t)) && ::write(fd, nullptr, 0) == 0;
       });
     });
     writers.emplace_back([&] {
       constexpr TimeNs batch = kPsvr2ImuPeriodNs * kPsvr2ImuPerTransfer;
-      ffs::stream(g_stop, ep + "3", configured, batch, kMaxStepNs, status_written, [](TimeNs t, int fd) {
+      ffs::stream(g_stop, ep + "3", configured, batch, 0, status_written, [](TimeNs t, int fd) {
         return ffs::write_all(fd, psvr2_status_transfer(t - batch + kPsvr2ImuPeriodNs, kPsvr2ImuPerTransfer));
       });
     });
