@@ -18,6 +18,11 @@
 #endif
 #ifdef FOVEAL_HAVE_USB
 #include "foveal/drivers/usb/psvr2_gaze_packet.hpp"
+#include "foveal/drivers/usb/psvr2_pose_records.hpp"
+#endif
+#ifdef FOVEAL_HAVE_VIVE
+#include "foveal/drivers/vive/vive_config.hpp"
+#include "foveal/drivers/vive/vive_display_model.hpp"
 #endif
 #include "foveal/import/importers.hpp"
 #ifdef FOVEAL_HAVE_GLTF
@@ -99,6 +104,47 @@ inline int psvr2(const std::uint8_t* data, std::size_t size) {
 // client would send them (split into lines, over-long lines, bad JSON), requests are
 // validated like foveald's `set` (a profile built from the request), and every request
 // line gets a reply.
+// The headsets' motion and lens-data reports (docs/headset.md). The first byte picks
+// the parser: 0 PS VR2 status/IMU, 1 PS VR2 SLAM, 2 Vive IMU report, 3 Vive config
+// feature reports (64 bytes each) assembled and inflated, 4 Vive config JSON converted
+// to a display model. Any bytes: a value or a clean error, never a crash or a NaN pose.
+#if defined(FOVEAL_HAVE_USB) && defined(FOVEAL_HAVE_VIVE)
+inline int hmd(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  const std::span<const std::uint8_t> rest(data + 1, size - 1);
+  switch (data[0] % 5) {
+    case 0:
+      if (auto r = foveal::usb::parse_psvr2_status(rest); r)
+        for (const auto& m : r->imu) {
+          const foveal::ImuSample s = foveal::usb::psvr2_imu_to_sample(m);
+          if (!std::isfinite(s.gyro_rad_s.x) || !std::isfinite(s.accel_m_s2.z)) std::abort();
+        }
+      break;
+    case 1:
+      if (auto r = foveal::usb::parse_psvr2_slam(rest); r)
+        if (!foveal::is_finite(foveal::usb::psvr2_slam_to_pose(*r))) std::abort();
+      break;
+    case 2:
+      if (auto r = foveal::vive::parse_imu_report(rest); r)
+        if (foveal::vive::new_imu_samples(*r, std::nullopt).size() != 3) std::abort();
+      break;
+    case 3: {
+      foveal::vive::ConfigAssembler a;
+      for (std::size_t at = 0; at < rest.size() && !a.complete(); at += foveal::vive::kConfigReportBytes)
+        if (!a.add(rest.subspan(at, std::min(foveal::vive::kConfigReportBytes, rest.size() - at)))) break;
+      (void)a.json();
+      break;
+    }
+    default:
+      if (auto c = foveal::vive::parse_config(std::string(rest.begin(), rest.end())); c)
+        if (auto m = foveal::vive::vive_display_model(*c); m)
+          if (!m->validate("fuzz")) std::abort();
+      break;
+  }
+  return 0;
+}
+#endif
+
 inline int control(const std::uint8_t* data, std::size_t size) {
   // The socket needs a private directory (docs/daemon.md), removed again at exit.
   static struct Served {

@@ -46,6 +46,9 @@ TEST(FuzzRegressions, Hid) { replay("hid", fuzz::hid); }
 #ifdef FOVEAL_HAVE_USB
 TEST(FuzzRegressions, Psvr2) { replay("psvr2", fuzz::psvr2); }
 #endif
+#if defined(FOVEAL_HAVE_USB) && defined(FOVEAL_HAVE_VIVE)
+TEST(FuzzRegressions, Hmd) { replay("hmd", fuzz::hmd); }
+#endif
 
 }  // namespace
 }  // namespace foveal

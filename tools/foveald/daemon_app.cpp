@@ -110,7 +110,7 @@ Status DaemonApp::setup_head(const probe::SourceOptions& so) {
   return {};
 }
 
-double DaemonApp::refresh_hz() const {
+double DaemonApp::output_refresh_hz() const {
   // Direct mode knows the mode's rate; otherwise --fps, the display model's, or 90 Hz.
   if (renderer_) {
     const nlohmann::json out = renderer_->stats_json().value("output", nlohmann::json::object());
@@ -216,6 +216,7 @@ bool DaemonApp::claim_shutdown(Owner who) {
 
 int DaemonApp::render_loop() {
   TimeNs next_frame = monotonic_now_ns();
+  const double refresh_hz = output_refresh_hz();  // the pose prediction's horizon
   while (!loop_->finished() && !stopping() && !deadline_passed()) {
     if (!renderer_) {
       sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
@@ -228,7 +229,7 @@ int DaemonApp::render_loop() {
     (void)settings_.load(rs);
     // Recorded: the head where it was when the frame's gaze sample was taken; a
     // headset: where it will be when the frame is shown.
-    const PoseAt head = head_->for_frame(f.t_ns, refresh_hz());
+    const PoseAt head = head_->for_frame(f.t_ns, refresh_hz);
     if (Status s = renderer_->render(f, rs, model_, head); !s) return cli::report(s.error(), "foveald");
     const std::uint64_t frames = renderer_->frames();
     if (frames == kWarmupFrames) warm_rss_mb_ = current_rss_mb(), warm_fds_ = open_fds();

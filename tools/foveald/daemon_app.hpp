@@ -43,7 +43,7 @@ class DaemonApp {
   Status setup();
   Status setup_source();
   Status setup_head(const probe::SourceOptions& so);
-  double refresh_hz() const;  // the output's, for the pose prediction horizon
+  double output_refresh_hz() const;  // for the pose prediction's horizon
   Status setup_renderer();
   Result<Profile> load_startup_profile() const;
   Status apply_profile(const Profile& p, const char* why);  // main, then control thread

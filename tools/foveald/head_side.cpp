@@ -71,13 +71,14 @@ PoseAt HeadSide::for_frame(TimeNs gaze_t_ns, double refresh_hz) {
   const TimeNs now = monotonic_now_ns();
   const TimeNs display_t = now + static_cast<TimeNs>(1e9 / refresh_hz);
   const PoseAt p = tracker_->predicted(display_t);
+  const bool tracking = tracker_->stats().state == HeadState::tracking;
   std::lock_guard lock(prediction_mutex_);
   refresh_hz_ = refresh_hz;
-  if (p.valid) {
-    const MotionEstimate m = tracker_->motion();
-    prediction_.add(display_t, p.pose, m.pose.pose);
-  }
   prediction_.resolve(tracker_->track());
+  // Only live predictions are scored: a held pose is no prediction, and the poses
+  // measured across a gap are interpolated over it.
+  if (!tracking) prediction_.drop_pending();
+  else if (p.valid) prediction_.add(display_t, p.pose, tracker_->motion().pose.pose);
   return p;
 }
 

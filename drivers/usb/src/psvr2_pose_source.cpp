@@ -143,7 +143,9 @@ void Psvr2PoseSource::on_status(const std::uint8_t* data, int length, TimeNs arr
     r.status = ReadStatus::sample;
     r.has_imu = true;
     r.imu = psvr2_imu_to_sample(m);
-    r.imu.t_ns = clock_.map(arrival, wrap_.unwrap_ns(m.vts_us));
+    r.imu.device_t_ns = wrap_.unwrap_ns(m.vts_us);
+    r.imu.has_device_time = true;
+    r.imu.t_ns = clock_.map(arrival, r.imu.device_t_ns);
     if (queue_.size() >= kQueueMax) queue_.pop_front();
     queue_.push_back(r);
     ++counters_.imu_samples;
@@ -152,22 +154,28 @@ void Psvr2PoseSource::on_status(const std::uint8_t* data, int length, TimeNs arr
 
 void Psvr2PoseSource::on_slam(const std::uint8_t* data, int length, TimeNs arrival) {
   ++counters_.slam_transfers;
-  auto rec = parse_psvr2_slam(std::span<const std::uint8_t>(data, static_cast<std::size_t>(length)));
-  if (!rec) {
-    ++counters_.malformed;
-    problem(rec.error().message);
-    return;
+  // One record per transfer on the headset; a bulk endpoint whose packets are smaller
+  // than a record (512 bytes at high speed) can deliver two back to back.
+  const auto n = static_cast<std::size_t>(length);
+  for (std::size_t at = 0; at < n; at += psvr2::kSlamRecordBytes) {
+    const std::size_t size = std::min(psvr2::kSlamRecordBytes, n - at);
+    auto rec = parse_psvr2_slam(std::span<const std::uint8_t>(data + at, size));
+    if (!rec) {
+      ++counters_.malformed;
+      problem(rec.error().message);
+      return;
+    }
+    PoseReading r;
+    r.status = ReadStatus::sample;
+    r.has_pose = true;
+    r.pose.pose = psvr2_slam_to_pose(*rec);
+    // The SLAM timestamp is on the IMU's clock; before the first IMU record, on arrival.
+    const std::int64_t device_ns = wrap_.unwrap_ns(rec->vts_us);
+    r.pose.t_ns = clock_.anchored() ? std::min<TimeNs>(clock_.to_runtime(device_ns), arrival) : arrival;
+    if (queue_.size() >= kQueueMax) queue_.pop_front();
+    queue_.push_back(r);
+    ++counters_.poses;
   }
-  PoseReading r;
-  r.status = ReadStatus::sample;
-  r.has_pose = true;
-  r.pose.pose = psvr2_slam_to_pose(*rec);
-  // The SLAM timestamp is on the IMU's clock; before the first IMU record, on arrival.
-  const std::int64_t device_ns = wrap_.unwrap_ns(rec->vts_us);
-  r.pose.t_ns = clock_.anchored() ? std::min<TimeNs>(clock_.to_runtime(device_ns), arrival) : arrival;
-  if (queue_.size() >= kQueueMax) queue_.pop_front();
-  queue_.push_back(r);
-  ++counters_.poses;
 }
 
 Status Psvr2PoseSource::start() {

@@ -148,6 +148,8 @@ PoseReading ViveSource::next(std::chrono::nanoseconds timeout) {
       const std::int64_t device_ns = static_cast<std::int64_t>(static_cast<double>(ticks) * (1e9 / kImuClockHz));
       ImuSample s = imu_to_sample(raw, calibration_, range_);
       s.t_ns = clock_.map(arrival, device_ns);
+      s.has_device_time = true;
+      s.device_t_ns = device_ns;
       queue_.push_back(s);
       ++counters_.samples;
     }

@@ -36,6 +36,8 @@ void HeadTracker::run() {
     stats_.state = HeadState::stopped;
     return;
   }
+  // IMU-only devices: the filter's orientation is the pose.
+  bool fuse = !device_.info().orientation;
   {
     std::lock_guard lock(mutex_);
     stats_.device = device_.info();
@@ -43,7 +45,7 @@ void HeadTracker::run() {
   while (!stop_) {
     const PoseReading r = device_.next(std::chrono::milliseconds(50));
     if (r.status == ReadStatus::sample) {
-      handle(r, !device_.info().orientation);
+      handle(r, fuse);
       continue;
     }
     std::unique_lock lock(mutex_);
@@ -57,10 +59,12 @@ void HeadTracker::run() {
       lock.lock();
       ++stats_.reconnects;
       stats_.device = device_.info();
+      motion_.velocity_m_s = glm::vec3(0.0f);  // from the poses before the gap: stale
       // The filter keeps its orientation and bias: the gap is not integrated, and the
       // head starts from where it was held.
       lock.unlock();
       have_position_ = false;
+      fuse = !device_.info().orientation;  // `auto` may have found another headset
       continue;
     }
     if (stats_.state == HeadState::tracking && monotonic_now_ns() - stats_.last_reading_ns > kHeldAfterNs)

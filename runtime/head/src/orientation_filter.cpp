@@ -36,6 +36,7 @@ glm::quat from_to(const glm::vec3& from, const glm::vec3& to) {
 
 void OrientationFilter::reset() {
   initialised_ = false;
+  last_device_t_.reset();
   q_ = glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
   omega_ = glm::vec3(0.0f);
   rest_for_s_ = 0;
@@ -48,14 +49,19 @@ void OrientationFilter::update(const ImuSample& s) {
     if (a_norm > 0.5f * kGravity) q_ = from_to(s.accel_m_s2 / a_norm, glm::vec3(0, 1, 0));
     initialised_ = true;
     last_t_ = s.t_ns;
+    last_device_t_ = s.has_device_time ? std::optional<std::int64_t>(s.device_t_ns) : std::nullopt;
     omega_ = s.gyro_rad_s - bias_;
     return;
   }
   if (s.t_ns <= last_t_) return;
-  const float dt = static_cast<float>(s.t_ns - last_t_) * 1e-9f;
+  // The step on the device's clock when both samples have one (the runtime times are
+  // re-anchored to arrivals and may bunch a burst together), else on the runtime's.
+  const std::int64_t step_ns = s.has_device_time && last_device_t_ ? s.device_t_ns - *last_device_t_ : s.t_ns - last_t_;
+  const float dt = static_cast<float>(step_ns) * 1e-9f;
   last_t_ = s.t_ns;
+  last_device_t_ = s.has_device_time ? std::optional<std::int64_t>(s.device_t_ns) : std::nullopt;
   omega_ = s.gyro_rad_s - bias_;
-  if (dt > p_.max_dt_s) {  // a gap: nothing to integrate over it
+  if (!(dt > 0) || dt > p_.max_dt_s) {  // a gap, or a device clock that restarted: nothing to integrate
     rest_for_s_ = 0;
     return;
   }

@@ -1,6 +1,7 @@
 #pragma once
 // The seam between whatever knows the head pose (the gaze thread replaying a log with
-// poses, later an HMD's IMU driver) and the renderer, which asks once per frame. The
+// poses, a headset's own tracking through runtime/head's pose thread) and the renderer,
+// which asks once per frame. The
 // compositor only ever sees the Pose it is handed (render::FrameParams::head), so a new
 // pose source plugs in here without touching it.
 #include "foveal/core/clock.hpp"

@@ -11,6 +11,8 @@
 // not accelerating much); yaw is not observable without a reference and drifts with
 // the residual bias. At rest (gyro and accelerometer quiet for rest_hold_s), b is the
 // mean of ω over all rest so far, then follows ω with time constant bias_tau_s.
+#include <optional>
+
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
@@ -34,7 +36,8 @@ class OrientationFilter {
  public:
   explicit OrientationFilter(OrientationFilterParams p = {}) : p_(p) {}
 
-  /// Adds one sample (times strictly increasing; an older or equal one is ignored).
+  /// Adds one sample (times strictly increasing; an older or equal one is ignored). The
+  /// gyro is integrated over the device's own clock when the samples carry it.
   /// The first sample sets the tilt from the accelerometer (yaw 0).
   void update(const ImuSample& s);
 
@@ -56,6 +59,7 @@ class OrientationFilter {
   glm::vec3 bias_{0.0f}, omega_{0.0f};
   float rest_for_s_ = 0, rest_total_s_ = 0;
   TimeNs last_t_ = 0;
+  std::optional<std::int64_t> last_device_t_;
 };
 
 /// exp of a rotation vector (axis · angle) as a unit quaternion.

@@ -50,6 +50,9 @@ class PredictionErrors {
   /// The same for the held (unpredicted) pose: what prediction saved.
   Figures held_angle_deg() const { return figures(held_angle_deg_); }
   std::size_t pending() const { return pending_.size(); }
+  /// Forgets the predictions not scored yet: the pose source stopped (held, unplugged),
+  /// so what gets measured for their times next is no test of the prediction.
+  void drop_pending() { pending_.clear(); }
 
  private:
   struct Pending {
