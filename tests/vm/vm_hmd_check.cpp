@@ -199,7 +199,7 @@ FollowCheck check_vive_rows(const std::vector<HeadRow>& rows, const std::vector<
       max_behind = std::max(max_behind, -res);
     }
     c.max_angle_deg = std::max(c.max_angle_deg, max_res);
-    if (std::abs(slope - kViveYawRate) > std::abs(worst_rate - kViveYawRate)) worst_rate = slope;
+    if (worst_rate == 0 || std::abs(slope - kViveYawRate) > std::abs(worst_rate - kViveYawRate)) worst_rate = slope;
     const double behind_tol = kViveYawRate * kPsvr2LateTolS / kDeg;
     if (std::abs(slope - kViveYawRate) > kViveRateTol * kViveYawRate || max_res > kAngleTolDeg || max_behind > behind_tol) {
       ++c.bad;
