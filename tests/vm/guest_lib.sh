@@ -43,9 +43,10 @@ hid_gadget() {
   ln -s $1/functions/hid.usb0 $1/configs/c.1/
 }
 
-# psvr2_gadget DIR FFS: the PS VR2 gaze interface (054c:0cde) as a FunctionFS function
-# mounted at FFS, with its device side `foveal_vm_guest psvr2-gadget FFS` running (pid
-# in PSVR2, output in /tmp/psvr2.log); not plugged in yet.
+# psvr2_gadget DIR FFS [--pose]: the PS VR2 gaze interface (054c:0cde) as a FunctionFS
+# function mounted at FFS, with its device side `foveal_vm_guest psvr2-gadget FFS` running
+# (pid in PSVR2, output in /tmp/psvr2.log); with --pose also the head-tracking
+# interfaces (SLAM, status with IMU records); not plugged in yet.
 psvr2_gadget() {
   mkdir -p $1/strings/0x409 $1/functions/ffs.gaze $1/configs/c.1
   echo 0x054c > $1/idVendor
@@ -54,8 +55,27 @@ psvr2_gadget() {
   ln -s $1/functions/ffs.gaze $1/configs/c.1/
   mkdir -p $2
   mount -t functionfs gaze $2
-  foveal_vm_guest psvr2-gadget $2 > /tmp/psvr2.log 2>&1 &
+  foveal_vm_guest psvr2-gadget $2 $3 > /tmp/psvr2.log 2>&1 &
   PSVR2=$!
+  wait_until 50 test -e $2/ep1
+}
+
+# vive_gadget DIR FFS: an emulated Vive Pro's sensor device (28de:2300, a HID function
+# through FunctionFS: IMU reports, the configuration in feature reports) mounted at FFS,
+# with `foveal_vm_guest vive-gadget FFS` running (pid in VIVE, output in /tmp/vive.log);
+# not plugged in yet.
+vive_gadget() {
+  mkdir -p $1/strings/0x409 $1/functions/ffs.vive $1/configs/c.1
+  echo 0x28de > $1/idVendor
+  echo 0x2300 > $1/idProduct
+  echo "Valve" > $1/strings/0x409/manufacturer
+  echo "Emulated Vive Pro sensors" > $1/strings/0x409/product
+  echo VMVIVE0001 > $1/strings/0x409/serialnumber
+  ln -s $1/functions/ffs.vive $1/configs/c.1/
+  mkdir -p $2
+  mount -t functionfs vive $2
+  foveal_vm_guest vive-gadget $2 > /tmp/vive.log 2>&1 &
+  VIVE=$!
   wait_until 50 test -e $2/ep1
 }
 

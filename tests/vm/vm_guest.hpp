@@ -31,6 +31,11 @@ bool wait_for(Pred pred, TimeNs timeout_ns, TimeNs period_ns = kNsPerMs) {
   return true;
 }
 
+/// Starts `args` as a child with stdout and stderr in `log`; -1 if it cannot start.
+int spawn_logged(const std::vector<std::string>& args, const std::string& log);
+/// The child has exited (its wait status in `status`); does not block.
+bool exited(int pid, int& status);
+
 /// Writes a gadget's UDC file: the controller's name plugs the device in, "" unplugs it.
 bool write_udc(const std::string& file, const std::string& value);
 /// A hidraw device exists (sysfs).
@@ -43,12 +48,23 @@ int run_probe(int min_reports, double timeout_s);
 int run_replug(const std::string& udc_file, const std::string& udc_name, int cycles);
 int run_uhid();
 int run_verify_log(const std::string& path, int min_samples, const std::string& name);
-int run_psvr2_gadget(const std::string& ffs_dir);
+/// `pose`: with the head-tracking interfaces (SLAM, status with IMU records).
+int run_psvr2_gadget(const std::string& ffs_dir, bool pose);
+/// The Vive-class headset's IMU device (vm_vive.cpp) on the FunctionFS instance at `ffs_dir`.
+int run_vive_gadget(const std::string& ffs_dir);
 int run_psvr2_probe(int min_samples, double timeout_s);
 int run_hex2bin(const std::string& in, const std::string& out);
 /// foveald on a live source: `kind` hid or psvr2, the gadget plugged in, out and back
 /// through `udc_file`, `foveald` (its arguments) started with --out and --control added.
 int run_live(const std::string& kind, const std::string& udc_file, const std::string& udc_name, const std::string& out,
              std::vector<std::string> foveald);
+
+/// foveald following an emulated headset's head (vm_hmd.cpp): `kind` psvr2 or vive.
+int run_hmd(const std::string& kind, const std::string& udc_file, const std::string& udc_name, const std::string& out,
+            std::vector<std::string> foveald);
+/// The plugged-in emulated headset through libusb / hidraw directly (vm_hmd_probe.cpp).
+int run_hmd_probe(const std::string& kind);
+/// The emulated headsets' bytes through foveal's parsers, on the host (vm_hmd_selftest.cpp).
+int run_hmd_selftest();
 
 }  // namespace foveal::vmtest

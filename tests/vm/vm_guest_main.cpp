@@ -44,7 +44,12 @@ int main(int argc, char** argv) {
   if (cmd == "uhid") return run_uhid();
   if (cmd == "verify-log") return run_verify_log(arg(2, ""), std::atoi(arg(3, "100").c_str()), arg(4, "record_replay"));
 #ifdef FOVEAL_VM_HAVE_USB
-  if (cmd == "psvr2-gadget") return run_psvr2_gadget(arg(2, "/dev/ffs-gaze"));
+  if (cmd == "psvr2-gadget") return run_psvr2_gadget(arg(2, "/dev/ffs-gaze"), arg(3, "") == "--pose");
+  if (cmd == "vive-gadget") return run_vive_gadget(arg(2, "/dev/ffs-vive"));
+  if (cmd == "hmd-selftest") return run_hmd_selftest();
+  if (cmd == "hmd-probe") return run_hmd_probe(arg(2, "psvr2"));
+  if (cmd == "hmd" && argc > 7 && std::string(argv[6]) == "--")
+    return run_hmd(argv[2], argv[3], argv[4], argv[5], std::vector<std::string>(argv + 7, argv + argc));
   if (cmd == "psvr2-probe") return run_psvr2_probe(std::atoi(arg(2, "500").c_str()), std::atof(arg(3, "30").c_str()));
 #endif
   if (cmd == "hex2bin") return run_hex2bin(arg(2, ""), arg(3, ""));
@@ -52,7 +57,9 @@ int main(int argc, char** argv) {
     return run_live(argv[2], argv[3], argv[4], argv[5], std::vector<std::string>(argv + 7, argv + argc));
   std::fprintf(stderr,
                "usage: foveal_vm_guest feed NODE | probe MIN_REPORTS TIMEOUT_S | replug UDC_FILE UDC_NAME CYCLES |\n"
-               "       uhid | verify-log LOG MIN_SAMPLES [NAME] | psvr2-gadget FFS_DIR | psvr2-probe MIN_SAMPLES TIMEOUT_S |\n"
-               "       hex2bin IN OUT | live hid|psvr2 UDC_FILE UDC_NAME OUT -- FOVEALD ARGS...\n");
+               "       uhid | verify-log LOG MIN_SAMPLES [NAME] | psvr2-gadget FFS_DIR [--pose] | psvr2-probe MIN_SAMPLES TIMEOUT_S |\n"
+               "       vive-gadget FFS_DIR | hex2bin IN OUT | live hid|psvr2 UDC_FILE UDC_NAME OUT -- FOVEALD ARGS... |\n"
+               "       hmd psvr2|vive UDC_FILE UDC_NAME OUT -- FOVEALD ARGS... | hmd-selftest |\n"
+               "       hmd-probe psvr2|vive\n");
   return 2;
 }

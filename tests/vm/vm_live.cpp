@@ -12,11 +12,8 @@
 //                     return, and frames rendered from samples after it
 // Times: CLOCK_MONOTONIC everywhere. trace.csv counts from its first sample; the fovea
 // shared memory's publish counter ties one of its rows to an absolute time.
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -31,8 +28,6 @@
 #include "vm_live_files.hpp"
 #include "vm_live_follow.hpp"
 
-extern char** environ;
-
 namespace foveal::vmtest {
 namespace {
 
@@ -41,23 +36,6 @@ using nlohmann::json;
 // How often to ask foveald's status while waiting: each request costs the emulated CPUs
 // what the gaze thread needs.
 constexpr TimeNs kAskEveryNs = 50 * kNsPerMs;
-
-/// foveald as a child with its output in `log`.
-pid_t spawn(const std::vector<std::string>& args, const std::string& log) {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
-  pid_t pid = -1;
-  if (posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(), environ) != 0) pid = -1;
-  posix_spawn_file_actions_destroy(&fa);
-  return pid;
-}
-
-bool exited(pid_t pid, int& status) { return ::waitpid(pid, &status, WNOHANG) == pid; }
 
 double ms(TimeNs ns) { return static_cast<double>(ns) / 1e6; }
 
@@ -81,7 +59,7 @@ int run_live(const std::string& kind, const std::string& udc_file, const std::st
   std::printf("live: %s\n", cmdline.c_str());
   std::fflush(stdout);
   const TimeNs t_spawn = monotonic_now_ns();
-  const pid_t pid = spawn(foveald, out + ".log");
+  const pid_t pid = spawn_logged(foveald, out + ".log");
   if (pid < 0) return fail("cannot start " + foveald[0]);
   int wstatus = 0;
   bool gone = false;

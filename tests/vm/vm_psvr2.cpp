@@ -1,10 +1,10 @@
-// vm psvr2 (b): an emulated PlayStation VR2 gaze interface. The device side is a
-// FunctionFS gadget (054c:0cde, six vendor interfaces, a bulk IN endpoint on
-// interface 5) writing gaze records at 120 Hz; the host side is the libusb driver,
-// which must enable the stream and decode every record as the pattern says.
+// vm psvr2 (b): an emulated PlayStation VR2. The device side is a FunctionFS gadget
+// (054c:0cde, vendor interfaces, a bulk IN endpoint on interface 5) writing gaze
+// records at 120 Hz; the host side is the libusb driver, which must enable the stream
+// and decode every record as the pattern says. With --pose the gadget also has the
+// head-tracking interfaces (psvr2_pose_pattern.hpp): SLAM poses on interface 3 and
+// status transfers with IMU records on interface 7, both streaming while configured.
 #include <fcntl.h>
-#include <linux/usb/functionfs.h>
-#include <poll.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -17,6 +17,8 @@
 
 #include "foveal/drivers/usb/psvr2_source.hpp"
 #include "psvr2_pattern.hpp"
+#include "psvr2_pose_pattern.hpp"
+#include "vm_ffs.hpp"
 #include "vm_guest.hpp"
 
 namespace foveal::vmtest {
@@ -25,125 +27,78 @@ namespace {
 std::atomic<bool> g_stop{false};
 void on_term(int) { g_stop.store(true); }
 
-template <class T>
-void put(std::vector<std::uint8_t>& out, const T& v) {
-  const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
-  out.insert(out.end(), p, p + sizeof v);
-}
 
-/// FunctionFS v2 descriptors: interfaces 0..4 without endpoints, interface 5 with one
-/// bulk IN endpoint, for full and high speed.
-std::vector<std::uint8_t> ffs_descriptors() {
-  std::vector<std::uint8_t> speed;
-  for (std::uint8_t i = 0; i < 6; ++i) {
-    usb_interface_descriptor itf{};
-    itf.bLength = USB_DT_INTERFACE_SIZE;
-    itf.bDescriptorType = USB_DT_INTERFACE;
-    itf.bInterfaceNumber = i;
-    itf.bNumEndpoints = i == 5 ? 1 : 0;
-    itf.bInterfaceClass = USB_CLASS_VENDOR_SPEC;
-    itf.iInterface = 1;
-    put(speed, itf);
+/// Interfaces 0..5 (gaze on 5) or, with the pose interfaces, 0..10 as the headset has
+/// them (Monado's driver claims 3, 5, 6, 7, 8, 9, 10): SLAM bulk IN on 3, gaze on 5,
+/// status interrupt IN on 7. The status interface is streamed in alternate setting 1,
+/// and FunctionFS (Linux 6.1) has no get_alt, so it stalls SET_INTERFACE with a
+/// non-zero setting; the interface is therefore described with alternate setting 1
+/// alone, which the host's usb_set_interface() accepts after the stall (an interface
+/// with one setting). Endpoint files: ep1 SLAM, ep2 gaze, ep3 status (ep1 gaze alone).
+std::vector<ffs::Interface> psvr2_interfaces(bool pose) {
+  std::vector<ffs::Interface> out;
+  for (std::uint8_t i = 0; i < (pose ? 11 : 6); ++i) {
+    ffs::Interface itf;
+    itf.number = i;
+    if (i == 5) itf.endpoints.push_back({});
+    if (pose && i == usb::psvr2::kSlamInterface) itf.endpoints.push_back({});
+    if (pose && i == usb::psvr2::kStatusInterface) {
+      itf.alt = 1;
+      itf.endpoints.push_back({true, USB_ENDPOINT_XFER_INT, 64, 1024, 1, 1});
+    }
+    out.push_back(itf);
   }
-  auto with_ep = [&](std::uint16_t max_packet) {
-    std::vector<std::uint8_t> d = speed;
-    usb_endpoint_descriptor_no_audio ep{};
-    ep.bLength = USB_DT_ENDPOINT_SIZE;
-    ep.bDescriptorType = USB_DT_ENDPOINT;
-    ep.bEndpointAddress = 1 | USB_DIR_IN;
-    ep.bmAttributes = USB_ENDPOINT_XFER_BULK;
-    ep.wMaxPacketSize = max_packet;
-    put(d, ep);
-    return d;
-  };
-  const auto fs = with_ep(64), hs = with_ep(512);
-  std::vector<std::uint8_t> out;
-  usb_functionfs_descs_head_v2 head{};
-  head.magic = FUNCTIONFS_DESCRIPTORS_MAGIC_V2;
-  head.flags = FUNCTIONFS_HAS_FS_DESC | FUNCTIONFS_HAS_HS_DESC;
-  const std::uint32_t count = 7;
-  head.length = static_cast<std::uint32_t>(sizeof head + 2 * sizeof count + fs.size() + hs.size());
-  put(out, head);
-  put(out, count);
-  put(out, count);
-  out.insert(out.end(), fs.begin(), fs.end());
-  out.insert(out.end(), hs.begin(), hs.end());
-  return out;
-}
-
-std::vector<std::uint8_t> ffs_strings() {
-  const char name[] = "gaze";
-  std::vector<std::uint8_t> out;
-  usb_functionfs_strings_head head{};
-  head.magic = FUNCTIONFS_STRINGS_MAGIC;
-  head.str_count = 1;
-  head.lang_count = 1;
-  head.length = static_cast<std::uint32_t>(sizeof head + 2 + sizeof name);
-  put(out, head);
-  const std::uint16_t lang = 0x0409;
-  put(out, lang);
-  out.insert(out.end(), name, name + sizeof name);
   return out;
 }
 
 }  // namespace
 
-int run_psvr2_gadget(const std::string& dir) {
-  const int ep0 = ::open((dir + "/ep0").c_str(), O_RDWR);
-  if (ep0 < 0) {
-    std::printf("psvr2-gadget: cannot open %s/ep0\n", dir.c_str());
-    return 1;
-  }
-  const auto descs = ffs_descriptors(), strings = ffs_strings();
-  if (::write(ep0, descs.data(), descs.size()) < 0 || ::write(ep0, strings.data(), strings.size()) < 0) {
-    std::printf("psvr2-gadget: FunctionFS refused the descriptors: %s\n", std::strerror(errno));
-    return 1;
-  }
+int run_psvr2_gadget(const std::string& dir, bool pose) {
+  const int ep0 = ffs::open_ep0(dir, psvr2_interfaces(pose), "gaze");
+  if (ep0 < 0) return 1;
   std::signal(SIGTERM, on_term);
-  std::atomic<bool> enabled{false};
-  std::atomic<std::uint64_t> written{0};
-  std::thread writer([&] {
-    const int ep1 = ::open((dir + "/ep1").c_str(), O_RDWR);
-    TimeNs next = monotonic_now_ns();
-    for (std::uint64_t k = 0; ep1 >= 0 && !g_stop.load(); ++k) {
-      next += 8'333'000;
-      sleep_until_ns(next);
-      if (!enabled.load()) {
-        next = monotonic_now_ns();  // no backlog to catch up on once enabled
-        continue;
-      }
-      const auto rec = psvr2_record(k);
-      if (::write(ep1, rec.data(), rec.size()) == static_cast<ssize_t>(rec.size())) written.fetch_add(1);
-      // A write blocks while the host does not read: go on from now, as a sensor would,
-      // instead of bursting through the missed periods.
-      if (monotonic_now_ns() - next > 50 * kNsPerMs) next = monotonic_now_ns();
-    }
+  std::atomic<bool> configured{false};
+  std::atomic<std::uint64_t> gaze_written{0}, slam_written{0}, status_written{0};
+  std::vector<std::thread> writers;
+  const std::string ep = dir + "/ep";
+  writers.emplace_back([&] {
+    // Record k is the one of the k-th period since the start: the count goes on while
+    // nobody reads, as a sensor's would.
+    constexpr TimeNs period = 8'333'000;
+    const TimeNs t0 = monotonic_now_ns();
+    ffs::stream(g_stop, ep + (pose ? "2" : "1"), configured, period, 0, gaze_written, [&](TimeNs t, int fd) {
+      return ffs::write_all(fd, psvr2_record(static_cast<std::uint64_t>((t - t0) / period)));
+    });
   });
-  while (!g_stop.load()) {
-    pollfd p{ep0, POLLIN, 0};
-    if (::poll(&p, 1, 100) <= 0) continue;
-    usb_functionfs_event ev[4];
-    const ssize_t n = ::read(ep0, ev, sizeof ev);
-    for (ssize_t i = 0; n > 0 && i < n / static_cast<ssize_t>(sizeof ev[0]); ++i) {
-      if (ev[i].type == FUNCTIONFS_ENABLE) enabled.store(true);
-      if (ev[i].type == FUNCTIONFS_DISABLE) enabled.store(false);
-      if (ev[i].type != FUNCTIONFS_SETUP) continue;
-      const usb_ctrlrequest& c = ev[i].u.setup;
-      std::uint8_t data[64] = {};
-      const std::size_t len = std::min<std::size_t>(c.wLength, sizeof data);
-      if (c.bRequestType & USB_DIR_IN) {
-        (void)::write(ep0, data, len);  // nothing to report
-      } else {
-        const ssize_t got = ::read(ep0, data, len);  // the data stage; also acknowledges it
-        std::printf("psvr2-gadget: host request type=%02x req=%02x value=%04x index=%u data=%02x %02x (%zd bytes)\n",
-                    c.bRequestType, c.bRequest, c.wValue, c.wIndex, data[0], data[1], got);
-        std::fflush(stdout);
-      }
-    }
+  if (pose) {
+    writers.emplace_back([&] {
+      ffs::stream(g_stop, ep + "1", configured, kPsvr2SlamPeriodNs, 0, slam_written, [](TimeNs t, int fd) {
+        // A record fills a high-speed packet: a zero-length packet ends the transfer.
+        return ffs::write_all(fd, psvr2_slam_record(t)) && ::write(fd, nullptr, 0) == 0;
+      });
+    });
+    writers.emplace_back([&] {
+      constexpr TimeNs batch = kPsvr2ImuPeriodNs * kPsvr2ImuPerTransfer;
+      ffs::stream(g_stop, ep + "3", configured, batch, 0, status_written, [](TimeNs t, int fd) {
+        return ffs::write_all(fd, psvr2_status_transfer(t - batch + kPsvr2ImuPeriodNs, kPsvr2ImuPerTransfer));
+      });
+    });
   }
-  std::printf("psvr2-gadget: %llu records written\n", static_cast<unsigned long long>(written.load()));
+  ffs::Handlers h;
+  h.enabled = [&](bool on) { configured = on; };
+  h.in = [](const usb_ctrlrequest& c) { return std::vector<std::uint8_t>(c.wLength, 0); };  // nothing to report
+  h.out = [&](const usb_ctrlrequest& c, const std::vector<std::uint8_t>& data) {
+    const std::uint8_t d0 = data.empty() ? 0 : data[0], d1 = data.size() > 1 ? data[1] : 0;
+    std::printf("psvr2-gadget: host request type=%02x req=%02x value=%04x index=%u data=%02x %02x (%zu bytes)\n",
+                c.bRequestType, c.bRequest, c.wValue, c.wIndex, d0, d1, data.size());
+    std::fflush(stdout);
+  };
+  ffs::serve_ep0(ep0, g_stop, h);
+  std::printf("psvr2-gadget: %llu gaze records, %llu SLAM records, %llu status transfers written\n",
+              static_cast<unsigned long long>(gaze_written.load()), static_cast<unsigned long long>(slam_written.load()),
+              static_cast<unsigned long long>(status_written.load()));
   std::fflush(stdout);
-  _exit(0);  // the writer may be blocked in a bulk write nobody reads any more
+  _exit(0);  // the writers may be blocked in bulk writes nobody reads any more
 }
 
 int run_psvr2_probe(int min_samples, double timeout_s) {
