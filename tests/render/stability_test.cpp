@@ -36,16 +36,28 @@ std::vector<std::pair<double, double>> foveae(int w, int h) {
           {0.37, 0.81}};
 }
 
+// The matrix runs through both pipelines (docs/stability.md): the fixture's parameter.
+render::Pipeline g_pipeline = render::Pipeline::gbuffer;
+
 render::FrameParams params(Method m, double sigma, double fx, double fy, double x, double y) {
   render::FrameParams p;
   p.method = m;
+  p.pipeline = g_pipeline;
   for (auto& e : p.eyes) e = {sigma, fx, fy, x, y, 4.0, 0.0};
   return p;
 }
 
+class Stability : public ::testing::TestWithParam<render::Pipeline> {
+ protected:
+  void SetUp() override { g_pipeline = GetParam(); }
+};
+
 }  // namespace
 
-TEST(Stability, EveryMethodLevelAndFoveaOnOddViewports) {
+INSTANTIATE_TEST_SUITE_P(Pipelines, Stability, ::testing::ValuesIn(render::all_pipelines()),
+                         [](const ::testing::TestParamInfo<render::Pipeline>& p) { return std::string(render::pipeline_name(p.param)); });
+
+TEST_P(Stability, EveryMethodLevelAndFoveaOnOddViewports) {
   ASSERT_TRUE(test::gl_ready());
   render::Scene s = test::scene("pattern:checker");
   for (auto [w, h] : {std::pair{97, 61}, std::pair{64, 121}}) {
@@ -58,7 +70,21 @@ TEST(Stability, EveryMethodLevelAndFoveaOnOddViewports) {
   }
 }
 
-TEST(Stability, RmfrAtExtremeF) {
+// The visibility pipeline's triangle path (the patterns have none): a glTF scene through
+// the same foveae, every method, the extreme levels.
+TEST_P(Stability, EveryMethodAndFoveaOnAScene) {
+  ASSERT_TRUE(test::gl_ready());
+  render::Scene s = test::scene(test::source_path("data/scenes/WaterBottle/WaterBottle.gltf"));
+  const int w = 97, h = 61;
+  render::Compositor c = test::make_compositor(2 * w, h, true);
+  for (Method m : render::all_methods())
+    for (double sigma : {1.0, 2.6, 8.0})
+      for (auto [x, y] : foveae(w, h))
+        EXPECT_EQ(bad_values(c, s, params(m, sigma, 0.3, 0.3, x, y)), 0u)
+            << render::method_name(m) << " sigma " << sigma << " fovea " << x << "," << y;
+}
+
+TEST_P(Stability, RmfrAtExtremeF) {
   ASSERT_TRUE(test::gl_ready());
   render::Scene s = test::scene("pattern:noise");
   render::Compositor c = test::make_compositor(2 * 97, 61, true);
@@ -69,7 +95,7 @@ TEST(Stability, RmfrAtExtremeF) {
             << "f " << f << " sigma " << sigma << " fovea " << x << "," << y;
 }
 
-TEST(Stability, NanInfAndOffViewportFoveaInput) {
+TEST_P(Stability, NanInfAndOffViewportFoveaInput) {
   ASSERT_TRUE(test::gl_ready());
   render::Scene s = test::scene("pattern:checker");
   render::Compositor c = test::make_compositor(2 * 97, 61, true);
@@ -79,7 +105,7 @@ TEST(Stability, NanInfAndOffViewportFoveaInput) {
       EXPECT_EQ(bad_values(c, s, params(m, 2.6, 0.3, 0.3, x, y)), 0u) << render::method_name(m) << " fovea " << x << "," << y;
 }
 
-TEST(Stability, FoveaPatchWithinItsBoundOfTheCentredCase) {
+TEST_P(Stability, FoveaPatchWithinItsBoundOfTheCentredCase) {
   // Bounds (docs/stability.md): 1 dB on corners, borders, one pixel inside them and the
   // centre for every method but KFR (7 dB: its log-polar buffer spends texels outside the
   // viewport, three quarters of its angles with the fovea on a corner, where L grows too;

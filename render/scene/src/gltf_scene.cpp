@@ -29,9 +29,18 @@ class UploadSink : public GltfSink {
   }
 
   int add_primitive(const std::vector<GltfVertex>& v, const std::vector<std::uint32_t>& idx, int material) override {
-    s_.primitives.push_back(upload_primitive(v, idx, material));
+    Primitive p = upload_primitive(v, idx, material);
+    p.first_index = static_cast<std::uint32_t>(all_indices.size());
+    p.base_vertex = static_cast<std::uint32_t>(all_vertices.size());
+    all_vertices.insert(all_vertices.end(), v.begin(), v.end());
+    all_indices.insert(all_indices.end(), idx.begin(), idx.end());
+    s_.primitives.push_back(std::move(p));
     return static_cast<int>(s_.primitives.size()) - 1;
   }
+
+  // Every primitive's data, concatenated for SceneGeometry.
+  std::vector<GltfVertex> all_vertices;
+  std::vector<std::uint32_t> all_indices;
 
  private:
   Scene& s_;
@@ -55,6 +64,7 @@ Result<Scene> load_gltf_scene(const std::string& path) {
   scene.view = std::move(loaded->view);
   scene.triangles = loaded->triangles;
   scene.warnings = std::move(loaded->warnings);
+  upload_geometry(scene, sink.all_vertices, sink.all_indices);
   return scene;
 }
 
