@@ -111,21 +111,25 @@ TEST_P(Stability, FoveaPatchWithinItsBoundOfTheCentredCase) {
   // viewport, three quarters of its angles with the fovea on a corner, where L grows too;
   // measured 6.7 dB at 240×270). In between, RMFR's side of the fovea towards the nearer border is sampled at
   // (f + D_near)/(f·σ), so a fovea at 81% of the height loses up to 5 dB: measured here.
+  // The visibility pipeline filters each texel over its footprint, which that density
+  // sets: RMFR 2 dB on the borders (measured 1.9 one pixel inside the top border) and
+  // 6 dB in between (5.6). A centred patch above 50 dB (exact in 8 bits) counts as 50.
   ASSERT_TRUE(test::gl_ready());
   render::Scene s = test::scene("pattern:checker");
   const int w = 240, h = 270;
   render::Compositor c = test::make_compositor(2 * w, h);
   const image::Image full = test::render_frame(c, s, params(Method::full, 1, 0.3, 0.3, 0.5, 0.5));
   for (Method m : {Method::rmfr, Method::kfr, Method::hyperbolic, Method::linear}) {
-    const double bound = m == Method::kfr ? 7.0 : 1.0;
+    const bool vis = g_pipeline == render::Pipeline::visibility;
+    const double bound = m == Method::kfr ? 7.0 : (vis && m == Method::rmfr) ? 2.0 : 1.0;
     auto patch = [&](double x, double y) {
       const image::Image img = test::render_frame(c, s, params(m, 2.6, 0.3, 0.3, x, y));
       return image::psnr(full, img, test::fovea_patch(c, Eye::left, x, y, 32));
     };
-    const double centred = patch(0.5, 0.5);
+    const double centred = std::min(patch(0.5, 0.5), 50.0);
     for (auto [x, y] : foveae(w, h)) {
       const bool between = x == 0.37;
-      const double b = between && m == Method::rmfr ? 5.0 : bound;
+      const double b = between && m == Method::rmfr ? (vis ? 6.0 : 5.0) : bound;
       EXPECT_GE(patch(x, y), centred - b) << render::method_name(m) << " fovea " << x << "," << y << " centred " << centred;
     }
   }

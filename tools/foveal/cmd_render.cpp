@@ -72,7 +72,8 @@ int run(const Args& a) {
   if (Status s = image::save_png(a.out, img); !s) return cli::report(s.error());
 
   const render::PassTimes med = render::median_pass_times(times);
-  const render::TargetMemory mem = comp->memory();
+  const render::TargetMemory mem = comp->memory(setup->frame.pipeline);
+  const auto pass = render::pass_names(setup->frame.pipeline);
   rusage ru{};
   ::getrusage(RUSAGE_SELF, &ru);
   nlohmann::json eyes;
@@ -96,15 +97,17 @@ int run(const Args& a) {
       {"view", scene->view.source},
       {"warnings", scene->warnings},
       {"method", render::method_name(setup->frame.method)},
+      {"pipeline", render::pipeline_name(setup->frame.pipeline)},
       {"size", {comp->width(), comp->height()}},
       {"eyes", eyes},
       {"renderer", comp->renderer()},
       {"frames", a.frames},
-      {"passes_ms", {{"shadow", med.shadow}, {"gbuffer", med.gbuffer}, {"mapping", med.mapping},
+      {"passes_ms", {{"shadow", med.shadow}, {pass[0], med.gbuffer}, {pass[1], med.mapping},
                      {"lighting", med.lighting}, {"inverse", med.inverse}, {"gpu_total", med.gpu_total},
                      {"cpu_frame", med.cpu}}},
       {"targets_mb", {{"gbuffer", mb(mem.gbuffer)}, {"transformed", mb(mem.transformed)}, {"reduced", mb(mem.reduced)},
-                      {"output", mb(mem.output)}, {"shadow", mb(mem.shadow)}, {"total", mb(mem.total())}}},
+                      {"visibility", mb(mem.visibility)}, {"output", mb(mem.output)}, {"shadow", mb(mem.shadow)},
+                      {"total", mb(mem.total())}}},
       {"textures_mb", mb(scene->texture_bytes)},
       {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0},
       {"auto_f", auto_f},
@@ -120,9 +123,9 @@ int run(const Args& a) {
       std::printf("  %-5s %s  buffer %dx%d  shaded %zu\n", eye_name(e), render::method_name(plan.method), b[0], b[1],
                   plan.shaded_samples());
     }
-    std::printf("  ms (median of %d): shadow %.2f  G-buffer %.2f  mapping %.2f  lighting %.2f  inverse %.2f  GPU total %.2f  CPU frame %.2f\n",
-                a.frames, med.shadow, med.gbuffer, med.mapping, med.lighting, med.inverse,
-                med.gpu_total, med.cpu);
+    std::printf("  %s pipeline, ms (median of %d): shadow %.2f  %s %.2f  %s %.2f  lighting %.2f  inverse %.2f  GPU total %.2f  CPU frame %.2f\n",
+                render::pipeline_name(setup->frame.pipeline), a.frames, med.shadow, pass[0], med.gbuffer, pass[1], med.mapping,
+                med.lighting, med.inverse, med.gpu_total, med.cpu);
     std::printf("  render targets %.1f MB, textures %.1f MB, peak RSS %.0f MB\n", mb(mem.total()), mb(scene->texture_bytes),
                 static_cast<double>(ru.ru_maxrss) / 1024.0);
   }
