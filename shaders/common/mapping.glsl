@@ -71,14 +71,15 @@ mat2 texel_footprint(ivec2 texel) {
               source_point(t + vec2(0.0, 0.5)) - source_point(t - vec2(0.0, 0.5)));
 }
 
-// A texture read filtered over a footprint of texture-coordinate steps dx, dy: the
-// isotropic level of detail of the GL specification, chosen here rather than through
-// textureGrad (llvmpipe ignores explicit gradients on samplers with anisotropy and
-// takes the quad's implicit ones, which in a full-screen pass span unrelated texels).
+// A texture read filtered over a footprint of texture-coordinate steps dx, dy: one
+// trilinear tap at the GL specification's isotropic level of detail (no anisotropic
+// taps: on a software rasteriser they multiply the material pass's cost; docs/rmfr.md).
+// Chosen here rather than through textureGrad, whose explicit gradients llvmpipe
+// ignores on the scene's anisotropic samplers (it takes the quad's implicit ones, which
+// in a full-screen pass span unrelated texels).
 vec4 texture_footprint(sampler2D tex, vec2 uv, vec2 dx, vec2 dy) {
   vec2 size = vec2(textureSize(tex, 0));
-  float rho = max(length(dx * size), length(dy * size));
-  float lod = log2(rho);
+  float lod = log2(max(length(dx * size), length(dy * size)));
   return textureLod(tex, uv, isnan(lod) || isinf(lod) ? 0.0 : clamp(lod, -16.0, 16.0));
 }
 
