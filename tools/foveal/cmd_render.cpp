@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+
+#include "foveal/render/pipeline_comparison.hpp"
 
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
@@ -26,7 +29,28 @@ struct Args {
   std::string out;
   int frames = 5, warmup = 2;
   bool json = false;
+  bool compare_pipelines = false;
 };
+
+// Both pipelines' full and foveated frames, per pass, with the speedups against the
+// faster full pipeline and the Amdahl limit (docs/rmfr.md, "Pipelines").
+nlohmann::json pipelines_json(const render::PipelineComparison& c) {
+  auto passes = [](const render::PassTimes& t) {
+    const auto n = render::pass_names(t.pipeline);
+    return nlohmann::json{{"shadow", t.shadow}, {n[0], t.gbuffer}, {n[1], t.mapping}, {"lighting", t.lighting},
+                          {"inverse", t.inverse}, {"gpu_total", t.gpu_total}, {"cpu_frame", t.cpu}};
+  };
+  nlohmann::json j = {{"best_full_gpu_ms", c.best_full_gpu()}};
+  for (render::Pipeline p : render::all_pipelines()) {
+    const std::size_t i = static_cast<std::size_t>(p);
+    j[render::pipeline_name(p)] = {{"full_ms", passes(c.full[i])},
+                                   {"foveated_ms", passes(c.foveated[i])},
+                                   {"speedup", c.speedup(p)},
+                                   {"fullres_share", c.fullres_share(p)},
+                                   {"amdahl_limit", c.amdahl_limit(p)}};
+  }
+  return j;
+}
 
 double mb(std::size_t bytes) { return static_cast<double>(bytes) / (1024.0 * 1024.0); }
 
@@ -91,7 +115,7 @@ int run(const Args& a) {
                                                {"pixel_size", l.pixel_size}, {"rect", {l.x, l.y, l.w, l.h}}});
     }
   }
-  const nlohmann::json j = {
+  nlohmann::json j = {
       {"scene", setup->scene},
       {"triangles", scene->triangles},
       {"view", scene->view.source},
@@ -112,6 +136,13 @@ int run(const Args& a) {
       {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0},
       {"auto_f", auto_f},
       {"out", a.out}};
+  std::optional<render::PipelineComparison> cmp;
+  if (a.compare_pipelines) {
+    auto c = render::compare_pipelines(*comp, *scene, setup->frame, a.frames);
+    if (!c) return cli::report(c.error());
+    cmp = *c;
+    j["pipelines"] = pipelines_json(*cmp);
+  }
   if (a.json) {
     cli::print_json(j);
   } else {
@@ -128,6 +159,15 @@ int run(const Args& a) {
                 med.lighting, med.inverse, med.gpu_total, med.cpu);
     std::printf("  render targets %.1f MB, textures %.1f MB, peak RSS %.0f MB\n", mb(mem.total()), mb(scene->texture_bytes),
                 static_cast<double>(ru.ru_maxrss) / 1024.0);
+    if (cmp)
+      for (render::Pipeline p : render::all_pipelines()) {
+        const render::PassTimes& t = cmp->foveated[static_cast<std::size_t>(p)];
+        const auto n = render::pass_names(p);
+        std::printf("  %-10s full %.1f ms, %s %.1f ms: %s %.1f  %s %.1f  lighting %.1f; %.2fx the faster full, Amdahl limit %.2fx\n",
+                    render::pipeline_name(p), cmp->full[static_cast<std::size_t>(p)].gpu_total,
+                    render::method_name(setup->frame.method), t.gpu_total, n[0], t.gbuffer, n[1], t.mapping, t.lighting,
+                    cmp->speedup(p), cmp->amdahl_limit(p));
+      }
   }
   return cli::kExitOk;
 }
@@ -142,6 +182,9 @@ void add_render(CLI::App& app, int& exit_code) {
   sub->add_option("--frames", args->frames, "Timed frames (the median is reported)")->capture_default_str();
   sub->add_option("--warmup", args->warmup, "Untimed frames first")->capture_default_str()->check(CLI::Range(0, 1000));
   sub->add_flag("--json", args->json, "Print sizes, per-pass milliseconds and memory as JSON");
+  sub->add_flag("--compare-pipelines", args->compare_pipelines,
+                "Also time full and the frame through both pipelines (--frames each, interleaved): per pass, the speedup "
+                "against the faster full pipeline, the Amdahl limit");
   sub->callback([args, &exit_code] { exit_code = run(*args); });
 }
 

@@ -1,10 +1,13 @@
 #include "visibility_pipeline.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <string>
 
 #include <glm/matrix.hpp>
 
+#include "foveal/image/rmfr_mapping.hpp"
 #include "foveal/render/scene.hpp"
 #include "foveal/render/stereo_camera.hpp"
 #include "pass_uniforms.hpp"
@@ -36,6 +39,60 @@ const MaterialSurface& ensure(std::optional<MaterialSurface>& slot, int w, int h
   if (auto size = realloc_size(slot.has_value(), slot ? slot->width() : 0, slot ? slot->height() : 0, w, h, grow_only))
     slot = MaterialSurface::create(size->first, size->second);
   return *slot;
+}
+
+// Where a material can be in the eye's buffer: the union over its draws of their bounds
+// projected to the screen, mapped into the buffer. Only for the RMFR mapping (variant 0,
+// full included), whose forward map is monotonic per axis so a screen rectangle maps onto
+// a buffer rectangle; else, or when a draw reaches behind the eye, the whole buffer.
+// x0, y0, x1, y1 in texels, with a margin.
+struct TexelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+std::vector<std::optional<TexelRect>> material_rects(const Scene& scene, const glm::mat4& view_proj, const EyePlan& plan,
+                                                     std::size_t mapping) {
+  std::vector<std::optional<TexelRect>> rects(scene.materials.size() + 1);
+  std::vector<bool> whole(rects.size(), mapping != 0);
+  std::vector<glm::dvec4> screen(rects.size(), glm::dvec4(1, 1, 0, 0));  // normalised x0, y0, x1, y1
+  for (const DrawItem& d : scene.draws) {
+    const Primitive& p = scene.primitives[static_cast<std::size_t>(d.primitive)];
+    const std::size_t m = p.material >= 0 ? static_cast<std::size_t>(p.material) : scene.materials.size();
+    if (whole[m]) continue;
+    const glm::mat4 to_clip = view_proj * d.world;
+    for (int k = 0; k < 8; ++k) {
+      const glm::vec3 c((k & 1) ? p.local_bounds.max.x : p.local_bounds.min.x, (k & 2) ? p.local_bounds.max.y : p.local_bounds.min.y,
+                        (k & 4) ? p.local_bounds.max.z : p.local_bounds.min.z);
+      const glm::vec4 q = to_clip * glm::vec4(c, 1.0f);
+      if (!(q.w > 1e-6f)) {
+        whole[m] = true;
+        break;
+      }
+      const glm::dvec2 n = (glm::dvec2(q.x, q.y) / static_cast<double>(q.w) + 1.0) * 0.5;
+      screen[m] = glm::dvec4(std::min(screen[m].x, n.x), std::min(screen[m].y, n.y), std::max(screen[m].z, n.x), std::max(screen[m].w, n.y));
+    }
+  }
+  const bool full = plan.method == Method::full;
+  const glm::dvec2 f = full ? glm::dvec2(image::kRmfrIdentityF) : plan.f;
+  const glm::dvec2 margin(1.0 / plan.screen_w, 1.0 / plan.screen_h);  // a pixel: the rasteriser's coverage
+  for (std::size_t m = 0; m < rects.size(); ++m) {
+    if (whole[m]) continue;
+    if (screen[m].x > screen[m].z) {  // no draw
+      rects[m] = TexelRect{};
+      continue;
+    }
+    auto to_buffer = [&](double p, int axis, int size) {
+      const double u = image::rmfr_forward(std::clamp(p, 0.0, 1.0), plan.fovea[axis], f[axis]);
+      return u * size;
+    };
+    TexelRect r;
+    r.x0 = std::max(0, static_cast<int>(std::floor(to_buffer(screen[m].x - margin.x, 0, plan.buffer_w))) - 1);
+    r.y0 = std::max(0, static_cast<int>(std::floor(to_buffer(screen[m].y - margin.y, 1, plan.buffer_h))) - 1);
+    r.x1 = std::min(plan.buffer_w, static_cast<int>(std::ceil(to_buffer(screen[m].z + margin.x, 0, plan.buffer_w))) + 1);
+    r.y1 = std::min(plan.buffer_h, static_cast<int>(std::ceil(to_buffer(screen[m].w + margin.y, 1, plan.buffer_h))) + 1);
+    rects[m] = r;
+  }
+  return rects;
 }
 
 }  // namespace
@@ -153,11 +210,18 @@ void VisibilityPipeline::material_pass(const Scene& scene, const EyeView& view, 
   glUseProgram(p);
   set_mapping(p, plan, texture_size);
   set(p, "u_view_proj", view.view_proj);
+  const auto rects = material_rects(scene, view.view_proj, plan, mapping);
   for (std::size_t m : used_materials(scene)) {
+    if (const auto& r = rects[m]) {  // only where the material can be
+      if (r->x1 <= r->x0 || r->y1 <= r->y0) continue;
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(r->x0, r->y0, r->x1 - r->x0, r->y1 - r->y0);
+    }
     set_material(p, scene, material_of(scene, m < scene.materials.size() ? static_cast<int>(m) : -1));
     const float z = material_depth(m);
     glDepthRangef(z, z);
     draw_regions(p);
+    glDisable(GL_SCISSOR_TEST);
   }
   glDepthRangef(0.0f, 1.0f);
   glDepthMask(GL_TRUE);

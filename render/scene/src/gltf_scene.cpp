@@ -32,6 +32,11 @@ class UploadSink : public GltfSink {
     Primitive p = upload_primitive(v, idx, material);
     p.first_index = static_cast<std::uint32_t>(all_indices.size());
     p.base_vertex = static_cast<std::uint32_t>(all_vertices.size());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const glm::vec3 q(v[i].position[0], v[i].position[1], v[i].position[2]);
+      p.local_bounds.min = i ? glm::min(p.local_bounds.min, q) : q;
+      p.local_bounds.max = i ? glm::max(p.local_bounds.max, q) : q;
+    }
     all_vertices.insert(all_vertices.end(), v.begin(), v.end());
     all_indices.insert(all_indices.end(), idx.begin(), idx.end());
     s_.primitives.push_back(std::move(p));

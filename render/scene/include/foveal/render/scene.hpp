@@ -26,6 +26,7 @@ struct Primitive {
   int material = -1;
   /// Where its indices and vertices start in SceneGeometry's buffers.
   std::uint32_t first_index = 0, base_vertex = 0;
+  Bounds local_bounds;  ///< of its vertex positions, in its own space
 };
 
 /// Every primitive's vertices (GltfVertex, interleaved) and indices concatenated into
