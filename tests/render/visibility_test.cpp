@@ -88,10 +88,10 @@ const json kPlain = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.5, 0.
 
 // σ = 1 through the visibility pipeline (RMFR with the fovea anywhere) against the full
 // method, both pipelines. Against the G-buffer pipeline the bound is `gbuffer_db`: where
-// a 2×2 pixel quad straddles a triangle edge, llvmpipe's texture level differs between a
-// rasterised triangle's implicit derivatives (which the G-buffer pass uses) and the
-// material pass's analytic level (measured ~33 dB on WaterBottle, 29 dB on Khronos's
-// VertexColorTest, 35-42 dB on a textured quad; untextured and pattern scenes: exact).
+// the G-buffer pass filters the scene's textures 8× anisotropically, the material pass
+// isotropically at its own level of detail (docs/rmfr.md): measured 55 dB on
+// WaterBottle, 34.6 dB on Dungeon (grazing floors), ~30 dB on the tilted textured quad;
+// untextured and pattern scenes: exact.
 void expect_pipelines_agree(const std::string& spec, double gbuffer_db) {
   render::Compositor c = test::make_compositor(kW, kH);
   render::Scene s = test::scene(spec);
@@ -141,8 +141,8 @@ TEST(Visibility, EveryKindOfMaterialMatchesTheGBufferPipeline) {
   json masked = kTextured;
   masked["alphaMode"] = "MASK";
   masked["alphaCutoff"] = 0.5;
-  const image::Image textured = expect_same_material(c, quad_model(d, "textured", kTextured), 33.0);
-  const image::Image holes = expect_same_material(c, quad_model(d, "masked", masked), 33.0);
+  const image::Image textured = expect_same_material(c, quad_model(d, "textured", kTextured), 28.0);
+  const image::Image holes = expect_same_material(c, quad_model(d, "masked", masked), 28.0);
   EXPECT_LT(image::psnr(textured, holes), 20.0) << "the mask cuts holes";
   // Double-sided: seen from behind, the normal flips (lit), else it faces away (dark).
   json two_sided = kPlain;

@@ -181,6 +181,8 @@ void VisibilityPipeline::material_pass(const Scene& scene, const EyeView& view, 
     set(p, "u_viewport_size", glm::vec2(eye_w_, eye_h_));
     set(p, "u_angle", glm::radians(scene.pattern->angle_deg));
     set(p, "u_tile_px", scene.pattern->tile_px);
+    // The tile's own (anisotropic) sampler: a pattern has no triangles, so the quad's
+    // implicit derivatives are the footprint and llvmpipe's anisotropy sees it right.
     glBindTextureUnit(0, scene.pattern->texture.id());
     draw_regions(p);
     return;
@@ -217,12 +219,17 @@ void VisibilityPipeline::material_pass(const Scene& scene, const EyeView& view, 
       glEnable(GL_SCISSOR_TEST);
       glScissor(r->x0, r->y0, r->x1 - r->x0, r->y1 - r->y0);
     }
-    set_material(p, scene, material_of(scene, m < scene.materials.size() ? static_cast<int>(m) : -1));
+    const Material& mat = material_of(scene, m < scene.materials.size() ? static_cast<int>(m) : -1);
+    set_material(p, scene, mat);
+    const int texs[] = {mat.base_color_tex, mat.metal_rough_tex, mat.normal_tex, mat.occlusion_tex, mat.emissive_tex};
+    for (GLuint unit = 0; unit < 5; ++unit)
+      glBindSampler(unit, texs[unit] >= 0 ? scene.isotropic_samplers[static_cast<std::size_t>(texs[unit])].id() : 0);
     const float z = material_depth(m);
     glDepthRangef(z, z);
     draw_regions(p);
     glDisable(GL_SCISSOR_TEST);
   }
+  glBindSamplers(0, 5, nullptr);
   glDepthRangef(0.0f, 1.0f);
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);

@@ -25,6 +25,7 @@ class UploadSink : public GltfSink {
   int add_texture(const GltfTexture& t) override {
     s_.textures.push_back(upload_rgba8(t.rgba, t.width, t.height, t.srgb, wrap_mode(t.wrap_s), wrap_mode(t.wrap_t),
                                        &s_.texture_bytes));
+    s_.isotropic_samplers.push_back(isotropic_sampler(wrap_mode(t.wrap_s), wrap_mode(t.wrap_t)));
     return static_cast<int>(s_.textures.size()) - 1;
   }
 

@@ -62,6 +62,15 @@ void upload_geometry(Scene& scene, const std::vector<GltfVertex>& vertices, cons
   scene.geometry.draws = storage(records);
 }
 
+gl::Sampler isotropic_sampler(GLenum wrap_s, GLenum wrap_t) {
+  gl::Sampler s = gl::Sampler::create();
+  glSamplerParameteri(s.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glSamplerParameteri(s.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glSamplerParameteri(s.id(), GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap_s));
+  glSamplerParameteri(s.id(), GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap_t));
+  return s;
+}
+
 gl::Texture upload_rgba8(const std::uint8_t* rgba, int width, int height, bool srgb, GLenum wrap_s, GLenum wrap_t,
                          std::size_t* bytes) {
   const int levels = 1 + static_cast<int>(std::floor(std::log2(std::max(width, height))));

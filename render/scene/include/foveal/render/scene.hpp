@@ -57,6 +57,10 @@ struct Pattern {
 struct Scene {
   std::string name;  ///< file name or pattern spec
   std::vector<gl::Texture> textures;
+  /// Per texture: its wrap modes and trilinear filtering without anisotropy, for the
+  /// visibility pipeline's material pass, which chooses texture levels itself (the
+  /// textures' own 8× anisotropy would take the full-screen pass's implicit derivatives).
+  std::vector<gl::Sampler> isotropic_samplers;
   std::vector<Material> materials;
   std::vector<Primitive> primitives;
   std::vector<DrawItem> draws;
