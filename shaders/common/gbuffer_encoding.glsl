@@ -1,3 +1,5 @@
+#ifndef GBUFFER_ENCODING_GLSL
+#define GBUFFER_ENCODING_GLSL
 // G-buffer normals: octahedral encoding into two signed-normalised channels.
 vec2 encode_normal(vec3 n) {
   n /= abs(n.x) + abs(n.y) + abs(n.z);
@@ -12,3 +14,4 @@ vec3 decode_normal(vec2 e) {
   n.xy += mix(vec2(t), vec2(-t), greaterThanEqual(n.xy, vec2(0.0)));
   return normalize(n);
 }
+#endif

@@ -50,6 +50,49 @@ ivec2 source_pixel(ivec2 texel) {
 }
 
 float eccentricity_deg(vec2 p_norm) { return foveal_eccentricity_deg(p_norm, u_fovea, u_tan); }
+// The screen position (pixels, unclamped) that buffer position t (texels, continuous)
+// stands for: source_pixel's mapping before it picks and clamps a pixel.
+vec2 source_point(vec2 t) {
+#if MAPPING == MAPPING_KFR
+  vec2 uv = t / u_buffer_size;
+  float r = exp(u_kfr.x * pow(max(uv.x, 0.0), 1.0 / u_kfr.y));
+  float theta = 2.0 * PI_F * uv.y;
+  return u_fovea * u_screen_size + r * vec2(cos(theta), sin(theta));
+#elif MAPPING == MAPPING_LAYERS
+  vec4 rect = u_layer_rect[u_layer], atlas = u_layer_atlas[u_layer];
+  return rect.xy + (t - vec2(0.0, atlas.x)) * atlas.w;
+#else
+  return foveal_rmfr_inverse(t / u_buffer_size, u_fovea, u_f) * u_screen_size;
+#endif
+}
+
+// A texel's footprint on the screen: the mapping's Jacobian at its centre, as the
+// screen-pixel steps of one texel step along x (column 0) and y (column 1).
+mat2 texel_footprint(ivec2 texel) {
+  vec2 t = vec2(texel) + 0.5;
+  return mat2(source_point(t + vec2(0.5, 0.0)) - source_point(t - vec2(0.5, 0.0)),
+              source_point(t + vec2(0.0, 0.5)) - source_point(t - vec2(0.0, 0.5)));
+}
+
+// A texture read filtered over a footprint of texture-coordinate steps dx, dy: one
+// trilinear tap at the GL specification's isotropic level of detail, through a sampler
+// without anisotropy (Scene::isotropic_samplers). Not textureGrad: llvmpipe ignores its
+// gradients on anisotropic samplers and takes the 2×2 quad's implicit ones, which in a
+// full-screen pass span unrelated texels; and in-shader anisotropic taps made the
+// material pass several times slower there (docs/rmfr.md).
+vec4 texture_footprint(sampler2D tex, vec2 uv, vec2 dx, vec2 dy) {
+  vec2 size = vec2(textureSize(tex, 0));
+  float lod = log2(max(length(dx * size), length(dy * size)));
+  return textureLod(tex, uv, isnan(lod) || isinf(lod) ? 0.0 : clamp(lod, -16.0, 16.0));
+}
+
+vec3 view_ray(vec2 p_norm) {
+  return normalize(vec3(mix(u_tan.x, u_tan.y, p_norm.x), mix(u_tan.z, u_tan.w, p_norm.y), -1.0));
+}
+
+float eccentricity_deg(vec2 p_norm) {
+  return degrees(acos(clamp(dot(view_ray(p_norm), view_ray(u_fovea)), -1.0, 1.0)));
+}
 
 // Layer i's lit value at screen pixel centre p (bilinear, kept inside the layer).
 vec4 sample_layer(sampler2D reduced, int i, vec2 p) {

@@ -1,11 +1,16 @@
-// The compositor at 2880x1600: full against RMFR + EFR in the same run, frames
-// interleaved so machine noise hits both alike. Counters give the per-pass medians
-// (the RMFR paper's Table 3), the speedups, the theoretical lighting speedup
-// 2 / (1/σ_d² + 1/σ_nd²), render-target memory and peak RSS, and the cost of folding
-// lens distortion into the inverse pass (the example lens model).
+// The compositor at 2880x1600, both pipelines (G-buffer and visibility, docs/rmfr.md),
+// full against RMFR + EFR in the same run, frames interleaved so machine noise hits all
+// alike. Counters give the per-pass medians (the RMFR paper's Table 3) of each pipeline,
+// the speedups against the faster full pipeline, the Amdahl limit the full-resolution
+// pass leaves, the theoretical lighting speedup 2 / (1/σ_d² + 1/σ_nd²), each pipeline's
+// render-target memory at the EFR pair, peak RSS, and the cost of folding lens
+// distortion into the inverse pass (the example lens model).
 //
 //   build/bin/foveal_render_bench                      (Dungeon, σ_d 2, σ_nd 3, f 0.3)
 //   FOVEAL_BENCH_SCENE=pattern:noise build/bin/foveal_render_bench
+//   FOVEAL_BENCH_SCENE=PATH.gltf FOVEAL_BENCH_FILL=1 build/bin/foveal_render_bench
+//       (an object scene with the camera moved in until the object fills the view)
+//   FOVEAL_BENCH_FRAMES=N              (timed frames per configuration, medians; default 5)
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
@@ -13,14 +18,29 @@
 #include <cstdlib>
 #include <optional>
 
+#include <glm/geometric.hpp>
+
 #include "foveal/render/compositor.hpp"
 #include "foveal/render/egl_context.hpp"
+#include "foveal/render/pipeline_comparison.hpp"
 #include "foveal/render/scene.hpp"
 #include "test_support.hpp"
 
 namespace {
 
 using namespace foveal;
+using render::Method;
+using render::Pipeline;
+
+// Moves the viewer along its line of sight until the scene's bounding sphere spans the
+// view (an object seen from its framing distance covers a fraction of the frame).
+void fill_view(render::Scene& s) {
+  glm::mat4& m = s.view.head_to_world;
+  const glm::vec3 eye(m[3]), centre = s.bounds.center();
+  const glm::vec3 dir = glm::normalize(centre - eye);
+  const float r = std::max(s.bounds.radius(), 1e-4f);
+  m[3] = glm::vec4(centre - dir * (1.05f * r), 1.0f);
+}
 
 struct Fixture {
   std::optional<gl::EglContext> ctx;
@@ -37,6 +57,7 @@ struct Fixture {
     auto s = render::load_scene(env ? env : test::source_path("data/scenes/Dungeon/dungeon_simplified.gltf"));
     if (!s) { error = s.error().message; return; }
     scene.emplace(std::move(*s));
+    if (const char* fill = std::getenv("FOVEAL_BENCH_FILL"); fill && std::string(fill) == "1") fill_view(*scene);
     auto k = render::Compositor::create({}, gl::ShaderLoader(test::source_path("shaders")));
     if (!k) { error = k.error().message; return; }
     comp.emplace(std::move(*k));
@@ -50,58 +71,76 @@ struct Fixture {
   }
 };
 
-void BM_FullVsRmfrEfr(benchmark::State& state) {
+// Render-target bytes a compositor holds that only ever renders `f` (what a foveald
+// session on that pipeline holds).
+double targets_mb(const render::Scene& s, render::FrameParams f, Pipeline p) {
+  f.pipeline = p;
+  auto c = render::Compositor::create({}, gl::ShaderLoader(test::source_path("shaders")));
+  if (!c || !c->render(s, f)) return -1;
+  return static_cast<double>(c->memory().total()) / 1e6;
+}
+
+int frames() {
+  const char* e = std::getenv("FOVEAL_BENCH_FRAMES");
+  const int n = e ? std::atoi(e) : 5;
+  return n > 0 ? n : 5;
+}
+
+void BM_PipelinesFullVsRmfrEfr(benchmark::State& state) {
   static Fixture f;
   if (!f.error.empty()) {
     state.SkipWithError(f.error.c_str());
     return;
   }
   const double sigma_d = 2.0, sigma_nd = 3.0;
-  const render::FrameParams full = render::efr_frame(render::Method::full, Eye::right, 1, 1, 0.3, 0.3);
-  const render::FrameParams rmfr = render::efr_frame(render::Method::rmfr, Eye::right, sigma_d, sigma_nd, 0.3, 0.3);
-  // One warm-up frame each: shader compilation, texture residency.
-  (void)f.comp->render(*f.scene, full);
-  (void)f.comp->render(*f.scene, rmfr);
-  (void)f.lens->render(*f.scene, rmfr);
-  std::vector<render::PassTimes> tf, tr, tl;
+  const render::FrameParams rmfr = render::efr_frame(Method::rmfr, Eye::right, sigma_d, sigma_nd, 0.3, 0.3);
   for (auto _ : state) {
-    auto a = f.comp->render(*f.scene, full);
-    auto b = f.comp->render(*f.scene, rmfr);
-    auto c = f.lens->render(*f.scene, rmfr);
-    if (!a || !b || !c) {
-      state.SkipWithError((!a ? a.error() : !b ? b.error() : c.error()).message.c_str());
+    auto cmp = render::compare_pipelines(*f.comp, *f.scene, rmfr, frames());
+    if (!cmp) {
+      state.SkipWithError(cmp.error().message.c_str());
       return;
     }
-    tf.push_back(*a);
-    tr.push_back(*b);
-    tl.push_back(*c);
+    // Lens correction folded into the inverse pass: its extra cost, no extra pass.
+    std::vector<render::PassTimes> tl;
+    for (int i = 0; i <= frames(); ++i) {
+      auto l = f.lens->render(*f.scene, rmfr);
+      if (!l) {
+        state.SkipWithError(l.error().message.c_str());
+        return;
+      }
+      if (i > 0) tl.push_back(*l);
+    }
+    using PT = render::PassTimes;
+    // "fullres": the G-buffer or visibility pass; "mapping": the mapping or material pass.
+    const std::pair<const char*, double PT::*> passes[] = {{"shadow", &PT::shadow},   {"fullres", &PT::gbuffer},
+                                                           {"mapping", &PT::mapping}, {"lighting", &PT::lighting},
+                                                           {"inverse", &PT::inverse}, {"gpu_total", &PT::gpu_total},
+                                                           {"cpu_frame", &PT::cpu}};
+    for (Pipeline p : render::all_pipelines()) {
+      const std::string n = render::pipeline_name(p);
+      const std::size_t i = static_cast<std::size_t>(p);
+      for (const auto& [name, field] : passes) {
+        state.counters[n + "_full_" + name + "_ms"] = cmp->full[i].*field;
+        state.counters[n + "_rmfr_" + name + "_ms"] = cmp->foveated[i].*field;
+      }
+      state.counters[n + "_rmfr_speedup"] = cmp->speedup(p);
+      state.counters[n + "_rmfr_fullres_share"] = cmp->fullres_share(p);
+      state.counters[n + "_rmfr_amdahl_limit"] = cmp->amdahl_limit(p);
+      state.counters[n + "_rmfr_lighting_speedup"] = cmp->full[i].lighting / cmp->foveated[i].lighting;
+      state.counters[n + "_targets_MB"] = targets_mb(*f.scene, rmfr, p);
+    }
+    state.counters["lighting_theory"] = 2.0 / (1.0 / (sigma_d * sigma_d) + 1.0 / (sigma_nd * sigma_nd));
+    const PT ml = render::median_pass_times(tl);
+    state.counters["gbuffer_rmfr_lens_inverse_ms"] = ml.inverse;
+    state.counters["gbuffer_rmfr_lens_gpu_total_ms"] = ml.gpu_total;
   }
-  const render::PassTimes mf = render::median_pass_times(tf), mr = render::median_pass_times(tr),
-                          ml = render::median_pass_times(tl);
-  using PT = render::PassTimes;
-  const std::pair<const char*, double PT::*> passes[] = {{"shadow", &PT::shadow},     {"gbuffer", &PT::gbuffer},
-                                                         {"mapping", &PT::mapping},   {"lighting", &PT::lighting},
-                                                         {"inverse", &PT::inverse},   {"gpu_total", &PT::gpu_total},
-                                                         {"cpu_frame", &PT::cpu}};
-  for (const auto& [name, field] : passes) {
-    state.counters[std::string("full_") + name + "_ms"] = mf.*field;
-    state.counters[std::string("rmfr_") + name + "_ms"] = mr.*field;
-  }
-  // Lens correction folded into the inverse pass: its extra cost, no extra pass.
-  state.counters["rmfr_lens_inverse_ms"] = ml.inverse;
-  state.counters["rmfr_lens_gpu_total_ms"] = ml.gpu_total;
-  state.counters["lighting_speedup"] = mf.lighting / mr.lighting;
-  state.counters["lighting_theory"] = 2.0 / (1.0 / (sigma_d * sigma_d) + 1.0 / (sigma_nd * sigma_nd));
-  state.counters["gpu_total_speedup"] = mf.gpu_total / mr.gpu_total;
-  state.counters["cpu_frame_speedup"] = mf.cpu / mr.cpu;
-  state.counters["targets_MB"] = static_cast<double>(f.comp->memory().total()) / 1e6;
   state.counters["textures_MB"] = static_cast<double>(f.scene->texture_bytes) / 1e6;
   rusage ru{};
   ::getrusage(RUSAGE_SELF, &ru);
   state.counters["peak_rss_MB"] = static_cast<double>(ru.ru_maxrss) / 1024.0;
   state.SetLabel(f.comp->renderer());
 }
-BENCHMARK(BM_FullVsRmfrEfr)->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(BM_PipelinesFullVsRmfrEfr)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 

@@ -1,8 +1,10 @@
-// Golden images of pattern scenes, full and every foveation method with EFR (tolerance: PSNR >= 40 dB against
-// the committed image; a diff image is written on failure).
+// Golden images of pattern scenes and a glTF scene, full and every foveation method with EFR, through both
+// pipelines (tolerance: PSNR >= 40 dB against the committed image; a diff image is written on failure). The
+// G-buffer pipeline's images are NAME_METHOD.png, the visibility pipeline's NAME_vis_METHOD.png.
 #include <gtest/gtest.h>
 
 #include "gl_support.hpp"
+#include "test_support.hpp"
 
 using namespace foveal;
 using render::Method;
@@ -10,21 +12,31 @@ using render::Method;
 namespace {
 // Every method: full, then each foveation method with EFR (σ 2 right, 3 left) and a
 // different fovea per eye; NAME_METHOD.png.
-void golden(const std::string& spec, const std::string& name) {
+void golden(const std::string& spec, const std::string& name, render::Pipeline pipeline = render::Pipeline::gbuffer) {
   ASSERT_TRUE(test::gl_ready());
   render::Compositor c = test::make_compositor(480, 270);
   render::Scene s = test::scene(spec);
-  test::expect_matches_golden(test::render_frame(c, s, test::frame(Method::full, 1.0)), name + "_full");
+  const std::string prefix = name + (pipeline == render::Pipeline::visibility ? "_vis_" : "_");
+  render::FrameParams full = test::frame(Method::full, 1.0);
+  full.pipeline = pipeline;
+  test::expect_matches_golden(test::render_frame(c, s, full), prefix + "full");
   for (Method m : render::all_methods()) {
     if (m == Method::full) continue;
     render::FrameParams p = render::efr_frame(m, Eye::right, 2.0, 3.0, 0.3, 0.3);
+    p.pipeline = pipeline;
     p.eyes[0].fovea_x = 0.3, p.eyes[0].fovea_y = 0.4;
     p.eyes[1].fovea_x = 0.8, p.eyes[1].fovea_y = 0.9;
-    test::expect_matches_golden(test::render_frame(c, s, p), name + "_" + render::method_name(m));
+    test::expect_matches_golden(test::render_frame(c, s, p), prefix + render::method_name(m));
   }
 }
+const render::Pipeline kVis = render::Pipeline::visibility;
 }  // namespace
 
 TEST(Golden, Checker) { golden("pattern:checker", "checker"); }
 TEST(Golden, VerticalStripes) { golden("pattern:stripes-v", "stripes_v"); }
 TEST(Golden, RotatedNoise) { golden("pattern:noise@30", "noise_30"); }
+TEST(Golden, WaterBottle) { golden(test::source_path("data/scenes/WaterBottle/WaterBottle.gltf"), "waterbottle"); }
+TEST(Golden, CheckerVisibility) { golden("pattern:checker", "checker", kVis); }
+TEST(Golden, VerticalStripesVisibility) { golden("pattern:stripes-v", "stripes_v", kVis); }
+TEST(Golden, RotatedNoiseVisibility) { golden("pattern:noise@30", "noise_30", kVis); }
+TEST(Golden, WaterBottleVisibility) { golden(test::source_path("data/scenes/WaterBottle/WaterBottle.gltf"), "waterbottle", kVis); }

@@ -38,6 +38,8 @@ using render::Method;
 struct Args {
   std::vector<std::string> scenes;
   std::string methods = render::method_names_joined(",");
+  std::string pipeline = "gbuffer";
+  render::Pipeline pipeline_kind = render::Pipeline::gbuffer;  ///< parsed from `pipeline`
   std::string sigmas = "1.4:2.8:0.2";
   std::string fovea = "0.5,0.5";
   std::string size = "2880x1600";
@@ -98,7 +100,9 @@ class Bench {
   Result<Measured> measure(const render::Scene& s, const render::FrameParams& f, int frames) {
     std::vector<render::PassTimes> t;
     for (int i = 0; i < a_.warmup + frames; ++i) {
-      auto r = comp_.render(s, f);
+      render::FrameParams p = f;
+      p.pipeline = a_.pipeline_kind;
+      auto r = comp_.render(s, p);
       if (!r) return r.error();
       if (i >= a_.warmup) t.push_back(*r);
     }
@@ -182,6 +186,7 @@ Status flicker(const Args& a, render::Compositor& comp, Bench& bench, const std:
         const auto& fv = (*seq)[start + k];
         render::FrameParams p = uniform_frame(m, a.grid_sigma, a.fx, a.fy, {0.5, 0.5});
         for (std::size_t i = 0; i < 2; ++i) p.eyes[i].fovea_x = fv[i].x, p.eyes[i].fovea_y = fv[i].y;
+        p.pipeline = a.pipeline_kind;
         auto r = comp.render(*scene, p);
         if (!r) return r.error();
         image::Image img = comp.read_image();
@@ -437,6 +442,9 @@ void add_bench(CLI::App& app, int& exit_code) {
   CLI::App* sub = app.add_subcommand("bench", "Every method at every level against full: time, shaded samples, PSNR/SSIM/FPSNR, charts");
   sub->add_option("--scene", a->scenes, "Scenes (repeatable): glTF files or pattern:NAME; default: the bundled Dungeon");
   sub->add_option("--methods", a->methods, "Comma list of methods (" + render::method_names_joined(", ") + ")")->capture_default_str();
+  sub->add_option("--pipeline", a->pipeline, "gbuffer or visibility, for every frame including the full reference (docs/rmfr.md)")
+      ->check(CLI::IsMember(render::pipeline_names()))
+      ->capture_default_str();
   sub->add_option("--sigmas", a->sigmas, "Levels: FROM:TO:STEP or a comma list")->capture_default_str();
   sub->add_option("--fovea", a->fovea, "Fovea X,Y of both eyes in [0,1]")->capture_default_str();
   sub->add_option("--size", a->size, "Side-by-side output WxH")->capture_default_str();
@@ -458,7 +466,14 @@ void add_bench(CLI::App& app, int& exit_code) {
   sub->add_flag("--json", a->json, "Print the results as JSON");
   add_bench_merge(*sub, exit_code);
   sub->callback([a, sub, &exit_code] {
-    if (!sub->got_subcommand("merge")) exit_code = run(*a, sweep_options(*sub));
+    if (sub->got_subcommand("merge")) return;
+    auto pipeline = render::parse_pipeline(a->pipeline);
+    if (!pipeline) {
+      exit_code = cli::report(pipeline.error());
+      return;
+    }
+    a->pipeline_kind = *pipeline;
+    exit_code = run(*a, sweep_options(*sub));
   });
 }
 

@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+
+#include "foveal/render/pipeline_comparison.hpp"
 
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
@@ -26,7 +29,28 @@ struct Args {
   std::string out;
   int frames = 5, warmup = 2;
   bool json = false;
+  bool compare_pipelines = false;
 };
+
+// Both pipelines' full and foveated frames, per pass, with the speedups against the
+// faster full pipeline and the Amdahl limit (docs/rmfr.md, "Pipelines").
+nlohmann::json pipelines_json(const render::PipelineComparison& c) {
+  auto passes = [](const render::PassTimes& t) {
+    const auto n = render::pass_names(t.pipeline);
+    return nlohmann::json{{"shadow", t.shadow}, {n[0], t.gbuffer}, {n[1], t.mapping}, {"lighting", t.lighting},
+                          {"inverse", t.inverse}, {"gpu_total", t.gpu_total}, {"cpu_frame", t.cpu}};
+  };
+  nlohmann::json j = {{"best_full_gpu_ms", c.best_full_gpu()}};
+  for (render::Pipeline p : render::all_pipelines()) {
+    const std::size_t i = static_cast<std::size_t>(p);
+    j[render::pipeline_name(p)] = {{"full_ms", passes(c.full[i])},
+                                   {"foveated_ms", passes(c.foveated[i])},
+                                   {"speedup", c.speedup(p)},
+                                   {"fullres_share", c.fullres_share(p)},
+                                   {"amdahl_limit", c.amdahl_limit(p)}};
+  }
+  return j;
+}
 
 double mb(std::size_t bytes) { return static_cast<double>(bytes) / (1024.0 * 1024.0); }
 
@@ -72,7 +96,8 @@ int run(const Args& a) {
   if (Status s = image::save_png(a.out, img); !s) return cli::report(s.error());
 
   const render::PassTimes med = render::median_pass_times(times);
-  const render::TargetMemory mem = comp->memory();
+  const render::TargetMemory mem = comp->memory(setup->frame.pipeline);
+  const auto pass = render::pass_names(setup->frame.pipeline);
   rusage ru{};
   ::getrusage(RUSAGE_SELF, &ru);
   nlohmann::json eyes;
@@ -90,25 +115,34 @@ int run(const Args& a) {
                                                {"pixel_size", l.pixel_size}, {"rect", {l.x, l.y, l.w, l.h}}});
     }
   }
-  const nlohmann::json j = {
+  nlohmann::json j = {
       {"scene", setup->scene},
       {"triangles", scene->triangles},
       {"view", scene->view.source},
       {"warnings", scene->warnings},
       {"method", render::method_name(setup->frame.method)},
+      {"pipeline", render::pipeline_name(setup->frame.pipeline)},
       {"size", {comp->width(), comp->height()}},
       {"eyes", eyes},
       {"renderer", comp->renderer()},
       {"frames", a.frames},
-      {"passes_ms", {{"shadow", med.shadow}, {"gbuffer", med.gbuffer}, {"mapping", med.mapping},
+      {"passes_ms", {{"shadow", med.shadow}, {pass[0], med.gbuffer}, {pass[1], med.mapping},
                      {"lighting", med.lighting}, {"inverse", med.inverse}, {"gpu_total", med.gpu_total},
                      {"cpu_frame", med.cpu}}},
       {"targets_mb", {{"gbuffer", mb(mem.gbuffer)}, {"transformed", mb(mem.transformed)}, {"reduced", mb(mem.reduced)},
-                      {"output", mb(mem.output)}, {"shadow", mb(mem.shadow)}, {"total", mb(mem.total())}}},
+                      {"visibility", mb(mem.visibility)}, {"output", mb(mem.output)}, {"shadow", mb(mem.shadow)},
+                      {"total", mb(mem.total())}}},
       {"textures_mb", mb(scene->texture_bytes)},
       {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0},
       {"auto_f", auto_f},
       {"out", a.out}};
+  std::optional<render::PipelineComparison> cmp;
+  if (a.compare_pipelines) {
+    auto c = render::compare_pipelines(*comp, *scene, setup->frame, a.frames);
+    if (!c) return cli::report(c.error());
+    cmp = *c;
+    j["pipelines"] = pipelines_json(*cmp);
+  }
   if (a.json) {
     cli::print_json(j);
   } else {
@@ -120,11 +154,20 @@ int run(const Args& a) {
       std::printf("  %-5s %s  buffer %dx%d  shaded %zu\n", eye_name(e), render::method_name(plan.method), b[0], b[1],
                   plan.shaded_samples());
     }
-    std::printf("  ms (median of %d): shadow %.2f  G-buffer %.2f  mapping %.2f  lighting %.2f  inverse %.2f  GPU total %.2f  CPU frame %.2f\n",
-                a.frames, med.shadow, med.gbuffer, med.mapping, med.lighting, med.inverse,
-                med.gpu_total, med.cpu);
+    std::printf("  %s pipeline, ms (median of %d): shadow %.2f  %s %.2f  %s %.2f  lighting %.2f  inverse %.2f  GPU total %.2f  CPU frame %.2f\n",
+                render::pipeline_name(setup->frame.pipeline), a.frames, med.shadow, pass[0], med.gbuffer, pass[1], med.mapping,
+                med.lighting, med.inverse, med.gpu_total, med.cpu);
     std::printf("  render targets %.1f MB, textures %.1f MB, peak RSS %.0f MB\n", mb(mem.total()), mb(scene->texture_bytes),
                 static_cast<double>(ru.ru_maxrss) / 1024.0);
+    if (cmp)
+      for (render::Pipeline p : render::all_pipelines()) {
+        const render::PassTimes& t = cmp->foveated[static_cast<std::size_t>(p)];
+        const auto n = render::pass_names(p);
+        std::printf("  %-10s full %.1f ms, %s %.1f ms: %s %.1f  %s %.1f  lighting %.1f; %.2fx the faster full, Amdahl limit %.2fx\n",
+                    render::pipeline_name(p), cmp->full[static_cast<std::size_t>(p)].gpu_total,
+                    render::method_name(setup->frame.method), t.gpu_total, n[0], t.gbuffer, n[1], t.mapping, t.lighting,
+                    cmp->speedup(p), cmp->amdahl_limit(p));
+      }
   }
   return cli::kExitOk;
 }
@@ -139,6 +182,9 @@ void add_render(CLI::App& app, int& exit_code) {
   sub->add_option("--frames", args->frames, "Timed frames (the median is reported)")->capture_default_str();
   sub->add_option("--warmup", args->warmup, "Untimed frames first")->capture_default_str()->check(CLI::Range(0, 1000));
   sub->add_flag("--json", args->json, "Print sizes, per-pass milliseconds and memory as JSON");
+  sub->add_flag("--compare-pipelines", args->compare_pipelines,
+                "Also time full and the frame through both pipelines (--frames each, interleaved): per pass, the speedup "
+                "against the faster full pipeline, the Amdahl limit");
   sub->callback([args, &exit_code] { exit_code = run(*args); });
 }
 

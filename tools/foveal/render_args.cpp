@@ -15,6 +15,9 @@ void add_render_options(CLI::App& sub, RenderArgs& a) {
   sub.add_option("--method", a.method, "One of " + render::method_names_joined(", ") + " (full: the reference)")
       ->check(CLI::IsMember(render::method_names()))
       ->capture_default_str();
+  sub.add_option("--pipeline", a.pipeline, "gbuffer or visibility: how surface samples are made (docs/rmfr.md, \"Pipelines\")")
+      ->check(CLI::IsMember(render::pipeline_names()))
+      ->capture_default_str();
   sub.add_option("--sigma-d", a.sigma_d, "RMFR level of the dominant eye (>= 1)")->capture_default_str();
   sub.add_option("--sigma-nd", a.sigma_nd, "RMFR level of the other eye (>= sigma-d)")->capture_default_str();
   sub.add_option("--dominant", a.dominant, "Dominant eye")->check(CLI::IsMember({"left", "right"}))->capture_default_str();
@@ -43,7 +46,10 @@ Result<RenderSetup> resolve(const RenderArgs& a) {
   if (!(a.kfr_alpha > 0)) return bad_input("--kfr-alpha must be > 0");
   if (!(a.layer_scale >= 0)) return bad_input("--layer-scale must be >= 0");
   const Eye dominant = a.dominant == "left" ? Eye::left : Eye::right;
+  auto pipeline = render::parse_pipeline(a.pipeline);
+  if (!pipeline) return Error{pipeline.error().kind, "--pipeline: " + pipeline.error().message};
   s.frame = render::efr_frame(*method, dominant, a.sigma_d, a.sigma_nd, a.fx, a.fy);
+  s.frame.pipeline = *pipeline;
   for (auto& e : s.frame.eyes) e.kfr_alpha = a.kfr_alpha, e.layer_scale = a.layer_scale;
   s.auto_f = a.f == "auto";
   const std::pair<const std::string*, const char*> foveae[2] = {{&a.fovea_left, "--fovea-left"}, {&a.fovea_right, "--fovea-right"}};

@@ -170,6 +170,7 @@ Status DaemonApp::setup_renderer() {
   RenderOptions ro;
   ro.scene = o_.scene;
   ro.method = o_.method;
+  ro.pipeline = o_.pipeline;
   ro.save_every = o_.save_every;
   ro.output.title = "foveald";
   ro.output.monitor = o_.monitor;

@@ -25,6 +25,9 @@ Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions
   auto method = render::parse_method(o.method);
   if (!method) return method.error();
   r->method_ = *method;
+  auto pipeline = render::parse_pipeline(o.pipeline);
+  if (!pipeline) return Error{pipeline.error().kind, "--pipeline: " + pipeline.error().message};
+  r->pipeline_ = *pipeline;
   auto output = render::open_output(o.output);
   if (!output) return output.error();
   r->output_ = std::move(*output);
@@ -60,6 +63,7 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
                              const PoseAt& head) {
   const Eye dominant = s.dominant_eye == 0 ? Eye::left : Eye::right;
   render::FrameParams p = render::efr_frame(method_, dominant, s.sigma_d, s.sigma_nd, s.f_x, s.f_y);
+  p.pipeline = pipeline_;
   p.ipd_mm = s.ipd_mm;
   if (head.valid) p.head = head.relative;
   for (Eye e : kEyes) {
@@ -199,6 +203,7 @@ nlohmann::json FrameRenderer::stats_json() const {
   return {{"frames", snap_.frames},
           {"scene", scene_name_},
           {"method", render::method_name(method_)},
+          {"pipeline", render::pipeline_name(pipeline_)},
           {"size", size_},
           {"renderer", renderer_name_},
           {"output", snap_.output},

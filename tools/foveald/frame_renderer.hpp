@@ -25,6 +25,7 @@ namespace foveal::daemon {
 struct RenderOptions {
   std::string scene;              ///< glTF path or pattern:NAME
   std::string method = "rmfr";
+  std::string pipeline = "gbuffer";  ///< gbuffer or visibility (docs/rmfr.md)
   int width = 0, height = 0;      ///< 0: the display model's side-by-side size
   int save_every = 0;             ///< also save every Nth frame (0: first and last only)
   render::OutputOptions output;   ///< headless, window or direct mode
@@ -86,6 +87,7 @@ class FrameRenderer {
   std::optional<render::Scene> scene_;
   std::optional<render::Compositor> comp_;
   render::Method method_ = render::Method::rmfr;
+  render::Pipeline pipeline_ = render::Pipeline::gbuffer;
   std::mutex csv_mutex_;  ///< frames.csv: written by render(), committed by finish() or abandon()
   std::optional<AtomicFile> csv_;
   bool csv_closed_ = false;

@@ -47,6 +47,8 @@ int main(int argc, char** argv) {
   app.add_option("--frames", o.frames, "Stop after this many frames (default: when the replay ends)");
   app.add_option("--fps", o.fps, "Headless frame rate (default: as fast as the renderer goes)")->check(CLI::Range(0.0, 1000.0));
   app.add_option("--scene", o.scene, "glTF file or pattern:NAME (default: the bundled Dungeon)");
+  app.add_option("--pipeline", o.pipeline, "gbuffer or visibility (docs/rmfr.md, \"Pipelines\")")
+      ->check(CLI::IsMember(foveal::render::pipeline_names()))->capture_default_str();
   app.add_option("--method", o.method, "One of " + foveal::render::method_names_joined(", "))
       ->check(CLI::IsMember(foveal::render::method_names()))->capture_default_str();
   app.add_option("--size", o.size, "Side-by-side output WxH (default: the display model's, 2880x1600)");

@@ -13,7 +13,9 @@
 #include "foveal/render/scene.hpp"
 #include "foveal/render/stereo_camera.hpp"
 #include "foveal/rmfr.hpp"
+#include "pass_uniforms.hpp"
 #include "render_targets.hpp"
+#include "visibility_pipeline.hpp"
 
 namespace foveal::render {
 
@@ -50,6 +52,29 @@ Result<Camera> frame_camera(const FrameParams& p, const DisplayModel& model) {
 
 }  // namespace
 
+const std::vector<Pipeline>& all_pipelines() {
+  static const std::vector<Pipeline> p = {Pipeline::gbuffer, Pipeline::visibility};
+  return p;
+}
+
+const char* pipeline_name(Pipeline p) { return p == Pipeline::visibility ? "visibility" : "gbuffer"; }
+
+const std::vector<std::string>& pipeline_names() {
+  static const std::vector<std::string> n = {"gbuffer", "visibility"};
+  return n;
+}
+
+Result<Pipeline> parse_pipeline(const std::string& s) {
+  for (Pipeline p : all_pipelines())
+    if (s == pipeline_name(p)) return p;
+  return bad_input("unknown pipeline '" + s + "' (gbuffer, visibility)");
+}
+
+std::array<const char*, 2> pass_names(Pipeline p) {
+  if (p == Pipeline::visibility) return {"visibility", "material"};
+  return {"gbuffer", "mapping"};
+}
+
 PassTimes median_pass_times(const std::vector<PassTimes>& frames) {
   PassTimes m;
   if (frames.empty()) return m;
@@ -64,6 +89,7 @@ PassTimes median_pass_times(const std::vector<PassTimes>& frames) {
                                &PassTimes::inverse, &PassTimes::gpu_total, &PassTimes::cpu})
     m.*f = median(f);
   m.shaded_samples = frames.back().shaded_samples;
+  m.pipeline = frames.back().pipeline;
   return m;
 }
 
@@ -71,29 +97,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-GLint loc(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
-void set(GLuint p, const char* n, int v) { glProgramUniform1i(p, loc(p, n), v); }
-void set(GLuint p, const char* n, float v) { glProgramUniform1f(p, loc(p, n), v); }
-void set(GLuint p, const char* n, glm::vec2 v) { glProgramUniform2f(p, loc(p, n), v.x, v.y); }
-void set(GLuint p, const char* n, glm::ivec2 v) { glProgramUniform2i(p, loc(p, n), v.x, v.y); }
-void set(GLuint p, const char* n, glm::vec3 v) { glProgramUniform3f(p, loc(p, n), v.x, v.y, v.z); }
-void set(GLuint p, const char* n, glm::vec4 v) { glProgramUniform4f(p, loc(p, n), v.x, v.y, v.z, v.w); }
-void set(GLuint p, const char* n, glm::ivec4 v) { glProgramUniform4i(p, loc(p, n), v.x, v.y, v.z, v.w); }
-void set(GLuint p, const char* n, const glm::mat3& m) { glProgramUniformMatrix3fv(p, loc(p, n), 1, GL_FALSE, glm::value_ptr(m)); }
-void set(GLuint p, const char* n, const glm::mat4& m) { glProgramUniformMatrix4fv(p, loc(p, n), 1, GL_FALSE, glm::value_ptr(m)); }
-
-// Per-slot texture coordinates and KHR_texture_transform matrices, and the spec-gloss
-// factors (shaders/gbuffer.frag).
-void set_texture_uvs(GLuint p, const Material& m) {
-  std::array<glm::mat3, Material::slot_count> matrices;
-  std::array<GLint, Material::slot_count> sets;
-  for (std::size_t i = 0; i < m.uv.size(); ++i) matrices[i] = m.uv[i].matrix, sets[i] = m.uv[i].set;
-  glProgramUniformMatrix3fv(p, loc(p, "u_uv_matrix"), Material::slot_count, GL_FALSE, glm::value_ptr(matrices[0]));
-  glProgramUniform1iv(p, loc(p, "u_uv_set"), Material::slot_count, sets.data());
-  set(p, "u_spec_gloss", m.spec_gloss ? 1 : 0);
-  set(p, "u_specular", m.specular);
-  set(p, "u_glossiness", m.glossiness);
-}
+using detail::set;
 
 // Which pass a GPU timestamp interval belongs to.
 enum class Pass { shadow, gbuffer, mapping, lighting, inverse };
@@ -137,8 +141,41 @@ class PassTimer {
 
 }  // namespace
 
-// The MAPPING variant of the mapping-dependent programs (shaders/common/mapping.glsl).
-// A method without one is an error, never another method's kernel.
+namespace detail {
+
+const Material& material_of(const Scene& scene, int material) {
+  static const Material kDefault{};
+  return material >= 0 ? scene.materials[static_cast<std::size_t>(material)] : kDefault;
+}
+
+void set_material(GLuint p, const Scene& scene, const Material& m) {
+  set(p, "u_base_color", m.base_color);
+  set(p, "u_emissive", m.emissive);
+  set(p, "u_metallic", m.metallic);
+  set(p, "u_roughness", m.roughness);
+  set(p, "u_normal_scale", m.normal_scale);
+  set(p, "u_occlusion_strength", m.occlusion_strength);
+  set(p, "u_alpha_cutoff", m.alpha_cutoff);
+  set(p, "u_unlit", m.unlit ? 1 : 0);
+  set(p, "u_double_sided", m.double_sided ? 1 : 0);
+  set(p, "u_has_tex", glm::ivec4(m.base_color_tex >= 0, m.metal_rough_tex >= 0, m.normal_tex >= 0, m.occlusion_tex >= 0));
+  set(p, "u_has_emissive_tex", m.emissive_tex >= 0 ? 1 : 0);
+  // Per-slot texture coordinates and KHR_texture_transform matrices, the spec-gloss factors.
+  std::array<glm::mat3, Material::slot_count> matrices;
+  std::array<GLint, Material::slot_count> sets;
+  for (std::size_t i = 0; i < m.uv.size(); ++i) matrices[i] = m.uv[i].matrix, sets[i] = m.uv[i].set;
+  glProgramUniformMatrix3fv(p, loc(p, "u_uv_matrix"), Material::slot_count, GL_FALSE, glm::value_ptr(matrices[0]));
+  glProgramUniform1iv(p, loc(p, "u_uv_set"), Material::slot_count, sets.data());
+  set(p, "u_spec_gloss", m.spec_gloss ? 1 : 0);
+  set(p, "u_specular", m.specular);
+  set(p, "u_glossiness", m.glossiness);
+  const int texs[] = {m.base_color_tex, m.metal_rough_tex, m.normal_tex, m.occlusion_tex, m.emissive_tex};
+  for (GLuint unit = 0; unit < 5; ++unit)
+    glBindTextureUnit(unit, texs[unit] >= 0 ? scene.textures[static_cast<std::size_t>(texs[unit])].id() : 0);
+}
+
+}  // namespace detail
+
 Result<std::size_t> mapping_index(const EyePlan& plan) {
   switch (plan.method) {
     case Method::full:
@@ -195,14 +232,15 @@ struct Compositor::Impl {
   int eye_w = 0, eye_h = 0;
   gl::Program gbuffer_prog, pattern_prog, shadow_prog;
   // One per MAPPING (0 RMFR/full, 1 KFR, 2 layers); resolve also with and without the lens.
-  // RMFR maps and resolves through foveal-rmfr, so its map and resolve slots stay empty.
   std::array<gl::Program, 3> map_progs, lighting_progs;
+  // RMFR maps and resolves through foveal-rmfr, so its map and resolve slots stay empty.
   std::array<std::array<gl::Program, 2>, 3> resolve_progs;
   std::optional<rmfr::Foveator> foveator;  // RMFR's mapping and resolve passes
   gl::VertexArray empty_vao;
   gl::Buffer lights_ubo;
-  detail::SurfaceTargets gbuffer;
+  std::optional<detail::SurfaceTargets> gbuffer;  // made by the first G-buffer-pipeline frame
   std::array<std::optional<detail::SurfaceTargets>, 2> transformed;
+  std::optional<detail::VisibilityPipeline> visibility;
   std::array<std::optional<detail::ColorTarget>, 2> reduced;
   detail::ColorTarget output, shadow;
   std::array<EyePlan, 2> plans{};
@@ -216,25 +254,9 @@ struct Compositor::Impl {
     set(p, "u_view_proj", v.view_proj);
     for (const DrawItem& d : scene.draws) {
       const Primitive& prim = scene.primitives[static_cast<std::size_t>(d.primitive)];
-      static const Material kDefault{};
-      const Material& m = prim.material >= 0 ? scene.materials[static_cast<std::size_t>(prim.material)] : kDefault;
       set(p, "u_model", d.world);
       set(p, "u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(d.world))));
-      set(p, "u_base_color", m.base_color);
-      set(p, "u_emissive", m.emissive);
-      set(p, "u_metallic", m.metallic);
-      set(p, "u_roughness", m.roughness);
-      set(p, "u_normal_scale", m.normal_scale);
-      set(p, "u_occlusion_strength", m.occlusion_strength);
-      set(p, "u_alpha_cutoff", m.alpha_cutoff);
-      set(p, "u_unlit", m.unlit ? 1 : 0);
-      set(p, "u_double_sided", m.double_sided ? 1 : 0);
-      set(p, "u_has_tex", glm::ivec4(m.base_color_tex >= 0, m.metal_rough_tex >= 0, m.normal_tex >= 0, m.occlusion_tex >= 0));
-      set(p, "u_has_emissive_tex", m.emissive_tex >= 0 ? 1 : 0);
-      set_texture_uvs(p, m);
-      const int texs[] = {m.base_color_tex, m.metal_rough_tex, m.normal_tex, m.occlusion_tex, m.emissive_tex};
-      for (GLuint unit = 0; unit < 5; ++unit)
-        glBindTextureUnit(unit, texs[unit] >= 0 ? scene.textures[static_cast<std::size_t>(texs[unit])].id() : 0);
+      detail::set_material(p, scene, detail::material_of(scene, prim.material));
       glBindVertexArray(prim.vao.id());
       glDrawElements(GL_TRIANGLES, prim.index_count, GL_UNSIGNED_INT, nullptr);
     }
@@ -284,13 +306,82 @@ struct Compositor::Impl {
 
   // Exact size for single-buffer methods; the layered methods' atlas changes shape with
   // the fovea every frame, so it only grows.
-  void ensure_eye_buffers(std::size_t eye, int w, int h, bool grow_only) {
+  void ensure_transformed(std::size_t eye, int w, int h, bool grow_only) {
     const auto& t = transformed[eye];
-    const bool fits = t && (grow_only ? (t->width >= w && t->height >= h) : (t->width == w && t->height == h));
-    if (fits) return;
-    if (grow_only && t) w = std::max(w, t->width), h = std::max(h, t->height);
-    transformed[eye] = detail::SurfaceTargets::create(w, h, true);
-    reduced[eye] = detail::ColorTarget::create(w, h, reduced_format(), true);
+    if (auto size = detail::realloc_size(t.has_value(), t ? t->width : 0, t ? t->height : 0, w, h, grow_only))
+      transformed[eye] = detail::SurfaceTargets::create(size->first, size->second, true);
+  }
+  void ensure_reduced(std::size_t eye, int w, int h, bool grow_only) {
+    const auto& r = reduced[eye];
+    if (auto size = detail::realloc_size(r.has_value(), r ? r->width : 0, r ? r->height : 0, w, h, grow_only))
+      reduced[eye] = detail::ColorTarget::create(size->first, size->second, reduced_format(), true);
+  }
+
+  Result<const detail::SurfaceTargets*> gbuffer_targets() {
+    if (!gbuffer) {
+      gbuffer = detail::SurfaceTargets::create(eye_w, eye_h, false);
+      if (glCheckNamedFramebufferStatus(gbuffer->fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return Error{ErrorKind::unsupported, "the G-buffer framebuffer is incomplete on this GL implementation"};
+    }
+    return &*gbuffer;
+  }
+
+  // The G-buffer pipeline's surface for one eye: the full-resolution G-buffer, mapped
+  // into the eye's transformed buffer unless the method is full.
+  Result<const detail::SurfaceTargets*> gbuffer_surface(const Scene& scene, const EyeView& view, const EyePlan& plan,
+                                                       std::size_t eye, std::size_t variant,
+                                                       const std::vector<glm::ivec4>& regions) {
+    auto g = gbuffer_targets();
+    if (!g) return g.error();
+    glBindFramebuffer(GL_FRAMEBUFFER, (*g)->fbo.id());
+    glViewport(0, 0, eye_w, eye_h);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glClearColor(0, 0, 0, 0);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (scene.is_pattern()) draw_pattern(scene);
+    else draw_geometry(scene, view);
+    glDisable(GL_DEPTH_TEST);
+    timer.mark(Pass::gbuffer);
+    if (plan.method == Method::full) return *g;
+
+    // Mapping: G-buffer -> reduced G-buffer; RMFR's (also full through the lens) is foveal-rmfr's.
+    ensure_transformed(eye, plan.buffer_w, plan.buffer_h, !plan.layers.empty());
+    const detail::SurfaceTargets& tg = *transformed[eye];
+    if (plan.method == Method::rmfr) {
+      if (Status s = foveator->map(rmfr_plan(plan), (*g)->textures(), tg.fbo.id()); !s) return s.error();
+      timer.mark(Pass::mapping);
+      return &tg;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, tg.fbo.id());
+    const GLuint mp = map_progs[variant].id();
+    glUseProgram(mp);
+    set_mapping(mp, plan, glm::vec2(tg.width, tg.height));
+    (*g)->bind_textures();
+    glBindVertexArray(empty_vao.id());
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+      glViewport(regions[r].x, regions[r].y, regions[r].z, regions[r].w);
+      set(mp, "u_layer", static_cast<int>(r));
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    timer.mark(Pass::mapping);
+    return &tg;
+  }
+
+  // The visibility pipeline's surface for one eye: visibility at full resolution, then
+  // the material at the samples the plan keeps (W×H for full).
+  const detail::SurfaceTargets* visibility_surface(const Scene& scene, const EyeView& view, const EyePlan& plan,
+                                                   std::size_t eye, std::size_t variant,
+                                                   const std::vector<glm::ivec4>& regions) {
+    visibility->visibility_pass(scene, view);
+    timer.mark(Pass::gbuffer);
+    const detail::MaterialSurface& dst = plan.method == Method::full
+                                             ? visibility->full_surface()
+                                             : visibility->eye_surface(eye, plan.buffer_w, plan.buffer_h, !plan.layers.empty());
+    visibility->material_pass(scene, view, plan, variant, regions, dst);
+    timer.mark(Pass::mapping);
+    return &dst.surface;
   }
 };
 
@@ -334,12 +425,13 @@ Result<Compositor> Compositor::create(const CompositorOptions& o, const gl::Shad
   impl->empty_vao = gl::VertexArray::create();
   impl->lights_ubo = gl::Buffer::create();
   glNamedBufferStorage(impl->lights_ubo.id(), sizeof(LightBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  impl->gbuffer = detail::SurfaceTargets::create(impl->eye_w, impl->eye_h, false);
+  auto visibility = detail::VisibilityPipeline::create(shaders, impl->eye_w, impl->eye_h);
+  if (!visibility) return visibility.error();
+  impl->visibility.emplace(std::move(*visibility));
   impl->output = detail::ColorTarget::create(o.width, o.height, o.float_output ? GL_RGBA32F : GL_SRGB8_ALPHA8, false);
   impl->shadow = detail::ColorTarget::create_shadow(o.shadow_map_size);
-  if (glCheckNamedFramebufferStatus(impl->gbuffer.fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE ||
-      glCheckNamedFramebufferStatus(impl->output.fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    return Error{ErrorKind::unsupported, "the G-buffer or output framebuffer is incomplete on this GL implementation"};
+  if (glCheckNamedFramebufferStatus(impl->output.fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    return Error{ErrorKind::unsupported, "the output framebuffer is incomplete on this GL implementation"};
   return Compositor(std::move(impl));
 }
 
@@ -354,6 +446,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
   if (!camera) return camera.error();
   const auto cpu_start = Clock::now();
   PassTimes times;
+  times.pipeline = params.pipeline;
   m.timer.begin_frame();
   m.timer.mark(Pass::shadow);
 
@@ -383,61 +476,41 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     const EyeView view = eye_view(scene, m.opt.model, e, camera->head, camera->ipd_mm);
     const glm::ivec2 eye_origin(static_cast<int>(i) * m.eye_w, 0);
 
-    // G-buffer.
-    glBindFramebuffer(GL_FRAMEBUFFER, m.gbuffer.fbo.id());
-    glViewport(0, 0, m.eye_w, m.eye_h);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glClearColor(0, 0, 0, 0);
-    glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    if (scene.is_pattern()) m.draw_pattern(scene);
-    else m.draw_geometry(scene, view);
-    glDisable(GL_DEPTH_TEST);
-    m.timer.mark(Pass::gbuffer);
-
-    if (plan.method == Method::full) {
-      glBindFramebuffer(GL_FRAMEBUFFER, m.output.fbo.id());
-      glViewport(eye_origin.x, eye_origin.y, m.eye_w, m.eye_h);
-      const GLuint lp = m.lighting_progs[0].id();
-      set_mapping(lp, plan, glm::vec2(m.eye_w, m.eye_h));
-      m.lighting_pass(lp, m.gbuffer, eye_origin, view);
-      m.timer.mark(Pass::lighting);
-      continue;
-    }
-
-    const bool layered = !plan.layers.empty();
-    m.ensure_eye_buffers(i, plan.buffer_w, plan.buffer_h, layered);
-    const detail::SurfaceTargets& tg = *m.transformed[i];
-    const detail::ColorTarget& rs = *m.reduced[i];
-    const glm::vec2 texture_size(tg.width, tg.height);
-    const auto mapping = mapping_index(plan);
-    if (!mapping) return mapping.error();
-    const std::size_t variant = *mapping;
     // The regions each pass draws: the whole buffer, or one per layer of the atlas.
+    const bool layered = !plan.layers.empty();
     std::vector<glm::ivec4> regions;
     if (layered)
       for (const Layer& l : plan.layers) regions.emplace_back(0, l.atlas_y, l.buffer_w, l.buffer_h);
     else
       regions.emplace_back(0, 0, plan.buffer_w, plan.buffer_h);
+    const auto mapping = mapping_index(plan);
+    if (!mapping) return mapping.error();
+    const std::size_t variant = *mapping;
 
-    // Mapping: G-buffer -> reduced G-buffer; RMFR's (also full through the lens) is foveal-rmfr's.
-    if (plan.method == Method::rmfr) {
-      if (Status s = m.foveator->map(rmfr_plan(plan), m.gbuffer.textures(), tg.fbo.id()); !s) return s.error();
+    // The eye's surface samples, through the frame's pipeline.
+    const detail::SurfaceTargets* surface = nullptr;
+    if (params.pipeline == Pipeline::visibility) {
+      surface = m.visibility_surface(scene, view, plan, i, variant, regions);
     } else {
-      glBindFramebuffer(GL_FRAMEBUFFER, tg.fbo.id());
-      const GLuint mp = m.map_progs[variant].id();
-      glUseProgram(mp);
-      set_mapping(mp, plan, texture_size);
-      m.gbuffer.bind_textures();
-      glBindVertexArray(m.empty_vao.id());
-      for (std::size_t r = 0; r < regions.size(); ++r) {
-        glViewport(regions[r].x, regions[r].y, regions[r].z, regions[r].w);
-        set(mp, "u_layer", static_cast<int>(r));
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-      }
+      auto g = m.gbuffer_surface(scene, view, plan, i, variant, regions);
+      if (!g) return g.error();
+      surface = *g;
     }
-    m.timer.mark(Pass::mapping);
+
+    if (plan.method == Method::full) {
+      glBindFramebuffer(GL_FRAMEBUFFER, m.output.fbo.id());
+      glViewport(eye_origin.x, eye_origin.y, m.eye_w, m.eye_h);
+      const GLuint lp = m.lighting_progs[0].id();
+      set_mapping(lp, plan, glm::vec2(surface->width, surface->height));
+      m.lighting_pass(lp, *surface, eye_origin, view);
+      m.timer.mark(Pass::lighting);
+      continue;
+    }
+
+    m.ensure_reduced(i, plan.buffer_w, plan.buffer_h, layered);
+    const detail::SurfaceTargets& tg = *surface;
+    const detail::ColorTarget& rs = *m.reduced[i];
+    const glm::vec2 texture_size(tg.width, tg.height);
 
     // Lighting on the reduced buffer.
     glBindFramebuffer(GL_FRAMEBUFFER, rs.fbo.id());
@@ -524,15 +597,30 @@ std::array<int, 2> Compositor::buffer_size(Eye e) const {
 const EyePlan& Compositor::plan(Eye e) const { return impl_->plans[static_cast<std::size_t>(e)]; }
 
 TargetMemory Compositor::memory() const {
+  TargetMemory t = memory(Pipeline::gbuffer);
+  const TargetMemory v = memory(Pipeline::visibility);
+  t.gbuffer += v.gbuffer;
+  t.transformed += v.transformed;
+  t.visibility = v.visibility;
+  return t;
+}
+
+TargetMemory Compositor::memory(Pipeline p) const {
   const Impl& m = *impl_;
   TargetMemory t;
-  t.gbuffer = m.gbuffer.bytes();
-  for (std::size_t i = 0; i < 2; ++i) {
-    if (m.transformed[i]) t.transformed += m.transformed[i]->bytes();
+  for (std::size_t i = 0; i < 2; ++i)
     if (m.reduced[i]) t.reduced += m.reduced[i]->bytes();
-  }
   t.output = m.output.bytes();
   t.shadow = m.shadow.bytes();
+  if (p == Pipeline::visibility) {
+    t.visibility = m.visibility->visibility_bytes();
+    t.transformed = m.visibility->eye_surface_bytes();
+    t.gbuffer = m.visibility->full_surface_bytes();
+    return t;
+  }
+  t.gbuffer = m.gbuffer ? m.gbuffer->bytes() : 0;
+  for (std::size_t i = 0; i < 2; ++i)
+    if (m.transformed[i]) t.transformed += m.transformed[i]->bytes();
   return t;
 }
 

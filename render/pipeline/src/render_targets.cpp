@@ -76,4 +76,28 @@ ColorTarget ColorTarget::create_shadow(int size) {
   return c;
 }
 
+VisibilityTarget VisibilityTarget::create(int width, int height) {
+  VisibilityTarget v;
+  v.width = width;
+  v.height = height;
+  v.ids = gl::make_texture_2d(GL_RG32UI, width, height);
+  v.depth = gl::make_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
+  nearest_clamped(v.ids.id());
+  nearest_clamped(v.depth.id());
+  v.fbo = gl::Framebuffer::create();
+  glNamedFramebufferTexture(v.fbo.id(), GL_COLOR_ATTACHMENT0, v.ids.id(), 0);
+  glNamedFramebufferTexture(v.fbo.id(), GL_DEPTH_ATTACHMENT, v.depth.id(), 0);
+  glNamedFramebufferDrawBuffer(v.fbo.id(), GL_COLOR_ATTACHMENT0);
+  return v;
+}
+
+MaterialSurface MaterialSurface::create(int width, int height) {
+  MaterialSurface m;
+  m.surface = SurfaceTargets::create(width, height, true);
+  m.material_depth = gl::make_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
+  nearest_clamped(m.material_depth.id());
+  glNamedFramebufferTexture(m.surface.fbo.id(), GL_DEPTH_ATTACHMENT, m.material_depth.id(), 0);
+  return m;
+}
+
 }  // namespace foveal::render::detail

@@ -25,13 +25,28 @@ class UploadSink : public GltfSink {
   int add_texture(const GltfTexture& t) override {
     s_.textures.push_back(upload_rgba8(t.rgba, t.width, t.height, t.srgb, wrap_mode(t.wrap_s), wrap_mode(t.wrap_t),
                                        &s_.texture_bytes));
+    s_.isotropic_samplers.push_back(isotropic_sampler(wrap_mode(t.wrap_s), wrap_mode(t.wrap_t)));
     return static_cast<int>(s_.textures.size()) - 1;
   }
 
   int add_primitive(const std::vector<GltfVertex>& v, const std::vector<std::uint32_t>& idx, int material) override {
-    s_.primitives.push_back(upload_primitive(v, idx, material));
+    Primitive p = upload_primitive(v, idx, material);
+    p.first_index = static_cast<std::uint32_t>(all_indices.size());
+    p.base_vertex = static_cast<std::uint32_t>(all_vertices.size());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const glm::vec3 q(v[i].position[0], v[i].position[1], v[i].position[2]);
+      p.local_bounds.min = i ? glm::min(p.local_bounds.min, q) : q;
+      p.local_bounds.max = i ? glm::max(p.local_bounds.max, q) : q;
+    }
+    all_vertices.insert(all_vertices.end(), v.begin(), v.end());
+    all_indices.insert(all_indices.end(), idx.begin(), idx.end());
+    s_.primitives.push_back(std::move(p));
     return static_cast<int>(s_.primitives.size()) - 1;
   }
+
+  // Every primitive's data, concatenated for SceneGeometry.
+  std::vector<GltfVertex> all_vertices;
+  std::vector<std::uint32_t> all_indices;
 
  private:
   Scene& s_;
@@ -55,6 +70,7 @@ Result<Scene> load_gltf_scene(const std::string& path) {
   scene.view = std::move(loaded->view);
   scene.triangles = loaded->triangles;
   scene.warnings = std::move(loaded->warnings);
+  upload_geometry(scene, sink.all_vertices, sink.all_indices);
   return scene;
 }
 

@@ -1,5 +1,8 @@
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+
+#include <glm/matrix.hpp>
 
 #include "scene_internal.hpp"
 
@@ -29,6 +32,43 @@ Primitive upload_primitive(const std::vector<GltfVertex>& vertices, const std::v
   p.index_count = static_cast<int>(indices.size());
   p.material = material;
   return p;
+}
+
+void upload_geometry(Scene& scene, const std::vector<GltfVertex>& vertices, const std::vector<std::uint32_t>& indices) {
+  auto storage = [](const auto& v) {
+    gl::Buffer b = gl::Buffer::create();
+    // A zero-sized store is an error: keep one element so the binding is valid.
+    const std::size_t bytes = std::max<std::size_t>(v.size() * sizeof(v[0]), 16);
+    std::vector<std::uint8_t> data(bytes, 0);
+    if (!v.empty()) std::memcpy(data.data(), v.data(), v.size() * sizeof(v[0]));
+    glNamedBufferStorage(b.id(), static_cast<GLsizeiptr>(bytes), data.data(), 0);
+    return b;
+  };
+  std::vector<DrawRecord> records;
+  records.reserve(scene.draws.size());
+  for (const DrawItem& d : scene.draws) {
+    const Primitive& p = scene.primitives[static_cast<std::size_t>(d.primitive)];
+    DrawRecord r;
+    r.model = d.world;
+    const glm::mat3 n = glm::mat3(glm::transpose(glm::inverse(d.world)));  // as the G-buffer pass
+    for (int c = 0; c < 3; ++c) r.normal_matrix[c] = glm::vec4(n[c], 0.0f);
+    r.first_index = p.first_index;
+    r.base_vertex = p.base_vertex;
+    r.material = p.material >= 0 ? static_cast<std::uint32_t>(p.material) : static_cast<std::uint32_t>(scene.materials.size());
+    records.push_back(r);
+  }
+  scene.geometry.vertices = storage(vertices);
+  scene.geometry.indices = storage(indices);
+  scene.geometry.draws = storage(records);
+}
+
+gl::Sampler isotropic_sampler(GLenum wrap_s, GLenum wrap_t) {
+  gl::Sampler s = gl::Sampler::create();
+  glSamplerParameteri(s.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glSamplerParameteri(s.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glSamplerParameteri(s.id(), GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap_s));
+  glSamplerParameteri(s.id(), GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap_t));
+  return s;
 }
 
 gl::Texture upload_rgba8(const std::uint8_t* rgba, int width, int height, bool srgb, GLenum wrap_s, GLenum wrap_t,

@@ -12,6 +12,13 @@ namespace foveal::render::detail {
 Primitive upload_primitive(const std::vector<GltfVertex>& vertices, const std::vector<std::uint32_t>& indices, int material);
 
 /// An RGBA8 texture with a full mip chain, trilinear and anisotropic filtering.
+/// The concatenated vertex and index buffers and the draw records of `scene`
+/// (SceneGeometry); its primitives' first_index and base_vertex already set.
+void upload_geometry(Scene& scene, const std::vector<GltfVertex>& vertices, const std::vector<std::uint32_t>& indices);
+
+/// Trilinear filtering with these wrap modes and no anisotropy (Scene::isotropic_samplers).
+gl::Sampler isotropic_sampler(GLenum wrap_s, GLenum wrap_t);
+
 gl::Texture upload_rgba8(const std::uint8_t* rgba, int width, int height, bool srgb, GLenum wrap_s, GLenum wrap_t,
                          std::size_t* bytes);
 

@@ -24,9 +24,25 @@ namespace foveal::render {
 
 struct Scene;
 
+/// How an eye's surface samples are made (docs/rmfr.md, "Pipelines"):
+/// - gbuffer: a full-resolution G-buffer pass evaluates every material at every pixel;
+///   the foveation method's mapping pass then picks the samples it keeps.
+/// - visibility: a full-resolution visibility pass keeps only depth and (draw, triangle)
+///   per pixel; the material pass evaluates the material at the kept samples only,
+///   filtering textures over each sample's footprint.
+/// Lighting and resolve are the same in both.
+enum class Pipeline { gbuffer, visibility };
+const char* pipeline_name(Pipeline p);
+/// "gbuffer" or "visibility"; bad_input otherwise.
+Result<Pipeline> parse_pipeline(const std::string& s);
+/// Both, gbuffer first, and their names in the same order.
+const std::vector<Pipeline>& all_pipelines();
+const std::vector<std::string>& pipeline_names();
+
 // Method and EyeFoveation: foveal/image/foveation_plan.hpp.
 struct FrameParams {
   Method method = Method::rmfr;
+  Pipeline pipeline = Pipeline::gbuffer;
   std::array<EyeFoveation, 2> eyes{};  ///< indexed by Eye
   /// The head's pose relative to where the scene's view puts it (docs/scenes.md,
   /// "Camera"): the camera is the scene's head_to_world composed with this pose, the
@@ -44,12 +60,19 @@ struct FrameParams {
 FrameParams efr_frame(Method method, Eye dominant, double sigma_d, double sigma_nd, double fx, double fy);
 
 /// Milliseconds per pass, both eyes summed (the rows of the RMFR paper's Table 3).
+/// In the visibility pipeline `gbuffer` is the full-resolution visibility pass and
+/// `mapping` the material pass (pass_names says which).
 struct PassTimes {
+  Pipeline pipeline = Pipeline::gbuffer;
   double shadow = 0, gbuffer = 0, mapping = 0, lighting = 0, inverse = 0;
   double gpu_total = 0;  ///< first to last GPU timestamp of the frame
   double cpu = 0;        ///< wall time of render() including the wait for the GPU
   std::size_t shaded_samples = 0;  ///< lighting-pass samples, both eyes
 };
+
+/// The names of the passes timed in `gbuffer` and `mapping` for a pipeline:
+/// {"gbuffer", "mapping"} or {"visibility", "material"}.
+std::array<const char*, 2> pass_names(Pipeline p);
 
 /// Per-field median of several frames' times (the mean of the middle two for an even
 /// count; all zero for none).
@@ -64,10 +87,12 @@ struct CompositorOptions {
   bool distortion = true;  ///< apply the display model's lens distortion, if it has one
 };
 
-/// Bytes held by the render targets right now.
+/// Bytes held by the render targets right now. `visibility`: the visibility pipeline's
+/// id and depth target; its material surfaces count as `transformed` (W×H ones for full
+/// as `gbuffer`).
 struct TargetMemory {
-  std::size_t gbuffer = 0, transformed = 0, reduced = 0, output = 0, shadow = 0;
-  std::size_t total() const { return gbuffer + transformed + reduced + output + shadow; }
+  std::size_t gbuffer = 0, transformed = 0, reduced = 0, output = 0, shadow = 0, visibility = 0;
+  std::size_t total() const { return gbuffer + transformed + reduced + output + shadow + visibility; }
 };
 
 class Compositor {
@@ -97,6 +122,9 @@ class Compositor {
   /// The plan each eye was rendered with in the last frame.
   const EyePlan& plan(Eye e) const;
   TargetMemory memory() const;
+  /// The targets one pipeline's frames use (those held now; a pipeline not used yet
+  /// holds only the shared output and shadow map).
+  TargetMemory memory(Pipeline p) const;
   /// "vendor / renderer / version".
   std::string renderer() const;
 

@@ -2,6 +2,7 @@
 // What the compositor draws: GPU meshes and materials from a glTF 2.0 file, or one of
 // the built-in screen-space patterns (`pattern:NAME`). Loading needs a current GL
 // context; a Scene must be destroyed while it is current. Not thread-safe.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,7 +24,27 @@ struct Primitive {
   gl::Buffer vertices, indices;
   int index_count = 0;
   int material = -1;
+  /// Where its indices and vertices start in SceneGeometry's buffers.
+  std::uint32_t first_index = 0, base_vertex = 0;
+  Bounds local_bounds;  ///< of its vertex positions, in its own space
 };
+
+/// Every primitive's vertices (GltfVertex, interleaved) and indices concatenated into
+/// shader storage buffers, and one record per DrawItem (DrawRecord): what the visibility
+/// pipeline's material pass fetches a triangle from (shaders/common/visibility_geometry.glsl).
+struct SceneGeometry {
+  gl::Buffer vertices, indices, draws;
+};
+
+/// One DrawItem as the shaders read it (std430; the layout of visibility_geometry.glsl).
+struct DrawRecord {
+  glm::mat4 model{1.0f};
+  glm::vec4 normal_matrix[3]{};  ///< columns of transpose(inverse(mat3(model)))
+  std::uint32_t first_index = 0, base_vertex = 0;
+  std::uint32_t material = 0;  ///< index into Scene::materials; materials.size(): the default
+  std::uint32_t pad = 0;
+};
+static_assert(sizeof(DrawRecord) == 128, "std430 layout of DrawRecord");
 
 /// Built-in test patterns, drawn in each eye's screen space (the camera plays no part).
 struct Pattern {
@@ -36,9 +57,14 @@ struct Pattern {
 struct Scene {
   std::string name;  ///< file name or pattern spec
   std::vector<gl::Texture> textures;
+  /// Per texture: its wrap modes and trilinear filtering without anisotropy, for the
+  /// visibility pipeline's material pass, which chooses texture levels itself (the
+  /// textures' own 8× anisotropy would take the full-screen pass's implicit derivatives).
+  std::vector<gl::Sampler> isotropic_samplers;
   std::vector<Material> materials;
   std::vector<Primitive> primitives;
   std::vector<DrawItem> draws;
+  SceneGeometry geometry;  ///< glTF scenes; empty for patterns
   Bounds bounds;
   ViewPose view;
   std::size_t triangles = 0;

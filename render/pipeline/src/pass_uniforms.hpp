@@ -1,0 +1,48 @@
+#pragma once
+// Uniform setters shared by the compositor's passes (compositor.cpp) and the visibility
+// pipeline (visibility_pipeline.cpp).
+#include <cstddef>
+
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+
+#include "foveal/core/error.hpp"
+#include "foveal/image/foveation_plan.hpp"
+#include "foveal/render/gl.hpp"
+#include "foveal/render/scene_types.hpp"
+
+namespace foveal::render {
+
+struct Scene;
+
+namespace detail {
+
+inline GLint loc(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
+inline void set(GLuint p, const char* n, int v) { glProgramUniform1i(p, loc(p, n), v); }
+inline void set(GLuint p, const char* n, unsigned v) { glProgramUniform1ui(p, loc(p, n), v); }
+inline void set(GLuint p, const char* n, float v) { glProgramUniform1f(p, loc(p, n), v); }
+inline void set(GLuint p, const char* n, glm::vec2 v) { glProgramUniform2f(p, loc(p, n), v.x, v.y); }
+inline void set(GLuint p, const char* n, glm::ivec2 v) { glProgramUniform2i(p, loc(p, n), v.x, v.y); }
+inline void set(GLuint p, const char* n, glm::vec3 v) { glProgramUniform3f(p, loc(p, n), v.x, v.y, v.z); }
+inline void set(GLuint p, const char* n, glm::vec4 v) { glProgramUniform4f(p, loc(p, n), v.x, v.y, v.z, v.w); }
+inline void set(GLuint p, const char* n, glm::ivec4 v) { glProgramUniform4i(p, loc(p, n), v.x, v.y, v.z, v.w); }
+inline void set(GLuint p, const char* n, const glm::mat3& m) { glProgramUniformMatrix3fv(p, loc(p, n), 1, GL_FALSE, glm::value_ptr(m)); }
+inline void set(GLuint p, const char* n, const glm::mat4& m) { glProgramUniformMatrix4fv(p, loc(p, n), 1, GL_FALSE, glm::value_ptr(m)); }
+
+/// The material's uniforms of shaders/common/material.glsl, and its textures on units 0-4.
+void set_material(GLuint program, const Scene& scene, const Material& m);
+
+/// The material of a primitive (the default one for -1).
+const Material& material_of(const Scene& scene, int material);
+
+}  // namespace detail
+
+/// The MAPPING variant of the mapping-dependent programs (shaders/common/mapping.glsl).
+/// A method without one is an error, never another method's kernel.
+Result<std::size_t> mapping_index(const EyePlan& plan);
+
+/// The mapping uniforms of shaders/common/mapping.glsl for one eye's plan.
+void set_mapping(GLuint p, const EyePlan& plan, glm::vec2 texture_size);
+
+}  // namespace foveal::render
