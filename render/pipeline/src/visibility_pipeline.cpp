@@ -82,7 +82,7 @@ std::vector<std::optional<TexelRect>> material_rects(const Scene& scene, const g
       continue;
     }
     auto to_buffer = [&](double p, int axis, int size) {
-      const double u = image::rmfr_forward(std::clamp(p, 0.0, 1.0), plan.fovea[axis], f[axis]);
+      const double u = rmfr::rmfr_forward(std::clamp(p, 0.0, 1.0), plan.fovea[axis], f[axis]);
       return u * size;
     };
     TexelRect r;
