@@ -151,6 +151,7 @@ TEST(FoveationPlan, UniformIsRmfrsBufferWithTheIdentityMap) {
       // The identity map: every screen position lands on itself in the buffer.
       for (double q : {0.0, 0.1, 0.37, 0.5, 0.9, 1.0}) EXPECT_DOUBLE_EQ(image::rmfr_forward(q, u->fovea.x, u->f.x), q);
       EXPECT_TRUE(u->layers.empty());
+      EXPECT_EQ(u->fovea, optical_centre(kVive));  // whatever the gaze
     }
   EXPECT_FALSE(follows_gaze(Method::uniform));
 }

@@ -186,10 +186,10 @@ Result<EyePlan> plan_eye(Method m, const EyeFoveation& e, int W, int H, const Ey
   switch (m) {
     case Method::full: break;
     case Method::fixed:
+    case Method::uniform:  // no fovea: pinned too, so that the plan does not depend on the gaze
       p.fovea = optical_centre(frustum);
       [[fallthrough]];
     case Method::rmfr:
-    case Method::uniform:
       p.buffer_w = image::rmfr_buffer_size(W, e.sigma), p.buffer_h = image::rmfr_buffer_size(H, e.sigma);
       // uniform: RMFR's buffer with the identity map, an even grid that the resolve upsamples.
       p.f = m == Method::uniform ? glm::dvec2(image::kRmfrIdentityF)
