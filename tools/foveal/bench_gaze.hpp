@@ -20,7 +20,7 @@ struct GazeBenchOptions {
   double fps = 90, latency_ms = -1, start_s = 1.0;
   int frames = 24;
   double efr_ratio = 1.5;         ///< σ_nd / σ_d (dominant right eye)
-  double patch_deg = 5.0, patch_bound_db = 30.0;
+  double patch_deg = 5.0, patch_margin_db = 3.0;
   const CLI::Option* size_option = nullptr;  ///< the bench's --size: given or not
 };
 
