@@ -156,6 +156,15 @@ TEST(BaselinesCli, FixedAndUniformIgnoreTheGazeAndShadeRmfrsSamples) {
     EXPECT_EQ(uniform["eyes"][eye]["shaded_samples"], rmfr["eyes"][eye]["shaded_samples"]) << eye;
   }
   EXPECT_NEAR(rmfr["eyes"]["left"]["fovea"][0].get<double>(), 0.1, 1e-9);
+  // foveald renders them from its live fovea and reports the fovea each frame used.
+  auto daemon = test::run("XDG_CONFIG_HOME=" + d.path("cfg") + " " + test::bin("foveald") +
+                          " --speed 1 --frames 3 --size 64x36 --scene pattern:checker --method fixed --no-control --no-shm -q --out " +
+                          d.path("daemon"));
+  ASSERT_EQ(daemon.exit_code, 0) << daemon.err;
+  const auto frames = read_csv(test::read_file(d.path("daemon/frames.csv")));
+  ASSERT_EQ(frames.size(), 3u);
+  for (const Row& f : frames)
+    for (const char* k : {"fovea_left_x", "fovea_left_y", "fovea_right_x", "fovea_right_y"}) EXPECT_DOUBLE_EQ(value(f, k), 0.5) << k;
   auto bad = test::run(test::bin("foveal") + " render --method fovea --out " + d.path("x.png"));
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("uniform"), std::string::npos) << bad.err;  // the list of methods names them
