@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <map>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -84,6 +84,40 @@ struct Point {
   bool oracle = false;
   const char* gaze() const { return oracle ? "true" : render::follows_gaze(method) ? "filtered" : "none"; }
 };
+
+// gaze.csv's columns, in order: the keys of a summary row (docs/bench.md).
+const std::vector<std::string> kSummaryColumns = {
+    "scene", "log", "display", "method", "gaze", "sigma_d", "sigma_nd", "shaded_samples", "cost", "gpu_ms", "cpu_ms",
+    "frames", "blink_frames", "fpsnr_mean", "fpsnr_p5", "fpsnr_min", "ssim_mean", "ssim_p5", "ssim_min", "psnr_mean",
+    "patch_psnr_mean", "patch_psnr_p5", "patch_exceed_share", "fovea_error_deg_mean"};
+
+/// One CSV line of `row`'s values in `columns` order; the header line for a null row.
+std::string csv_line(const nlohmann::json& row, const std::vector<std::string>& columns) {
+  std::string line;
+  for (const std::string& c : columns) {
+    if (!line.empty()) line += ",";
+    if (row.is_null()) line += c;
+    else if (row.at(c).is_string()) line += row.at(c).get<std::string>();
+    else if (row.at(c).is_number_integer() || row.at(c).is_number_unsigned()) line += row.at(c).dump();
+    else line += fmt(row.at(c).get<double>());
+  }
+  return line + "\n";
+}
+
+/// A method × level's figures over the frames of one scene and log.
+nlohmann::json summary_row(const Point& p, const Series& se, const render::PassTimes& t, double efr_ratio, double full_samples) {
+  const std::size_t n = se.fpsnr.size();
+  auto lowest = [n](const std::vector<double>& v) { return n ? *std::min_element(v.begin(), v.end()) : NAN; };
+  return {{"method", render::method_name(p.method)}, {"gaze", p.gaze()}, {"sigma_d", p.sigma},
+          {"sigma_nd", p.sigma * efr_ratio}, {"shaded_samples", t.shaded_samples},
+          {"cost", static_cast<double>(t.shaded_samples) / full_samples}, {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu},
+          {"frames", n}, {"fpsnr_mean", jnum(mean(se.fpsnr))}, {"fpsnr_p5", jnum(quantile(se.fpsnr, 0.05))},
+          {"fpsnr_min", jnum(lowest(se.fpsnr))}, {"ssim_mean", jnum(mean(se.ssim))}, {"ssim_p5", jnum(quantile(se.ssim, 0.05))},
+          {"ssim_min", jnum(lowest(se.ssim))}, {"psnr_mean", jnum(mean(se.psnr))}, {"patch_psnr_mean", jnum(mean(se.patch))},
+          {"patch_psnr_p5", jnum(quantile(se.patch, 0.05))},
+          {"patch_exceed_share", jnum(n ? static_cast<double>(se.exceed) / static_cast<double>(n) : NAN)},
+          {"fovea_error_deg_mean", jnum(mean(se.error_deg))}};
+}
 
 class GazeBench {
  public:
@@ -213,17 +247,15 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   }
   std::uint64_t total = s.scenes.size() * points.size();
   for (const LogInput& l : logs) {
-    std::uint64_t frames = 0;
-    for (const GazeFrame& f : l.timeline.frames) frames += f.blink ? 0 : 1 + points.size();
-    total += s.scenes.size() * frames;
+    std::uint64_t renders = l.head_recorded ? 0 : 1;  // the full reference: per frame, or once with a static head
+    for (const GazeFrame& f : l.timeline.frames) renders += f.blink ? 0 : points.size() + (l.head_recorded ? 1 : 0);
+    total += s.scenes.size() * renders;
   }
   cli::Progress progress("bench --gaze", total, !s.json);
   GazeBench bench(g, s, *comp, *model, progress);
   const double full_samples = static_cast<double>(co.width) * co.height;
 
-  std::string csv =
-      "scene,log,display,method,gaze,sigma_d,sigma_nd,shaded_samples,cost,gpu_ms,cpu_ms,frames,blink_frames,fpsnr_mean,fpsnr_p5,"
-      "fpsnr_min,ssim_mean,ssim_p5,ssim_min,psnr_mean,patch_psnr_mean,patch_psnr_p5,patch_exceed_share,fovea_error_deg_mean\n";
+  std::string csv = csv_line(nullptr, kSummaryColumns);
   std::string frames_csv =
       "scene,log,frame,t_render_s,t_display_s,t_sample_s,true_l_x,true_l_y,true_r_x,true_r_y,method,gaze,sigma_d,fovea_l_x,"
       "fovea_l_y,fovea_r_x,fovea_r_y,error_l_deg,error_r_deg,fpsnr_db,ssim,psnr_db,patch_psnr_db,exceeds\n";
@@ -296,30 +328,10 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
         }
       }
       for (std::size_t k = 0; k < points.size(); ++k) {
-        const Point& p = points[k];
-        const Series& se = series[k];
-        const render::PassTimes& t = times[k];
-        const double sigma_nd = p.sigma * g.efr_ratio;
-        const std::size_t n = se.fpsnr.size();
-        const double share = n ? static_cast<double>(se.exceed) / static_cast<double>(n) : NAN;
-        const double fmin = n ? *std::min_element(se.fpsnr.begin(), se.fpsnr.end()) : NAN;
-        const double smin = n ? *std::min_element(se.ssim.begin(), se.ssim.end()) : NAN;
-        const double cost = static_cast<double>(t.shaded_samples) / full_samples;
-        csv += scene_name + "," + log.name + "," + model->name + "," + render::method_name(p.method) + "," + p.gaze() + "," +
-               fmt(p.sigma) + "," +
-               fmt(sigma_nd) + "," + std::to_string(t.shaded_samples) + "," + fmt(cost) + "," + fmt(t.gpu_total) + "," +
-               fmt(t.cpu) + "," + std::to_string(n) + "," + std::to_string(blinks) + "," + fmt(mean(se.fpsnr)) + "," +
-               fmt(quantile(se.fpsnr, 0.05)) + "," + fmt(fmin) + "," + fmt(mean(se.ssim)) + "," + fmt(quantile(se.ssim, 0.05)) +
-               "," + fmt(smin) + "," + fmt(mean(se.psnr)) + "," + fmt(mean(se.patch)) + "," + fmt(quantile(se.patch, 0.05)) +
-               "," + fmt(share) + "," + fmt(mean(se.error_deg)) + "\n";
-        rows.push_back({{"scene", scene_name}, {"log", log.name}, {"method", render::method_name(p.method)}, {"gaze", p.gaze()},
-                        {"sigma_d", p.sigma}, {"sigma_nd", sigma_nd}, {"shaded_samples", t.shaded_samples}, {"cost", cost},
-                        {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu}, {"frames", n}, {"blink_frames", blinks},
-                        {"fpsnr_mean", jnum(mean(se.fpsnr))}, {"fpsnr_p5", jnum(quantile(se.fpsnr, 0.05))},
-                        {"fpsnr_min", jnum(fmin)}, {"ssim_mean", jnum(mean(se.ssim))}, {"ssim_p5", jnum(quantile(se.ssim, 0.05))},
-                        {"ssim_min", jnum(smin)}, {"psnr_mean", jnum(mean(se.psnr))}, {"patch_psnr_mean", jnum(mean(se.patch))},
-                        {"patch_psnr_p5", jnum(quantile(se.patch, 0.05))}, {"patch_exceed_share", jnum(share)},
-                        {"fovea_error_deg_mean", jnum(mean(se.error_deg))}});
+        nlohmann::json row = summary_row(points[k], series[k], times[k], g.efr_ratio, full_samples);
+        row.update({{"scene", scene_name}, {"log", log.name}, {"display", model->name}, {"blink_frames", blinks}});
+        csv += csv_line(row, kSummaryColumns);
+        rows.push_back(std::move(row));
       }
     }
   }
