@@ -124,8 +124,8 @@ Result<Method> parse_method(const std::string& s) {
 }
 
 const std::vector<Method>& all_methods() {
-  static const std::vector<Method> m = {Method::full,       Method::rmfr,   Method::kfr,  Method::hyperbolic,
-                                              Method::linear,     Method::uniform, Method::fixed};
+  static const std::vector<Method> m = {Method::full,   Method::rmfr,    Method::kfr,  Method::hyperbolic,
+                                        Method::linear, Method::uniform, Method::fixed};
   return m;
 }
 
