@@ -70,11 +70,10 @@ def chart(avg, settings, out):
             top.plot(xs, [v["fpsnr_p5"] for _, v in pts], "v--", color=color, alpha=0.6, markersize=3,
                      label=label + " (5th pct.)")
             bottom.plot(xs, [100 * v["patch_exceed_share"] for _, v in pts], "o-", color=color, label=label, markersize=4)
-        top.set_title(f"{scene}: FPSNR at the true gaze against cost")
         top.set_ylabel("FPSNR over frames (dB)")
-        bottom.set_title(f"{scene}: frames whose fovea patch is {settings.get('patch_margin_db', '?')} dB "
-                         "or more below perfect tracking's")
+        bottom.set_title(f"{scene}: fovea patch > {settings.get('patch_margin_db', '?')} dB below perfect tracking")
         bottom.set_ylabel("share of frames (%)")
+        top.set_title(f"{scene}: FPSNR at the true gaze against cost", fontsize=10)
         for ax in (top, bottom):
             ax.set_xlabel("shaded samples / full (theoretical cost)")
             ax.grid(alpha=0.3)
