@@ -185,20 +185,20 @@ void add_gaze_bench_options(CLI::App& sub, GazeBenchOptions& g) {
   g.size_option = sub.get_option_no_throw("--size");
   CLI::Option* gaze = sub.add_option("--gaze", g.logs, "Gaze-driven evaluation on these native gaze logs (repeatable; docs/bench.md): "
                                    "gaze.csv, gaze_frames.csv, gaze.json, gaze.png");
-  sub.add_option("--head", g.head, "--gaze: recorded (the log's head pose moves the camera) or static; default: recorded when the log has one")
+  sub.add_option("--head", g.head, "Recorded (the log's head pose moves the camera) or static; default: recorded when the log has one")
       ->check(CLI::IsMember({"recorded", "static"}))->needs(gaze);
-  sub.add_option("--display", g.display, "--gaze: display-model file or name under data/display (default: htc_vive_pro_eye); "
+  sub.add_option("--display", g.display, "Display-model file or name under data/display (default: htc_vive_pro_eye); "
                                          "the size follows it unless --size is given")->needs(gaze);
-  sub.add_option("--gaze-fps", g.fps, "--gaze: frame rate of the rendered stream (Hz)")->capture_default_str()->needs(gaze);
-  sub.add_option("--latency-ms", g.latency_ms, "--gaze: frame start to display (ms); default one frame period")->needs(gaze);
-  sub.add_option("--gaze-start", g.start_s, "--gaze: first frame this many seconds into the log")->capture_default_str()->needs(gaze);
-  sub.add_option("--gaze-frames", g.frames, "--gaze: frames scored per log, spread evenly over it")->capture_default_str()->needs(gaze);
-  sub.add_option("--efr-ratio", g.efr_ratio, "--gaze: non-dominant (left) eye's level over the dominant's")
+  sub.add_option("--gaze-fps", g.fps, "Frame rate of the rendered stream (Hz)")->capture_default_str()->needs(gaze);
+  sub.add_option("--latency-ms", g.latency_ms, "Frame start to display (ms); default one frame period")->needs(gaze);
+  sub.add_option("--gaze-start", g.start_s, "First frame this many seconds into the log")->capture_default_str()->needs(gaze);
+  sub.add_option("--gaze-frames", g.frames, "Frames scored per log, spread evenly over it")->capture_default_str()->needs(gaze);
+  sub.add_option("--efr-ratio", g.efr_ratio, "Non-dominant (left) eye's level over the dominant's")
       ->capture_default_str()->check(CLI::Range(1.0, 4.0))->needs(gaze);
-  sub.add_option("--patch-deg", g.patch_deg, "--gaze: side of the fovea patch around the true gaze (degrees)")
+  sub.add_option("--patch-deg", g.patch_deg, "Side of the fovea patch around the true gaze (degrees)")
       ->capture_default_str()->check(CLI::Range(0.1, 60.0))->needs(gaze);
   sub.add_option("--patch-margin-db", g.patch_margin_db,
-                 "--gaze: a frame's fovea patch is in error when its PSNR is this far below perfect tracking's (dB)")
+                 "A frame's fovea patch is in error when its PSNR is this far below perfect tracking's (dB)")
       ->capture_default_str()->check(CLI::Range(0.0, 100.0))->needs(gaze);
 }
 
