@@ -58,7 +58,7 @@ def averaged(rows):
 
 def chart(avg, settings, out):
     scenes = sorted({k[0] for k in avg})
-    fig, axes = plt.subplots(2, len(scenes), figsize=(6 * len(scenes), 8), squeeze=False)
+    fig, axes = plt.subplots(2, len(scenes), figsize=(max(6 * len(scenes), 9), 8), squeeze=False)
     for col, scene in enumerate(scenes):
         top, bottom = axes[0][col], axes[1][col]
         for method, (color, label) in STYLE.items():
@@ -81,7 +81,7 @@ def chart(avg, settings, out):
         bottom.legend(fontsize=7)
     fig.suptitle(f"Gaze-driven evaluation: {settings.get('display', '?')} {settings.get('size', ['?', '?'])[0]}x"
                  f"{settings.get('size', ['?', '?'])[1]}, {settings.get('fps', '?')} Hz, latency "
-                 f"{settings.get('latency_ms', 0):.1f} ms, logs: {', '.join(l['name'] for l in settings.get('logs', []))}")
+                 f"{settings.get('latency_ms', 0):.1f} ms\nlogs: {', '.join(l['name'] for l in settings.get('logs', []))}", fontsize=10)
     fig.tight_layout()
     fig.savefig(out, dpi=100)
 
