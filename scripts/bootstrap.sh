@@ -17,6 +17,7 @@ packages=(
   qemu-system-x86 linux-image-amd64 busybox-static cpio kmod  # tests/vm (docs/vm-tests.md)
   xvfb xauth xdotool  # the GLFW window paths, tested on a virtual X server
   clang libclang-rt-14-dev  # libFuzzer targets (scripts/test.sh)
+  slurm-wlm munge  # bench sweeps on Slurm: the one-node cluster test (tests/cluster)
 )
 
 missing=()

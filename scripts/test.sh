@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite, after scripts/bootstrap.sh has built ./build:
-#   1. every test of the normal build (CPU, GL on llvmpipe, VM device tests): ctest
+#   1. every test of the normal build (CPU, GL on llvmpipe, VM device tests, the one-node
+#      Slurm cluster of label `cluster`): ctest
 #   2. the CPU unit tests under ASan + UBSan (build-asan/)
 #   3. the threaded runtime tests under TSan (build-tsan/)
 #   4. every libFuzzer target for a short fixed time on its seed corpus (build-fuzz/)
@@ -23,15 +24,15 @@ cmake -S . -B build-asan -G Ninja "${fast[@]}" -DFOVEAL_SANITIZE=address,undefin
 ninja -C build-asan -j"$jobs" foveal_core_tests foveal_profile_tests foveal_control_tests foveal_exchange_tests \
   foveal_daemon_tests foveal_calibration_tests foveal_filter_tests foveal_hid_tests foveal_usb_tests \
   foveal_image_tests foveal_gltf_tests foveal_probe_tests foveal_quality_tests foveal_quality_cli_tests \
-  foveal_study_tests foveal_fuzz_regressions foveal foveald
+  foveal_study_tests foveal_bench_sweep_tests foveal_fuzz_regressions foveal_client_tests foveal_rmfr_tests foveal foveald
 # foveald's integration tests render through Mesa, whose allocations outlive the process
 # by design: they run in the normal build; every other CPU test runs with leak checks.
 ctest --test-dir build-asan -L cpu -E 'Foveald' --output-on-failure -j"$jobs"
 
 step "TSan: threaded runtime tests"
 cmake -S . -B build-tsan -G Ninja "${fast[@]}" -DFOVEAL_SANITIZE=thread > /dev/null
-ninja -C build-tsan -j"$jobs" foveal_exchange_tests foveal_daemon_tests foveal_control_tests
-ctest --test-dir build-tsan -R 'SeqLock|FoveaShm|PoseTrack|GazeLoop|LatencyHistogram|ControlSocket' --output-on-failure -j"$jobs"
+ninja -C build-tsan -j"$jobs" foveal_exchange_tests foveal_daemon_tests foveal_control_tests foveal_client_tests
+ctest --test-dir build-tsan -R 'SeqLock|FoveaShm|PoseTrack|GazeLoop|LatencyHistogram|ControlSocket|FovealClient' --output-on-failure -j"$jobs"
 
 step "libFuzzer: each target ${FOVEAL_FUZZ_SECONDS:-15} s"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DFOVEAL_FUZZ=ON "${fast[@]}" > /dev/null

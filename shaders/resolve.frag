@@ -1,5 +1,6 @@
-// Resolve pass: each screen pixel of the eye reads the lit reduced buffer where the
-// method's mapping sends it (bilinear). With lens distortion, each colour channel reads
+// Resolve pass of KFR and the layered methods (RMFR's is foveal-rmfr's): each screen
+// pixel of the eye reads the lit reduced buffer where the method's mapping sends it
+// (bilinear). With lens distortion, each colour channel reads
 // where the lens model says (docs/display-model.md): the correction is folded into this
 // pass, so the corrected image costs no extra full-resolution pass.
 #include "common/mapping.glsl"
@@ -18,13 +19,9 @@ void main() {
 #ifndef DISTORTION
   o_color = resolve(u_reduced, p);
 #else
-  vec2 span = vec2(u_tan.y - u_tan.x, u_tan.w - u_tan.z);
-  vec2 x = (p / u_screen_size - u_lens_center) * span;
-  float r2 = dot(x, x);
-  float radial = 1.0 + r2 * (u_lens_k.x + r2 * (u_lens_k.y + r2 * u_lens_k.z));
   vec3 rgb;
   for (int c = 0; c < 3; ++c) {
-    vec2 src = u_lens_center + x * (u_lens_scale[c] * radial) / span;
+    vec2 src = foveal_lens_source(p / u_screen_size, u_lens_center, u_lens_k, u_lens_scale[c], u_tan);
     bool inside = all(greaterThanEqual(src, vec2(0.0))) && all(lessThanEqual(src, vec2(1.0)));
     rgb[c] = inside ? resolve(u_reduced, src * u_screen_size)[c] : 0.0;
   }

@@ -1,7 +1,9 @@
 // Which screen pixel each texel of an eye's reduced buffer stands for, and where each
 // screen pixel reads the lit reduced buffer, for every method (docs/methods.md).
-// Screen positions are eye-viewport pixels in GL's frame (origin bottom-left).
-#include "common/rmfr.glsl"
+// Screen positions are eye-viewport pixels in GL's frame (origin bottom-left). RMFR's
+// mapping and the view geometry come from foveal-rmfr (render/foveation/glsl), which also
+// runs RMFR's mapping and resolve passes (foveal::rmfr::Foveator).
+#include "foveal/rmfr_mapping.glsl"
 
 // One program per mapping (the compositor defines MAPPING): a software rasteriser runs
 // every side of a branch, even a uniform one, so the choice is made at compile time.
@@ -43,17 +45,11 @@ ivec2 source_pixel(ivec2 texel) {
   vec2 p = rect.xy + min(local * atlas.w, rect.zw - 0.5);
   return clamp_pixel(p);
 #else
-  return rmfr_source_pixel(texel, u_buffer_size, u_screen_size, u_fovea, u_f);
+  return foveal_rmfr_source_pixel(texel, u_buffer_size, u_screen_size, u_fovea, u_f);
 #endif
 }
 
-vec3 view_ray(vec2 p_norm) {
-  return normalize(vec3(mix(u_tan.x, u_tan.y, p_norm.x), mix(u_tan.z, u_tan.w, p_norm.y), -1.0));
-}
-
-float eccentricity_deg(vec2 p_norm) {
-  return degrees(acos(clamp(dot(view_ray(p_norm), view_ray(u_fovea)), -1.0, 1.0)));
-}
+float eccentricity_deg(vec2 p_norm) { return foveal_eccentricity_deg(p_norm, u_fovea, u_tan); }
 
 // Layer i's lit value at screen pixel centre p (bilinear, kept inside the layer).
 vec4 sample_layer(sampler2D reduced, int i, vec2 p) {
@@ -62,7 +58,9 @@ vec4 sample_layer(sampler2D reduced, int i, vec2 p) {
   return texture(reduced, (q + vec2(0.0, atlas.x)) / u_texture_size);
 }
 
-// The lit colour of screen pixel centre p, read from the eye's reduced buffer.
+// The lit colour of screen pixel centre p, read from the eye's reduced buffer (KFR and
+// the layers; RMFR resolves through foveal-rmfr).
+#if MAPPING != MAPPING_RMFR
 vec4 resolve(sampler2D reduced, vec2 p) {
   vec2 p_norm = p / u_screen_size;
 #if MAPPING == MAPPING_KFR
@@ -84,7 +82,6 @@ vec4 resolve(sampler2D reduced, vec2 p) {
     }
   }
   return sample_layer(reduced, u_layer_count - 1, p);
-#else
-  return texture(reduced, rmfr_forward(p_norm, u_fovea, u_f));
 #endif
 }
+#endif

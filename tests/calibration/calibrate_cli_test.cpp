@@ -3,8 +3,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
+#include <numbers>
 
+#include "foveal/core/gaze_log.hpp"
 #include "test_support.hpp"
 
 namespace foveal {
@@ -80,6 +83,82 @@ TEST_F(CalibrateCli, BadScriptsNameTheLine) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("answers ended"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir_.path("foveal/profiles/p.json")));
+}
+
+
+// A gaze log of the validation trials: `seconds` at 120 Hz, both eyes fixating straight
+// ahead with a known offset (the left eye offset_deg up and right, the right eye
+// 1.5 x offset_deg down and left), alternating +-jitter_deg in azimuth from sample to
+// sample; every 20th left sample lost.
+void write_validation_log(const std::string& path, double seconds, double offset_deg, double jitter_deg) {
+  GazeLogHeader h;
+  h.rate_hz = 120;
+  auto w = GazeLogWriter::create(path, h);
+  ASSERT_TRUE(w) << w.error().message;
+  auto direction = [](double offset, double toward_deg, double jitter) {
+    const double a = offset * std::numbers::pi / 180, t = toward_deg * std::numbers::pi / 180;
+    const double az = std::atan(std::tan(a) * std::cos(t)) + jitter * std::numbers::pi / 180;
+    const double el = std::asin(std::sin(a) * std::sin(t));
+    return glm::vec3(static_cast<float>(std::cos(el) * std::sin(az)), static_cast<float>(std::sin(el)),
+                     static_cast<float>(-std::cos(el) * std::cos(az)));
+  };
+  const int n = static_cast<int>(seconds * 120);
+  for (int i = 0; i < n; ++i) {
+    GazeSample s;
+    s.t_ns = static_cast<TimeNs>(i) * 1'000'000'000 / 120;
+    const double j = i % 2 ? jitter_deg : -jitter_deg;
+    s.eyes[0] = {kValidDirection, direction(offset_deg, 45, j)};
+    s.eyes[1] = {kValidDirection, direction(1.5 * offset_deg, 225, j)};
+    if (i % 20 == 0) s.eyes[0] = {};
+    ASSERT_TRUE(w->write(s));
+  }
+  ASSERT_TRUE(w->commit());
+}
+
+TEST_F(CalibrateCli, ValidationGazeGoesIntoTheProfile) {
+  write_validation_log(dir_.path("gaze.csv"), 3.0, 0.6, 0.05);
+  auto r = calibrate("right right right\nd d d d d same\nsame same same same same different\ns s s\n",
+                     "--profile p --gaze-log " + dir_.path("gaze.csv") + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto g = profile("p")["gaze_quality"];
+  EXPECT_EQ(g, nlohmann::json::parse(r.out)["gaze_quality"]);
+  EXPECT_EQ(g["targets"], 1);
+  EXPECT_EQ(g["source"], dir_.path("gaze.csv"));
+  // Accuracy: the offsets, within the 0.05 deg the issue asks (the jitter averages out).
+  EXPECT_NEAR(g["left"]["accuracy_deg"].get<double>(), 0.6, 0.05);
+  EXPECT_NEAR(g["right"]["accuracy_deg"].get<double>(), 0.9, 0.05);
+  // Precision: successive samples 0.1 deg apart in azimuth (a lost sample breaks a pair);
+  // STD of +-0.05: 0.05.
+  EXPECT_NEAR(g["right"]["rms_s2s_deg"].get<double>(), 0.1, 0.005);
+  EXPECT_NEAR(g["left"]["rms_s2s_deg"].get<double>(), 0.1, 0.005);
+  EXPECT_NEAR(g["right"]["std_deg"].get<double>(), 0.05, 0.003);
+  EXPECT_NEAR(g["left"]["data_loss_pct"].get<double>(), 5.0, 0.2);
+  EXPECT_NEAR(g["right"]["data_loss_pct"].get<double>(), 0.0, 0.2);
+
+  // A later calibration without gaze keeps the figures; the profile still loads.
+  r = calibrate("right right right\nd d d d d same\nsame same same same same different\ns s s\n", "--profile p");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(profile("p")["gaze_quality"], g);
+  const auto show = test::run("XDG_CONFIG_HOME=" + dir_.path() + " " + test::bin("foveal") + " profile show p");
+  EXPECT_EQ(show.exit_code, 0) << show.err;
+
+  // A missing log stops the command before anything is saved.
+  r = calibrate("r r r same different s s s", "--profile q --gaze-log " + dir_.path("none.csv"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("none.csv"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_.path("foveal/profiles/q.json")));
+}
+
+TEST_F(CalibrateCli, ProfileGazeQualityIsCheckedOnLoad) {
+  std::filesystem::create_directories(dir_.path("foveal/profiles"));
+  test::write_file(dir_.path("foveal/profiles/b.json"), R"({"gaze_quality": {"left": {"accuracy_deg": "far"}}})");
+  auto r = test::run("XDG_CONFIG_HOME=" + dir_.path() + " " + test::bin("foveal") + " profile show b");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("gaze_quality.left: accuracy_deg: expected a number"), std::string::npos) << r.err;
+  test::write_file(dir_.path("foveal/profiles/b.json"), R"({"gaze_quality": {"middle": {}}})");
+  r = test::run("XDG_CONFIG_HOME=" + dir_.path() + " " + test::bin("foveal") + " profile show b");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("gaze_quality: unknown key 'middle'"), std::string::npos) << r.err;
 }
 
 }  // namespace

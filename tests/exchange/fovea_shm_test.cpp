@@ -4,6 +4,8 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <cstring>
+
 #include "foveal/runtime/fovea_shm.hpp"
 
 namespace foveal {
@@ -32,6 +34,38 @@ TEST(FoveaShm, AReaderSeesWhatTheWriterPublished) {
   EXPECT_FLOAT_EQ(p.x[1], 1439.0f);
   EXPECT_EQ(p.state[1], static_cast<std::uint32_t>(FoveaState::blink));
   EXPECT_EQ(p.frame, 1u);
+}
+
+TEST(FoveaShm, SettingsAndLivenessReachReaders) {
+  const std::string name = unique_name();
+  auto writer = FoveaShm::create(name);
+  ASSERT_TRUE(writer) << writer.error().message;
+  auto reader = FoveaShm::open(name);
+  ASSERT_TRUE(reader) << reader.error().message;
+  FoveaShmSettings s{};
+  ASSERT_TRUE(reader->read_settings(s));
+  EXPECT_EQ(s.generation, 0u) << "nothing published yet";
+  writer->publish_settings({2.2, 3.1, 0.25, -1.0, 0, 0, 4});
+  ASSERT_TRUE(reader->read_settings(s));
+  EXPECT_DOUBLE_EQ(s.sigma_d, 2.2);
+  EXPECT_DOUBLE_EQ(s.sigma_nd, 3.1);
+  EXPECT_EQ(s.dominant_eye, 0u);
+  EXPECT_EQ(s.generation, 4u);
+  // The header and the liveness words, at the offsets docs/fovea-shm.md gives.
+  const int fd = ::shm_open(name.c_str(), O_RDONLY, 0);
+  ASSERT_GE(fd, 0);
+  unsigned char raw[FOVEAL_SHM_V2_SIZE];
+  ASSERT_EQ(::pread(fd, raw, sizeof raw, 0), static_cast<ssize_t>(sizeof raw));
+  ::close(fd);
+  std::uint32_t version = 0, size = 0, pid = 0, state = 0;
+  std::memcpy(&version, raw + FOVEAL_SHM_VERSION_OFFSET, 4);
+  std::memcpy(&size, raw + FOVEAL_SHM_SIZE_OFFSET, 4);
+  std::memcpy(&pid, raw + FOVEAL_SHM_WRITER_PID_OFFSET, 4);
+  std::memcpy(&state, raw + FOVEAL_SHM_WRITER_STATE_OFFSET, 4);
+  EXPECT_EQ(version, 2u);
+  EXPECT_EQ(size, 152u);
+  EXPECT_EQ(pid, static_cast<std::uint32_t>(::getpid()));
+  EXPECT_EQ(state, FOVEAL_SHM_WRITER_LIVE);
 }
 
 TEST(FoveaShm, OpeningWithoutADaemonIsAClearError) {

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "foveal/image/auto_f.hpp"
-#include "foveal/image/rmfr_mapping.hpp"
+#include "foveal/rmfr_mapping.hpp"
 
 using namespace foveal::image;
 

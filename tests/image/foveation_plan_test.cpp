@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "foveal/image/foveation_plan.hpp"
-#include "foveal/image/rmfr_mapping.hpp"
+#include "foveal/rmfr_mapping.hpp"
 
 using namespace foveal;
 using namespace foveal::render;
@@ -146,10 +146,10 @@ TEST(FoveationPlan, UniformIsRmfrsBufferWithTheIdentityMap) {
       EXPECT_EQ(u->method, Method::uniform);
       EXPECT_EQ(u->buffer_w, r->buffer_w);
       EXPECT_EQ(u->buffer_h, r->buffer_h);
-      EXPECT_EQ(u->f.x, image::kRmfrIdentityF);
-      EXPECT_EQ(u->f.y, image::kRmfrIdentityF);
+      EXPECT_EQ(u->f.x, rmfr::kRmfrIdentityF);
+      EXPECT_EQ(u->f.y, rmfr::kRmfrIdentityF);
       // The identity map: every screen position lands on itself in the buffer.
-      for (double q : {0.0, 0.1, 0.37, 0.5, 0.9, 1.0}) EXPECT_DOUBLE_EQ(image::rmfr_forward(q, u->fovea.x, u->f.x), q);
+      for (double q : {0.0, 0.1, 0.37, 0.5, 0.9, 1.0}) EXPECT_DOUBLE_EQ(rmfr::rmfr_forward(q, u->fovea.x, u->f.x), q);
       EXPECT_TRUE(u->layers.empty());
       EXPECT_EQ(u->fovea, optical_centre(kVive));  // whatever the gaze
     }

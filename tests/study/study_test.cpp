@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "foveal/study/binomial_test.hpp"
+#include "foveal/study/sigma_estimates.hpp"
+#include "foveal/study/study_session.hpp"
 #include "foveal/study/study_stats.hpp"
 #include "test_support.hpp"
 
@@ -158,6 +160,132 @@ TEST(StudyStatsCli, PValuesAgreeWithSciPyAndBadRowsExitTwo) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(bad.err, "foveal: error: " + d.path("bad.csv") + ":3: chosen: 'yes' is not a or b\n");
   EXPECT_TRUE(bad.out.empty()) << bad.out;
+}
+
+TEST(StudyDesign, ConditionsParseAndNameTheirFaults) {
+  auto c = parse_study_condition("rmfr:2/3:0.25", "--condition");
+  ASSERT_TRUE(c) << c.error().message;
+  EXPECT_EQ(c->method, "rmfr");
+  EXPECT_DOUBLE_EQ(c->sigma_d, 2.0);
+  EXPECT_DOUBLE_EQ(c->sigma_nd, 3.0);
+  EXPECT_DOUBLE_EQ(c->f, 0.25);
+  EXPECT_EQ(c->label(), "rmfr sigma_d=2 sigma_nd=3 f=0.25");
+  EXPECT_EQ(parse_study_condition("kfr:2.6", "x")->label(), "kfr sigma=2.6 f=0.3");
+  EXPECT_EQ(parse_study_condition("full", "x")->label(), "full");
+  const char* suffix = " (expected METHOD[:SIGMA[/SIGMA_ND]][:F])";
+  EXPECT_EQ(parse_study_condition("rmfr", "--condition").error().message,
+            std::string("--condition: 'rmfr': a foveated method needs its level") + suffix);
+  EXPECT_EQ(parse_study_condition("rmfr:0.5", "c").error().message, std::string("c: 'rmfr:0.5': sigma must be a number >= 1") + suffix);
+  EXPECT_EQ(parse_study_condition("rmfr:3/2", "c").error().message, std::string("c: 'rmfr:3/2': sigma_nd must be a number >= sigma") + suffix);
+  EXPECT_EQ(parse_study_condition("rmfr:2:0", "c").error().message, std::string("c: 'rmfr:2:0': f must be a number > 0") + suffix);
+  EXPECT_EQ(parse_study_condition("full:2", "c").error().message, std::string("c: 'full:2': full resolution takes no level") + suffix);
+}
+
+TEST(StudyDesign, PlanIsSeededShuffledAndCountsValidationTrials) {
+  StudyOptions o;
+  o.scenes = {"a.gltf", "b.gltf"};
+  o.conditions = {{"rmfr", 2.6, 2.6, 0.3}, {"kfr", 2.6, 2.6, 0.3}, {"hyperbolic", 2.6, 2.6, 0.3}};
+  o.repeats = 4;
+  o.validation_share = 0.2;
+  auto p = plan_study(o);
+  ASSERT_TRUE(p) << p.error().message;
+  // 3 pairs x 2 scenes x 4 repeats = 24 tests; 0.2 / 0.8 x 24 = 6 validation trials.
+  ASSERT_EQ(p->size(), 30u);
+  int validations = 0, b_first = 0, in_place = 0;
+  for (std::size_t i = 0; i < p->size(); ++i) {
+    const PlannedTrial& t = (*p)[i];
+    EXPECT_EQ(t.index, static_cast<int>(i + 1));
+    if (t.validation) {
+      ++validations;
+      EXPECT_EQ(t.a.method, "full");
+      EXPECT_EQ(t.b, o.validation_condition);
+    }
+    b_first += t.b_first;
+    in_place += i < 6 && t.a.method == "rmfr" && t.b.method == "kfr";  // the unshuffled start
+  }
+  EXPECT_EQ(validations, 6);
+  EXPECT_GT(b_first, 5);
+  EXPECT_LT(b_first, 25);
+  EXPECT_LT(in_place, 6);
+  auto again = plan_study(o);
+  for (std::size_t i = 0; i < p->size(); ++i) {
+    EXPECT_EQ((*again)[i].a, (*p)[i].a);
+    EXPECT_EQ((*again)[i].b, (*p)[i].b);
+    EXPECT_EQ((*again)[i].scene, (*p)[i].scene);
+    EXPECT_EQ((*again)[i].b_first, (*p)[i].b_first);
+  }
+  o.conditions.pop_back();
+  o.conditions.pop_back();
+  EXPECT_EQ(plan_study(o).error().message, "study: a 2AFC study needs at least two conditions");
+}
+
+TEST(StudySession, ValidationFailuresPauseThenDiscard) {
+  StudyOptions o;
+  o.design = StudyDesign::score;
+  o.scenes = {"s"};
+  o.conditions = {{"rmfr", 2, 2, 0.3}};
+  o.repeats = 4;
+  o.validation_share = 0.5;  // 4 tests, 4 validation trials
+  o.max_validation_errors = 1;
+  auto plan = plan_study(o);
+  ASSERT_TRUE(plan);
+  StudySession s(o, *plan);
+  EXPECT_EQ(s.respond({6, {}}).error().message, "a score trial asks for 1 (very different) to 5 (no difference)");
+  int failures = 0;
+  while (!s.done()) {
+    const bool validation = s.trial().validation;
+    ASSERT_TRUE(s.respond({validation ? 1 : 4, 0.5}));  // identical frames called very different
+    if (!validation) continue;
+    ++failures;
+    if (failures == 1) {
+      EXPECT_TRUE(s.pause_requested());
+      EXPECT_FALSE(s.discarded());
+      s.resume();
+      EXPECT_FALSE(s.pause_requested());
+    }
+  }
+  EXPECT_EQ(failures, 2);
+  EXPECT_TRUE(s.discarded());  // 2 > max_validation_errors
+  EXPECT_EQ(s.pauses(), 1);
+  EXPECT_LE(s.results().size(), s.planned());
+  EXPECT_EQ(s.respond({5, {}}).error().message, "the study is already complete");
+  const std::string csv = study_trials_csv(s);
+  EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), s.results().size() + 1);
+}
+
+TEST(SigmaEstimates, CrossingsAndBounds) {
+  auto trial = [](double d, double nd, int score) { return ScoreTrial{"rmfr", score, 0, d, nd}; };
+  // Uniform 1.5: 5, 2.0: 4.5 and 3.5 (mean 4), 3.0: 2 -> crossing between 2.0 (4.0 holds) and 3.0.
+  std::vector<ScoreTrial> t = {trial(1.5, 1.5, 5), trial(2, 2, 5), trial(2, 2, 3), trial(3, 3, 2),
+                               trial(2, 2.5, 5), trial(2, 3.5, 3), trial(2.5, 4, 1)};
+  t.push_back(ScoreTrial{"kfr sigma=3", 5, 0, 3.0, 3.0});  // another method: its own estimates
+  const std::vector<SigmaEstimates> all = estimate_sigmas(t, 4.0);
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[1].method, "kfr");
+  EXPECT_EQ(all[1].sigma_uf->bound, EstimateBound::at_least);
+  SigmaEstimates e = all[0];
+  EXPECT_EQ(e.method, "rmfr");
+  ASSERT_TRUE(e.sigma_uf);
+  EXPECT_EQ(e.sigma_uf->bound, EstimateBound::interpolated);
+  EXPECT_NEAR(e.sigma_uf->sigma, 2.0, 1e-12);  // the mean at 2.0 is exactly the threshold: it still holds
+  ASSERT_TRUE(e.sigma_nf);
+  EXPECT_EQ(e.sigma_nf_at_sigma_d, 2.0);  // the largest tested sigma_d <= sigma_UF with a non-dominant series
+  // sigma_d 2: 4 at 2.0 (uniform), 5 at 2.5, 3 at 3.5: crossing at 2.5 + (5 - 4) / (5 - 3) x 1.0.
+  EXPECT_NEAR(e.sigma_nf->sigma, 3.0, 1e-12);
+  EXPECT_EQ(e.levels.size(), 6u);
+
+  e = estimate_sigmas(std::vector<ScoreTrial>{trial(2, 2, 5), trial(3, 3, 5)}, 4.0)[0];
+  EXPECT_EQ(e.sigma_uf->bound, EstimateBound::at_least);
+  EXPECT_DOUBLE_EQ(e.sigma_uf->sigma, 3.0);
+  EXPECT_FALSE(e.sigma_nf);
+  e = estimate_sigmas(std::vector<ScoreTrial>{trial(2, 2, 2), trial(3, 3, 1)}, 4.0)[0];
+  EXPECT_EQ(e.sigma_uf->bound, EstimateBound::below_range);
+  EXPECT_DOUBLE_EQ(e.sigma_uf->sigma, 2.0);
+  EXPECT_TRUE(estimate_sigmas(std::vector<ScoreTrial>{ScoreTrial{"no levels", 3, 0, {}, {}}}, 4.0).empty());
+  // Only a non-dominant series: no sigma_UF, so no sigma_NF either.
+  e = estimate_sigmas(std::vector<ScoreTrial>{trial(2, 3, 5)}, 4.0)[0];
+  EXPECT_FALSE(e.sigma_uf);
+  EXPECT_FALSE(e.sigma_nf);
 }
 
 }  // namespace

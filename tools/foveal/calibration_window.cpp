@@ -66,7 +66,7 @@ void draw_miles(GLuint fbo, int eye_w, int h, Eye shown) {
 
 }  // namespace
 
-Status run_calibration_window(Calibration& cal, const CalibrationWindowOptions& o) {
+Status run_calibration_window(Calibration& cal, const CalibrationWindowOptions& o, ValidationGaze* gaze) {
   render::WindowOptions wo;
   wo.monitor = o.monitor;
   wo.title = "foveal calibrate: L/R which eye keeps the target framed; S same, D different; Esc quits";
@@ -83,9 +83,26 @@ Status run_calibration_window(Calibration& cal, const CalibrationWindowOptions& 
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   std::array<bool, 15> pad{};
+  int fixation_trial = -1;  // the validation trial whose fixation window is open
   while (!cal.done()) {
     if (window->should_close()) return bad_input("calibration quit: the window was closed; nothing was saved");
     const CalibrationPrompt& p = cal.prompt();
+    if (o.gaze && gaze) {
+      // Everything the tracker has delivered; kept only while a fixation target shows.
+      for (ReadResult r = o.gaze->next(std::chrono::milliseconds(0)); r.status == ReadStatus::sample;
+           r = o.gaze->next(std::chrono::milliseconds(0)))
+        if (fixation_trial >= 0) gaze->samples.push_back(r.sample);
+      const bool validating = p.stage == CalibrationStage::validation;
+      if (fixation_trial >= 0 && (!validating || p.trial != fixation_trial)) {
+        gaze->fixations.back().second = monotonic_now_ns();  // answered: the window closes
+        fixation_trial = -1;
+      }
+      if (validating && fixation_trial < 0) {
+        const TimeNs now = monotonic_now_ns();
+        gaze->fixations.push_back({now + ValidationGaze::kSettleNs, now + ValidationGaze::kSettleNs});
+        fixation_trial = p.trial;
+      }
+    }
     if (p.stage == CalibrationStage::dominant_eye) {
       draw_miles(comp->output_framebuffer(), comp->eye_width(), comp->height(), p.shown_eye);
     } else {
@@ -96,6 +113,14 @@ Status run_calibration_window(Calibration& cal, const CalibrationWindowOptions& 
       f.eyes[0].sigma = test_phase ? p.sigma_left : 1.0;
       f.eyes[1].sigma = test_phase ? p.sigma_right : 1.0;
       if (auto r = comp->render(*scene, f); !r) return r.error();
+      // Validation trials carry a fixation target straight ahead in each eye: the gaze
+      // recorded meanwhile gives the accuracy and precision (calibrate --gaze-log).
+      if (p.stage == CalibrationStage::validation) {
+        const int dot = std::max(4, comp->eye_width() / 120);
+        for (int x0 : {0, comp->eye_width()})
+          fill(comp->output_framebuffer(), x0 + comp->eye_width() / 2 - dot / 2, comp->height() / 2 - dot / 2, dot, dot,
+               0.95f, 0.2f, 0.1f);
+      }
     }
     window->present(comp->output_framebuffer(), comp->width(), comp->height());
     // Every answer given since the last frame, in order; one that does not fit the
@@ -106,6 +131,7 @@ Status run_calibration_window(Calibration& cal, const CalibrationWindowOptions& 
     }
     if (auto a = gamepad_answer(pad); a && !cal.done()) (void)cal.answer(*a);
   }
+  if (gaze && fixation_trial >= 0) gaze->fixations.back().second = monotonic_now_ns();
   return {};
 }
 

@@ -2,7 +2,9 @@
 // `foveal calibrate`'s in-headset mode: drives the calibration state machine from a
 // GLFW window (fullscreen on the HMD's monitor) with the keyboard or a gamepad.
 #include <string>
+#include <vector>
 
+#include "foveal/core/gaze_source.hpp"
 #include "foveal/runtime/calibration.hpp"
 
 namespace foveal::cmd {
@@ -11,10 +13,21 @@ struct CalibrationWindowOptions {
   std::string monitor;  ///< fullscreen on this monitor; empty: a window
   std::string scene;    ///< what the comparisons show; empty: the bundled Dungeon
   double flip_s = 1.0;  ///< comparisons alternate full and test images this often
+  /// A started gaze source, read while the validation trials show their fixation target
+  /// (calibrate --gaze); null: none.
+  GazeSource* gaze = nullptr;
+};
+
+/// The gaze read during the validation trials, and each trial's fixation window (from
+/// its first frame plus a settling time to its answer) on the samples' clock.
+struct ValidationGaze {
+  static constexpr TimeNs kSettleNs = 500'000'000;  ///< the eyes reach the target first
+  std::vector<GazeSample> samples;
+  std::vector<std::pair<TimeNs, TimeNs>> fixations;
 };
 
 /// Runs `cal` to completion. Errors: no display or window (unsupported), the user quit
 /// (Esc or closing the window: bad_input, nothing is saved), GL failures.
-Status run_calibration_window(Calibration& cal, const CalibrationWindowOptions& o);
+Status run_calibration_window(Calibration& cal, const CalibrationWindowOptions& o, ValidationGaze* gaze = nullptr);
 
 }  // namespace foveal::cmd

@@ -8,12 +8,15 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "bench_gaze.hpp"
+#include "bench_outputs.hpp"
+#include "bench_sweep.hpp"
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/data_paths.hpp"
@@ -49,6 +52,7 @@ struct Args {
   double grid_sigma = 2.0;
   std::string grid_values = "0.1:0.5:0.05";
   GazeBenchOptions gaze;  ///< --gaze runs (bench_gaze.cpp)
+  std::string shard;  ///< K/N; empty: the whole sweep
 };
 
 std::string num(double v) {
@@ -58,8 +62,6 @@ std::string num(double v) {
   s << v;
   return s.str();
 }
-
-nlohmann::json jnum(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json("inf"); }
 
 Result<std::vector<double>> parse_range(const std::string& s, const std::string& what) {
   std::vector<double> out;
@@ -134,8 +136,8 @@ image::MetricsOptions metric_options(const render::Compositor& c, std::pair<doub
 // sample (raw gaze, or through the gaze filter), one frame per sample. Flicker is the
 // mean absolute frame-to-frame change of R, G, B (8-bit units) over the periphery:
 // pixels more than 15° from both frames' foveae (docs/stability.md).
-Result<std::string> flicker(const Args& a, render::Compositor& comp, Bench& bench, const std::vector<Method>& methods,
-                            const std::string& spec) {
+Status flicker(const Args& a, render::Compositor& comp, Bench& bench, const std::vector<Method>& methods,
+              const std::string& spec, bench::SweepRows& rows) {
   auto scene = render::load_scene(spec);
   if (!scene) return scene.error();
   auto samples = read_gaze_log(a.flicker_log.empty() ? data_path("data/gaze/vive_pro_eye_TESTNA01.csv") : a.flicker_log);
@@ -169,11 +171,11 @@ Result<std::string> flicker(const Args& a, render::Compositor& comp, Bench& benc
   const int eye_w = comp.width() / 2, eye_h = comp.height();
   const double ppd = comp.plan(Eye::left).screen_w > 0 ? comp.plan(Eye::left).pixels_per_degree() : 13.15 * eye_w / 1440.0;
   const double f_px = image::focal_length_px(ppd);
-  std::string csv;
   std::vector<Method> all = {Method::full};
   all.insert(all.end(), methods.begin(), methods.end());
   for (Method m : all)
     for (const auto* seq : {&raw, &filtered}) {
+      if (!rows.take()) continue;
       image::Image prev;
       std::array<glm::dvec2, 2> prev_f{};
       double change = 0, step = 0;
@@ -201,15 +203,17 @@ Result<std::string> flicker(const Args& a, render::Compositor& comp, Bench& benc
         prev_f = fv;
       }
       bench.tick();
-      csv += std::filesystem::path(spec).stem().string() + "," + render::method_name(m) + "," + num(m == Method::full ? 1.0 : a.grid_sigma) +
-             "," + (seq == &raw ? "raw" : "filtered") + "," + std::to_string(n) + "," + num(step / double(n - 1)) + "," +
-             num(count ? change / double(count) : 0.0) + "\n";
+      rows.add_line("flicker.csv", std::filesystem::path(spec).stem().string() + "," + render::method_name(m) + "," +
+                                       num(m == Method::full ? 1.0 : a.grid_sigma) + "," + (seq == &raw ? "raw" : "filtered") + "," +
+                                       std::to_string(n) + "," + num(step / double(n - 1)) + "," + num(count ? change / double(count) : 0.0));
     }
-  return csv;
+  return {};
 }
 
-int run(const Args& a) {
+// `sweep`: the options that define the grid, which every shard of one sweep shares.
+int run(const Args& a, const std::string& sweep) {
   auto fail = [](const Error& e) { return cli::report(e); };
+  if (a.out.empty()) return fail(bad_input("--out is required"));
   std::vector<Method> methods;
   {
     std::istringstream in(a.methods);
@@ -234,10 +238,12 @@ int run(const Args& a) {
   if (a.frames < 1) return fail(bad_input("--frames must be >= 1"));
   auto grid = parse_range(a.grid_values, "--grid-values");
   if (!grid) return fail(grid.error());
+  auto shard = bench::parse_shard(a.shard.empty() ? "1/1" : a.shard);
+  if (!shard) return fail(shard.error());
   const std::vector<std::string> scenes = a.scenes.empty() ? std::vector<std::string>{default_scene()} : a.scenes;
   if (!a.gaze.logs.empty()) {
-    if (a.f_grid || a.rotation || a.stability || a.flicker)
-      return fail(bad_input("--gaze runs on its own: drop --f-grid, --rotation, --stability and --flicker"));
+    if (a.f_grid || a.rotation || a.stability || a.flicker || !a.shard.empty())
+      return fail(bad_input("--gaze runs on its own: drop --f-grid, --rotation, --stability, --flicker and --shard"));
     return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json});
   }
 
@@ -255,153 +261,180 @@ int run(const Args& a) {
   const std::uint64_t per_scene = 1 + methods.size() * sigmas->size() + (a.f_grid ? grid->size() * grid->size() + 1 : 0);
   const std::uint64_t total = per_scene * scenes.size() + (a.rotation ? 19 * (1 + methods.size()) : 0) +
                               (a.stability ? 1 + 22 * methods.size() : 0) + (a.flicker ? 2 * (1 + methods.size()) : 0);
-  cli::Progress progress("bench", total, !a.json);
+  cli::Progress progress("bench", total / static_cast<std::uint64_t>(shard->n), !a.json);
   Bench bench(a, *comp, progress);
 
-  std::string csv = "scene,method,sigma,shaded_samples,cost,gpu_ms,cpu_ms,shadow_ms,gbuffer_ms,mapping_ms,lighting_ms,inverse_ms,psnr_db,ssim,fpsnr_db\n";
-  std::string grid_csv = "scene,sigma,fx,fy,fpsnr_db,psnr_db,ssim\n";
-  nlohmann::json rows = nlohmann::json::array(), autos = nlohmann::json::array();
+  // Each point of the grid (scene × method × level, f-grid point, angle × method, ...)
+  // starts with rows.take(): a shard runs its points only, and renders a reference
+  // only where it runs a point that needs it.
+  bench::SweepRows rows(*shard);
+  rows.table("bench.csv", "scene,method,sigma,shaded_samples,cost,gpu_ms,cpu_ms,shadow_ms,gbuffer_ms,mapping_ms,lighting_ms,inverse_ms,psnr_db,ssim,fpsnr_db");
+  if (a.f_grid) rows.table("fgrid.csv", "scene,sigma,fx,fy,fpsnr_db,psnr_db,ssim");
+  if (a.rotation) rows.table("rotation.csv", "angle_deg,method,sigma,fpsnr_db,psnr_db,ssim");
+  if (a.stability) rows.table("stability.csv", "scene,path,t,fovea_x,fovea_y,method,sigma,patch_psnr_db,fpsnr_db");
+  if (a.flicker) rows.table("flicker.csv", "scene,method,sigma,gaze,frames,fovea_step_px,periphery_change");
   const double full_samples = static_cast<double>(co.width) * co.height;
-  for (const std::string& spec : scenes) {
-    auto scene = render::load_scene(spec);
-    if (!scene) return fail(scene.error());
-    for (const std::string& w : scene->warnings) cli::warn(w);
+  for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index) {
+    const std::string& spec = scenes[scene_index];
     const std::string name = std::filesystem::path(spec).stem().string();
-    auto full = bench.measure(*scene, uniform_frame(Method::full, 1, a.fx, a.fy, *fovea), a.frames);
-    if (!full) return fail(full.error());
-    const image::MetricsOptions mo = metric_options(*comp, *fovea);
+    std::optional<render::Scene> scene;
+    std::optional<Measured> full;
+    image::MetricsOptions mo;  // the eye's pixels per degree are known once a frame is rendered
+    auto reference = [&]() -> Status {
+      if (full) return {};
+      auto s = render::load_scene(spec);
+      if (!s) return s.error();
+      for (const std::string& w : s->warnings) cli::warn(w);
+      scene = std::move(*s);
+      auto f = bench.measure(*scene, uniform_frame(Method::full, 1, a.fx, a.fy, *fovea), a.frames);
+      if (!f) return f.error();
+      full = std::move(*f);
+      mo = metric_options(*comp, *fovea);
+      return {};
+    };
     auto add_row = [&](Method m, double sigma, const Measured& r) -> Status {
       auto q = image::compute_stereo_metrics(full->image, r.image, mo);
       if (!q) return q.error();
       const auto& c = q->combined;
       const render::PassTimes& t = r.median;
-      csv += name + "," + render::method_name(m) + "," + num(sigma) + "," + std::to_string(r.median.shaded_samples) + "," +
-             num(static_cast<double>(r.median.shaded_samples) / full_samples) + "," + num(t.gpu_total) + "," + num(t.cpu) + "," +
-             num(t.shadow) + "," + num(t.gbuffer) + "," + num(t.mapping) + "," + num(t.lighting) + "," + num(t.inverse) +
-             "," + num(c.psnr_db) + "," + num(c.ssim) + "," + num(c.fpsnr_db) + "\n";
-      rows.push_back({{"scene", name}, {"method", render::method_name(m)}, {"sigma", sigma}, {"shaded_samples", r.median.shaded_samples},
-                      {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu},
-                      {"passes_ms", {{"shadow", t.shadow}, {"gbuffer", t.gbuffer}, {"mapping", t.mapping},
-                                     {"lighting", t.lighting}, {"inverse", t.inverse}}},
-                      {"psnr_db", jnum(c.psnr_db)}, {"ssim", c.ssim}, {"fpsnr_db", jnum(c.fpsnr_db)}});
+      rows.add_line("bench.csv", name + "," + render::method_name(m) + "," + num(sigma) + "," + std::to_string(r.median.shaded_samples) + "," +
+                                     num(static_cast<double>(r.median.shaded_samples) / full_samples) + "," + num(t.gpu_total) + "," +
+                                     num(t.cpu) + "," + num(t.shadow) + "," + num(t.gbuffer) + "," + num(t.mapping) + "," +
+                                     num(t.lighting) + "," + num(t.inverse) + "," + num(c.psnr_db) + "," + num(c.ssim) + "," + num(c.fpsnr_db));
+      rows.add_item("rows", {{"scene", name}, {"method", render::method_name(m)}, {"sigma", sigma}, {"shaded_samples", r.median.shaded_samples},
+                             {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu},
+                             {"passes_ms", {{"shadow", t.shadow}, {"gbuffer", t.gbuffer}, {"mapping", t.mapping},
+                                            {"lighting", t.lighting}, {"inverse", t.inverse}}},
+                             {"psnr_db", bench::json_number(c.psnr_db)}, {"ssim", c.ssim}, {"fpsnr_db", bench::json_number(c.fpsnr_db)}});
       return {};
     };
-    if (Status s = add_row(Method::full, 1.0, *full); !s) return fail(s.error());
+    if (rows.take()) {
+      if (Status s = reference(); !s) return fail(s.error());
+      if (Status s = add_row(Method::full, 1.0, *full); !s) return fail(s.error());
+    }
     for (Method m : methods)
       for (double sigma : *sigmas) {
+        if (!rows.take()) continue;
+        if (Status s = reference(); !s) return fail(s.error());
         auto r = bench.measure(*scene, uniform_frame(m, sigma, a.fx, a.fy, *fovea), a.frames);
         if (!r) return fail(r.error());
         if (Status s = add_row(m, sigma, *r); !s) return fail(s.error());
       }
     if (a.f_grid) {
       // The seed's Figure 6: RMFR's FPSNR over f_x × f_y at one level, and where the
-      // automatic estimate lands.
-      double best = -INFINITY, best_fx = 0, best_fy = 0, grid_ms = 0;
+      // automatic estimate lands (against the grid's best: bench_outputs.cpp).
       for (double fx : *grid)
         for (double fy : *grid) {
+          if (!rows.take()) continue;
+          if (Status s = reference(); !s) return fail(s.error());
           auto r = bench.measure(*scene, uniform_frame(Method::rmfr, a.grid_sigma, fx, fy, *fovea), 1);
           if (!r) return fail(r.error());
           // The grid search pays a render and a metric per point.
           const auto t0 = std::chrono::steady_clock::now();
           auto q = image::compute_stereo_metrics(full->image, r->image, mo);
           if (!q) return fail(q.error());
-          grid_ms += r->median.cpu + std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-          grid_csv += name + "," + num(a.grid_sigma) + "," + num(fx) + "," + num(fy) + "," + num(q->combined.fpsnr_db) +
-                      "," + num(q->combined.psnr_db) + "," + num(q->combined.ssim) + "\n";
-          if (q->combined.fpsnr_db > best) best = q->combined.fpsnr_db, best_fx = fx, best_fy = fy;
+          const double ms = r->median.cpu + std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+          rows.add_line("fgrid.csv", name + "," + num(a.grid_sigma) + "," + num(fx) + "," + num(fy) + "," + num(q->combined.fpsnr_db) +
+                                         "," + num(q->combined.psnr_db) + "," + num(q->combined.ssim));
+          rows.add_item("fgrid_points", {{"scene_index", scene_index}, {"fx", fx}, {"fy", fy}, {"fpsnr_db", bench::json_number(q->combined.fpsnr_db)}, {"ms", ms}});
         }
-      auto est = image::estimate_rmfr_f(full->image, a.grid_sigma, mo);
-      if (!est) return fail(est.error());
-      auto r = bench.measure(*scene, uniform_frame(Method::rmfr, a.grid_sigma, est->fx, est->fy, *fovea), 1);
-      if (!r) return fail(r.error());
-      auto q = image::compute_stereo_metrics(full->image, r->image, mo);
-      if (!q) return fail(q.error());
-      autos.push_back({{"scene", name}, {"sigma", a.grid_sigma}, {"auto_fx", est->fx}, {"auto_fy", est->fy},
-                       {"auto_fpsnr_db", jnum(q->combined.fpsnr_db)}, {"grid_best_fx", best_fx}, {"grid_best_fy", best_fy},
-                       {"grid_best_fpsnr_db", jnum(best)}, {"auto_ms", est->ms}, {"auto_evaluations", est->evaluations},
-                       {"grid_ms", grid_ms}, {"cost_ratio", est->ms / grid_ms}});
+      if (rows.take()) {
+        if (Status s = reference(); !s) return fail(s.error());
+        auto est = image::estimate_rmfr_f(full->image, a.grid_sigma, mo);
+        if (!est) return fail(est.error());
+        auto r = bench.measure(*scene, uniform_frame(Method::rmfr, a.grid_sigma, est->fx, est->fy, *fovea), 1);
+        if (!r) return fail(r.error());
+        auto q = image::compute_stereo_metrics(full->image, r->image, mo);
+        if (!q) return fail(q.error());
+        rows.add_item("auto_f", {{"scene_index", scene_index}, {"scene", name}, {"sigma", a.grid_sigma}, {"auto_fx", est->fx},
+                                 {"auto_fy", est->fy}, {"auto_fpsnr_db", bench::json_number(q->combined.fpsnr_db)}, {"auto_ms", est->ms},
+                                 {"auto_evaluations", est->evaluations}});
+      }
     }
   }
 
-  std::string rot_csv = "angle_deg,method,sigma,fpsnr_db,psnr_db,ssim\n";
   if (a.rotation) {
     // The seed's Figure 12: vertical stripes rotated 0-180°, one level for every method.
     const double sigma = a.grid_sigma;
     for (int angle = 0; angle <= 180; angle += 10) {
-      auto scene = render::load_scene("pattern:stripes-v@" + std::to_string(angle));
-      if (!scene) return fail(scene.error());
-      auto full = bench.measure(*scene, uniform_frame(Method::full, 1, a.fx, a.fy, *fovea), 1);
-      if (!full) return fail(full.error());
-      const image::MetricsOptions mo = metric_options(*comp, *fovea);
+      std::optional<render::Scene> scene;
+      std::optional<Measured> full;
       for (Method m : methods) {
+        if (!rows.take()) continue;
+        if (!full) {
+          auto s = render::load_scene("pattern:stripes-v@" + std::to_string(angle));
+          if (!s) return fail(s.error());
+          scene = std::move(*s);
+          auto f = bench.measure(*scene, uniform_frame(Method::full, 1, a.fx, a.fy, *fovea), 1);
+          if (!f) return fail(f.error());
+          full = std::move(*f);
+        }
         auto r = bench.measure(*scene, uniform_frame(m, sigma, a.fx, a.fy, *fovea), 1);
         if (!r) return fail(r.error());
-        auto q = image::compute_stereo_metrics(full->image, r->image, mo);
+        auto q = image::compute_stereo_metrics(full->image, r->image, metric_options(*comp, *fovea));
         if (!q) return fail(q.error());
-        rot_csv += std::to_string(angle) + "," + render::method_name(m) + "," + num(sigma) + "," + num(q->combined.fpsnr_db) +
-                   "," + num(q->combined.psnr_db) + "," + num(q->combined.ssim) + "\n";
+        rows.add_line("rotation.csv", std::to_string(angle) + "," + render::method_name(m) + "," + num(sigma) + "," +
+                                          num(q->combined.fpsnr_db) + "," + num(q->combined.psnr_db) + "," + num(q->combined.ssim));
       }
     }
   }
-  std::string stab_csv = "scene,path,t,fovea_x,fovea_y,method,sigma,patch_psnr_db,fpsnr_db\n";
   if (a.stability) {
     // Where methods break: the fovea walks from the centre to a corner and from the
     // centre to the bottom border; the 64-pixel patch around it and the whole frame.
     auto scene = render::load_scene("pattern:checker");
     if (!scene) return fail(scene.error());
-    auto full = bench.measure(*scene, uniform_frame(Method::full, 1, a.fx, a.fy, {0.5, 0.5}), 1);
-    if (!full) return fail(full.error());
+    std::optional<Measured> full;
     const int eye_w = co.width / 2, eye_h = co.height;
     for (const char* path : {"diagonal", "vertical"})
       for (int i = 0; i <= 10; ++i) {
         const double t = i / 10.0;
         const std::pair<double, double> fv = std::string(path) == "diagonal" ? std::make_pair(0.5 - 0.5 * t, 0.5 - 0.5 * t)
                                                                              : std::make_pair(0.5, 0.5 + 0.5 * t);
-        const image::MetricsOptions mo = metric_options(*comp, fv);
         const int cx = static_cast<int>(fv.first * eye_w), cy = static_cast<int>(fv.second * eye_h);
         const image::Rect patch{std::clamp(cx - 32, 0, eye_w - 64), std::clamp(cy - 32, 0, eye_h - 64), 64, 64};
         for (Method m : methods) {
+          if (!rows.take()) continue;
+          if (!full) {
+            auto f = bench.measure(*scene, uniform_frame(Method::full, 1, a.fx, a.fy, {0.5, 0.5}), 1);
+            if (!f) return fail(f.error());
+            full = std::move(*f);
+          }
           auto r = bench.measure(*scene, uniform_frame(m, a.grid_sigma, a.fx, a.fy, fv), 1);
           if (!r) return fail(r.error());
-          auto q = image::compute_stereo_metrics(full->image, r->image, mo);
+          auto q = image::compute_stereo_metrics(full->image, r->image, metric_options(*comp, fv));
           if (!q) return fail(q.error());
-          stab_csv += std::string("pattern:checker,") + path + "," + num(t) + "," + num(fv.first) + "," + num(fv.second) + "," +
-                      render::method_name(m) + "," + num(a.grid_sigma) + "," + num(image::psnr(full->image, r->image, patch)) +
-                      "," + num(q->combined.fpsnr_db) + "\n";
+          rows.add_line("stability.csv", std::string("pattern:checker,") + path + "," + num(t) + "," + num(fv.first) + "," + num(fv.second) +
+                                             "," + render::method_name(m) + "," + num(a.grid_sigma) + "," +
+                                             num(image::psnr(full->image, r->image, patch)) + "," + num(q->combined.fpsnr_db));
         }
       }
   }
-  std::string flicker_csv = "scene,method,sigma,gaze,frames,fovea_step_px,periphery_change\n";
-  if (a.flicker) {
-    auto r = flicker(a, *comp, bench, methods, scenes.front());
-    if (!r) return fail(r.error());
-    flicker_csv += *r;
-  }
+  if (a.flicker)
+    if (Status s = flicker(a, *comp, bench, methods, scenes.front(), rows); !s) return fail(s.error());
   progress.finish();
 
   rusage ru{};
   ::getrusage(RUSAGE_SELF, &ru);
   const nlohmann::json summary = {{"renderer", comp->renderer()}, {"size", {co.width, co.height}}, {"frames", a.frames},
-                                  {"fovea", {fovea->first, fovea->second}}, {"rows", rows}, {"auto_f", autos},
-                                  {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
-  if (Status s = write_file_atomically(a.out + "/bench.csv", csv); !s) return fail(s.error());
-  if (Status s = write_file_atomically(a.out + "/bench.json", summary.dump(2) + "\n"); !s) return fail(s.error());
-  if (a.f_grid)
-    if (Status s = write_file_atomically(a.out + "/fgrid.csv", grid_csv); !s) return fail(s.error());
-  if (a.rotation)
-    if (Status s = write_file_atomically(a.out + "/rotation.csv", rot_csv); !s) return fail(s.error());
-  if (a.stability)
-    if (Status s = write_file_atomically(a.out + "/stability.csv", stab_csv); !s) return fail(s.error());
-  if (a.flicker)
-    if (Status s = write_file_atomically(a.out + "/flicker.csv", flicker_csv); !s) return fail(s.error());
-  if (!a.no_png) {
-    const std::string cmd = "/usr/bin/python3 '" + data_path("tools/charts/bench_charts.py") + "' '" + a.out + "'";
-    if (std::system(cmd.c_str()) != 0)
-      return fail(io_error("charts: '" + cmd + "' failed (is python3-matplotlib installed?); the CSV and JSON files are written"));
+                                  {"fovea", {fovea->first, fovea->second}}, {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
+  // --shard given (1/1 too): a part for `bench merge`.
+  if (!a.shard.empty()) return bench::write_shard(a.out, rows, summary, sweep, "bench", a.json);
+  return bench::write_outputs(a.out, rows, summary, "bench", !a.no_png, a.json);
+}
+
+/// The options that define a sweep's grid, as CLI11 writes them (one `name=value` line
+/// each, defaults included): every option of `bench` (not its subcommands') but where
+/// the output goes and how it is shown.
+std::string sweep_options(const CLI::App& sub) {
+  std::istringstream in(sub.config_to_str(/*default_also=*/true));
+  std::string line, out;
+  while (std::getline(in, line)) {
+    const std::string key = line.substr(0, line.find('='));
+    if (key == "shard" || key == "out" || key == "json" || key == "no-png" || key.empty() || key.find_first_of(".[") != std::string::npos)
+      continue;
+    out += line + "\n";
   }
-  if (a.json) cli::print_json(summary);
-  else std::printf("bench: %zu rows -> %s/bench.{csv,json}%s\n", rows.size(), a.out.c_str(), a.no_png ? "" : " and charts");
-  return cli::kExitOk;
+  return out;
 }
 
 }  // namespace
@@ -427,10 +460,14 @@ void add_bench(CLI::App& app, int& exit_code) {
   sub->add_option("--flicker-frames", a->flicker_frames, "Frames per flicker run")->capture_default_str()->check(CLI::Range(2, 10000));
   sub->add_flag("--stability", a->stability, "Also: fovea from the centre to a corner and to a border, patch PSNR and FPSNR per method");
   add_gaze_bench_options(*sub, a->gaze);
-  sub->add_option("--out,-o", a->out, "Output directory")->required();
+  sub->add_option("--shard", a->shard, "Run only the K-th of N disjoint parts of the sweep (K/N); merge with `bench merge`");
+  sub->add_option("--out,-o", a->out, "Output directory (required)");
   sub->add_flag("--no-png", a->no_png, "CSV and JSON only");
   sub->add_flag("--json", a->json, "Print the results as JSON");
-  sub->callback([a, &exit_code] { exit_code = run(*a); });
+  add_bench_merge(*sub, exit_code);
+  sub->callback([a, sub, &exit_code] {
+    if (!sub->got_subcommand("merge")) exit_code = run(*a, sweep_options(*sub));
+  });
 }
 
 }  // namespace foveal::cmd

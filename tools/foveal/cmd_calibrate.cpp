@@ -1,13 +1,20 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <optional>
+#include <span>
 #include <sstream>
 
 #include "calibration_window.hpp"
 #include "commands.hpp"
+#include "foveal/core/gaze_log.hpp"
 #include "foveal/core/json_file.hpp"
+#include "foveal/drivers/probe.hpp"
 #include "foveal/core/read_file.hpp"
+#include "foveal/quality/gaze_quality.hpp"
+#include "foveal/quality/quality_targets.hpp"
 #include "foveal/runtime/calibration.hpp"
 #include "foveal/runtime/profile.hpp"
 #include "foveal/tools/cli.hpp"
@@ -41,11 +48,85 @@ Result<std::vector<ScriptedAnswer>> read_answers(const std::string& path) {
   return out;
 }
 
+double mean_finite(const std::vector<double>& v) {
+  double sum = 0;
+  int n = 0;
+  for (double x : v)
+    if (std::isfinite(x)) sum += x, ++n;
+  return n ? sum / n : ProfileGazeQuality::kNaN;
+}
+
+// The validation trials' gaze (docs/calibration.md, "Gaze accuracy and precision"):
+// precision is the mean over the fixation targets of their RMS-S2S and STD, accuracy the
+// mean of their offsets; data loss is over all the samples.
+Result<ProfileGazeQuality> validation_gaze_quality(std::span<const GazeSample> samples, double rate_hz,
+                                                   std::vector<QualityTarget> targets, const std::string& source) {
+  if (samples.size() < 2) return bad_input(source + ": too few gaze samples to measure the validation trials");
+  QualityOptions qo;
+  qo.targets = std::move(targets);
+  auto q = compute_gaze_quality(samples, rate_hz, qo);
+  if (!q) return Error{q.error().kind, source + ": " + q.error().message};
+  ProfileGazeQuality out;
+  out.source = source;
+  out.targets = static_cast<int>(q->targets.size());
+  for (std::size_t c = 0; c < out.channels.size(); ++c) {
+    std::vector<double> rms, sd;
+    for (const TargetQuality& t : q->targets) {
+      rms.push_back(t.channels[c].rms_s2s_deg);
+      sd.push_back(t.channels[c].std_deg);
+    }
+    out.channels[c] = {q->accuracy[c].offset_deg, mean_finite(rms), mean_finite(sd), q->channels[c].data_loss_pct};
+  }
+  return out;
+}
+
+// A log recorded while the fixation targets were shown, and the targets' times and
+// places; without a targets file the whole log is one fixation straight ahead, the
+// validation stimulus's central target.
+Result<ProfileGazeQuality> logged_gaze_quality(const std::string& log, const std::string& targets_file) {
+  GazeLogHeader header;
+  auto samples = read_gaze_log(log, &header);
+  if (!samples) return samples.error();
+  std::vector<QualityTarget> targets;
+  if (!targets_file.empty()) {
+    auto t = read_quality_targets(targets_file);
+    if (!t) return t.error();
+    targets = std::move(*t);
+  } else if (!samples->empty()) {
+    const double duration_s = static_cast<double>(samples->back().t_ns - samples->front().t_ns) / 1e9;
+    targets = {QualityTarget{0.0, duration_s, FickAngles{0, 0}, log + " (straight ahead)"}};
+  }
+  return validation_gaze_quality(*samples, header.rate_hz, std::move(targets), log);
+}
+
+// The headset's validation trials read live: each trial's fixation window is a target
+// straight ahead.
+Result<ProfileGazeQuality> live_gaze_quality(const ValidationGaze& g, double rate_hz, const std::string& spec) {
+  if (g.samples.size() < 2) return validation_gaze_quality(g.samples, rate_hz, {}, spec);
+  const TimeNs t0 = g.samples.front().t_ns, t1 = g.samples.back().t_ns;
+  std::vector<QualityTarget> targets;
+  for (const auto& [from, to] : g.fixations) {
+    const TimeNs a = std::max(from, t0), b = std::min(to, t1);
+    if (b > a)
+      targets.push_back({static_cast<double>(a - t0) / 1e9, static_cast<double>(b - t0) / 1e9, FickAngles{0, 0},
+                         spec + " validation trial " + std::to_string(targets.size() + 1)});
+  }
+  if (targets.empty()) return bad_input(spec + ": no gaze samples during the validation trials' fixation targets");
+  return validation_gaze_quality(g.samples, rate_hz, std::move(targets), spec);
+}
+
+nlohmann::json gaze_quality_json(const ProfileGazeQuality& g) {
+  // As the profile stores it (NaN: null).
+  Profile p;
+  p.gaze_quality = g;
+  return p.to_json()["gaze_quality"];
+}
+
 }  // namespace
 
 void add_calibrate(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string profile, answers, monitor, scene;
+    std::string profile, answers, monitor, scene, gaze_log, gaze_targets, gaze;
     bool json = false, dry_run = false;
   };
   auto a = std::make_shared<Args>();
@@ -57,10 +138,27 @@ void add_calibrate(CLI::App& app, int& exit_code) {
                   "without it: the in-headset window (keys L/R, S/D, Esc; gamepad LB/RB, A/B)");
   sub->add_option("--monitor", a->monitor, "In-headset mode: fullscreen on the monitor whose name contains this");
   sub->add_option("--scene", a->scene, "In-headset mode: the scene of the comparisons (default: the bundled Dungeon)");
+  sub->add_option("--gaze-log", a->gaze_log,
+                  "Native gaze log recorded during the validation trials: accuracy and precision go into the profile");
+  sub->add_option("--gaze", a->gaze,
+                  "In-headset mode: read this gaze source (e.g. auto, hid, psvr2) during the validation trials "
+                  "for their accuracy and precision")
+      ->excludes("--gaze-log")
+      ->excludes("--answers");
+  sub->add_option("--gaze-targets", a->gaze_targets,
+                  "Targets CSV for --gaze-log (start_s,end_s,azimuth_deg,elevation_deg; default: all straight ahead)")
+      ->needs("--gaze-log");
   sub->add_flag("--dry-run", a->dry_run, "Report the result without saving it");
   sub->add_flag("--json", a->json, "Print the result as JSON");
   sub->callback([a, &exit_code] {
     auto fail = [&exit_code](const Error& e) { exit_code = cli::report(e); };
+    // The gaze figures first: a bad log stops the command before anyone is asked anything.
+    std::optional<ProfileGazeQuality> gaze;
+    if (!a->gaze_log.empty()) {
+      auto g = logged_gaze_quality(a->gaze_log, a->gaze_targets);
+      if (!g) return fail(g.error());
+      gaze = *g;
+    }
     Calibration cal;
     std::vector<nlohmann::json> steps;
     if (a->answers.empty()) {
@@ -68,10 +166,30 @@ void add_calibrate(CLI::App& app, int& exit_code) {
       CalibrationWindowOptions wo;
       wo.monitor = a->monitor;
       wo.scene = a->scene;
-      if (Status st = run_calibration_window(cal, wo); !st) {
+      std::optional<probe::OpenedSource> source;
+      ValidationGaze live;
+      if (!a->gaze.empty()) {
+        auto spec = probe::parse_source_spec(a->gaze);
+        if (!spec) return fail(spec.error());
+        auto opened = probe::make_source(*spec);
+        if (!opened) return fail(opened.error());
+        source.emplace(std::move(*opened));
+        if (Status st = source->source->open(); !st) return fail(st.error());
+        if (Status st = source->source->start(); !st) return fail(st.error());
+        wo.gaze = source->source.get();
+      }
+      Status st = run_calibration_window(cal, wo, source ? &live : nullptr);
+      if (source) source->source->close();
+      if (!st) {
         Error e = st.error();
         if (e.kind == ErrorKind::unsupported) e.message += " (no display? the scripted mode works headless: --answers FILE)";
         return fail(e);
+      }
+      if (source) {
+        const double rate = source->source->info().nominal_rate_hz > 0 ? source->source->info().nominal_rate_hz : 120;
+        auto g = live_gaze_quality(live, rate, a->gaze);
+        if (!g) return fail(g.error());
+        gaze = *g;
       }
     }
     std::vector<ScriptedAnswer> scripted;
@@ -107,6 +225,7 @@ void add_calibrate(CLI::App& app, int& exit_code) {
     p.dominant_eye = r.dominant_eye;
     p.sigma_d = r.sigma_uniform;
     p.sigma_nd = r.sigma_non_dominant;
+    if (gaze) p.gaze_quality = gaze;
     const bool save = r.passed() && !a->dry_run;
     nlohmann::json j = {{"profile", name},
                         {"dominant_eye", eye_name(r.dominant_eye)},
@@ -114,16 +233,24 @@ void add_calibrate(CLI::App& app, int& exit_code) {
                         {"sigma_d", r.sigma_uniform},
                         {"sigma_nd", r.sigma_non_dominant},
                         {"validation", {{"trials", r.validation_trials}, {"failures", r.validation_failures}, {"passed", r.passed()}}},
+                        {"gaze_quality", gaze ? gaze_quality_json(*gaze) : nlohmann::json(nullptr)},
                         {"saved", save},
                         {"steps", steps}};
     if (save)
       if (Status st = store.save(p); !st) return fail(st.error());
     if (a->json) cli::print_json(j);
-    else
+    else {
       std::printf("dominant eye %s%s, sigma_d %.1f, sigma_nd %.1f; validation %d/%d identical pairs right -> %s\n",
                   eye_name(r.dominant_eye), r.dominant_consistent ? "" : " (trials disagreed)", r.sigma_uniform,
                   r.sigma_non_dominant, r.validation_trials - r.validation_failures, r.validation_trials,
                   save ? ("saved to profile " + name).c_str() : a->dry_run ? "not saved (dry run)" : "NOT saved");
+      if (gaze)
+        std::printf("gaze in the validation trials (%d targets): accuracy L %.3f R %.3f deg, precision RMS-S2S "
+                    "L %.3f R %.3f deg, STD L %.3f R %.3f deg, data loss L %.1f%% R %.1f%%\n",
+                    gaze->targets, gaze->channels[0].accuracy_deg, gaze->channels[1].accuracy_deg,
+                    gaze->channels[0].rms_s2s_deg, gaze->channels[1].rms_s2s_deg, gaze->channels[0].std_deg,
+                    gaze->channels[1].std_deg, gaze->channels[0].data_loss_pct, gaze->channels[1].data_loss_pct);
+    }
     if (!r.passed())
       return fail(bad_input("calibration rejected: " + std::to_string(r.validation_failures) + " of " +
                             std::to_string(r.validation_trials) +

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 #include "commands.hpp"
 #include "foveal/runtime/control_server.hpp"
@@ -42,12 +43,13 @@ void add_ctl(CLI::App& app, int& exit_code) {
       "  use NAME                 switch to another profile\n"
       "  set KEY=VALUE...         sigma_d, sigma_nd, f_x, f_y at run time\n"
       "  pause | resume           stop / restart rendering and gaze processing\n"
-      "  mark TEXT...             a timestamped event marker in foveald's trace\n");
+      "  mark TEXT...             a timestamped event marker in foveald's trace, and in the log of a\n"
+      "                           `foveal record --control` in progress (without --socket)\n");
   ctl->add_option("request", a->words, "The request and its arguments")->required();
   ctl->add_option("--socket", a->socket, "Control socket")->capture_default_str();
   ctl->add_option("--timeout-ms", a->timeout_ms, "How long to wait for the reply")->capture_default_str();
   ctl->add_flag("--json", a->json, "Print the reply as JSON (the default prints it indented too)");
-  ctl->callback([a, &exit_code] {
+  ctl->callback([a, ctl, &exit_code] {
     const std::string& cmd = a->words.front();
     nlohmann::json req = {{"cmd", cmd}};
     if (cmd == "use") {
@@ -76,6 +78,21 @@ void add_ctl(CLI::App& app, int& exit_code) {
       req["text"] = text;
     } else if (a->words.size() != 1) {
       exit_code = cli::report(bad_input("ctl " + cmd + ": takes no arguments"));
+      return;
+    }
+    // A mark also goes to a recording in progress at the default place (docs/daemon.md).
+    const std::string record_socket = default_record_socket_path();
+    std::error_code ec;
+    if (cmd == "mark" && ctl->count("--socket") == 0 && std::filesystem::exists(record_socket, ec)) {
+      nlohmann::json both;
+      bool any_ok = false;
+      for (const auto& [name, path] : {std::pair<const char*, std::string>{"foveald", a->socket}, {"record", record_socket}}) {
+        auto reply = control_request(path, req, a->timeout_ms);
+        both[name] = reply ? *reply : nlohmann::json{{"ok", false}, {"error", reply.error().message}};
+        any_ok |= both[name].value("ok", false);
+      }
+      std::printf("%s\n", a->json ? both.dump().c_str() : both.dump(2).c_str());
+      if (!any_ok) exit_code = cli::kExitBadInput;
       return;
     }
     auto reply = control_request(a->socket, req, a->timeout_ms);

@@ -1,5 +1,7 @@
 // foveal record: reads a tracker and writes what it delivers as a native gaze log,
-// riding out unplugs (retry with backoff) until the duration is over or Ctrl-C.
+// riding out unplugs (retry with backoff) until the duration is over or Ctrl-C. With
+// --control it serves a control socket whose `mark` requests become marker rows of the
+// log; at the end it reports the recording's data quality (docs/quality.md).
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -13,7 +15,11 @@
 #include "commands.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/drivers/probe.hpp"
+#include "foveal/quality/quality_targets.hpp"
+#include "foveal/runtime/control_server.hpp"
 #include "foveal/tools/cli.hpp"
+#include "foveal/tools/trace_markers.hpp"
+#include "quality_report.hpp"
 
 namespace foveal::cmd {
 
@@ -32,13 +38,49 @@ double estimate_rate(const std::vector<GazeSample>& s) {
   return median > 0 ? 1e9 / static_cast<double>(median) : 0;
 }
 
+// The recording's control requests: `mark` (stamped now, on the samples' clock) and
+// `status`; replies as foveald's (docs/daemon.md).
+nlohmann::json record_request(const nlohmann::json& req, cli::MarkerQueue& markers, std::uint64_t samples,
+                              const std::string& out) {
+  const std::string cmd = req["cmd"].get<std::string>();
+  if (cmd == "status")
+    return {{"ok", true}, {"recording", out}, {"samples", samples}, {"markers", markers.pushed()}};
+  if (cmd == "mark") {
+    const auto text = req.find("text");
+    if (text == req.end() || !text->is_string()) return {{"ok", false}, {"error", "mark: expected \"text\": a string"}};
+    if (Status st = check_marker_text(text->get<std::string>()); !st) return {{"ok", false}, {"error", st.error().message}};
+    const TimeNs now = monotonic_now_ns();
+    if (!markers.push({now, text->get<std::string>()}))
+      return {{"ok", false}, {"error", "mark: " + std::to_string(cli::MarkerQueue::kMaxWaiting) +
+                                           " markers wait for the next sample already; refused"}};
+    return {{"ok", true}, {"t_ns", now}, {"markers", markers.pushed()}};
+  }
+  return {{"ok", false}, {"error", "unknown request '" + cmd + "' (a recording answers status and mark)"}};
+}
+
+/// The recording's quality, read back from the committed log; null with the reason when
+/// it has none (no valid samples, a target outside it).
+nlohmann::json recording_quality(const std::string& path, const std::vector<QualityTarget>& targets, bool print) {
+  GazeLogHeader header;
+  auto samples = read_gaze_log(path, &header);
+  if (!samples) return {{"error", samples.error().message}};
+  auto q = compute_gaze_quality(*samples, header.rate_hz, QualityOptions{std::nullopt, std::nullopt, targets});
+  if (!q) {
+    if (print) std::printf("  no quality figures: %s\n", q.error().message.c_str());
+    return {{"error", q.error().message}};
+  }
+  if (print) print_quality_text(path, *q);
+  return quality_json(path, *q);
+}
+
 }  // namespace
 
 void add_record(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string source, device, out;
+    std::string source, device, out, targets;
+    std::string control_socket;
     double duration_s = 10;
-    bool json = false;
+    bool control = false, json = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand("record", "Record a tracker's gaze into a native gaze log");
@@ -47,6 +89,12 @@ void add_record(CLI::App& app, int& exit_code) {
       ->excludes("--source");
   sub->add_option("--out,-o", args->out, "Output native gaze log (written atomically)")->required();
   sub->add_option("--duration", args->duration_s, "Seconds to record (Ctrl-C stops early)")->capture_default_str();
+  sub->add_flag("--control", args->control,
+                "Serve a control socket while recording (default " + default_record_socket_path() +
+                    "): `foveal ctl mark TEXT` puts a marker row into the log");
+  sub->add_option("--control-socket", args->control_socket, "Serve the control socket at this path instead");
+  sub->add_option("--targets", args->targets,
+                  "Targets CSV (start_s,end_s,azimuth_deg,elevation_deg): the end report gives accuracy");
   sub->add_flag("--json", args->json, "Print the summary as JSON");
   sub->callback([args, &exit_code] {
     if (!(args->duration_s > 0)) {
@@ -65,6 +113,26 @@ void add_record(CLI::App& app, int& exit_code) {
       exit_code = cli::report(device.error());
       return;
     }
+    std::vector<QualityTarget> targets;
+    if (!args->targets.empty()) {
+      auto t = read_quality_targets(args->targets);
+      if (!t) {
+        exit_code = cli::report(t.error());
+        return;
+      }
+      targets = std::move(t.value());
+    }
+    std::optional<ControlServer> control;
+    if (args->control || !args->control_socket.empty()) {
+      auto c = ControlServer::listen(args->control_socket.empty() ? default_record_socket_path() : args->control_socket);
+      if (!c) {
+        exit_code = cli::report(c.error());
+        return;
+      }
+      control.emplace(std::move(c.value()));
+      control->set_logger([](const std::string& line) { cli::warn("control: " + line); });
+    }
+    cli::MarkerQueue markers;
     GazeSource& src = *device->source;
     if (Status s = src.open(); !s) {
       exit_code = cli::report(s.error());
@@ -84,6 +152,23 @@ void add_record(CLI::App& app, int& exit_code) {
     std::optional<GazeLogWriter> writer;
     TimeNs last_t = 0;
     std::uint64_t reconnects = 0;
+    // Markers go in before the first sample stamped later than them: the log stays in
+    // time order. One stamped before the last written row (a source's clock running
+    // ahead) is moved up to that row's time.
+    TimeNs last_row_t = INT64_MIN;
+    auto write_markers_until = [&](TimeNs t) -> Status {
+      for (GazeMarker m : markers.take_until(t)) {
+        m.t_ns = std::max(m.t_ns, last_row_t);
+        if (Status st = writer->mark(m); !st) return st;
+        last_row_t = m.t_ns;
+      }
+      return {};
+    };
+    auto write_sample = [&](const GazeSample& s) -> Status {
+      if (Status st = write_markers_until(s.t_ns); !st) return st;
+      last_row_t = s.t_ns;
+      return writer->write(s);
+    };
     auto open_writer = [&]() -> Status {
       GazeLogHeader h;
       h.rate_hz = src.info().nominal_rate_hz > 0 ? src.info().nominal_rate_hz : estimate_rate(head);
@@ -95,18 +180,22 @@ void add_record(CLI::App& app, int& exit_code) {
       if (!w) return w.error();
       writer.emplace(std::move(w.value()));
       for (const GazeSample& s : head)
-        if (Status st = writer->write(s); !st) return st;
+        if (Status st = write_sample(s); !st) return st;
       head.clear();
       return {};
     };
     const TimeNs head_until = monotonic_now_ns() + kNsPerSec;
     while (!g_interrupted.load() && monotonic_now_ns() < t_end) {
-      const auto r = src.next(std::chrono::milliseconds(50));
+      if (control)
+        control->poll(0, [&](const nlohmann::json& req) {
+          return record_request(req, markers, (writer ? writer->samples_written() : 0) + head.size(), args->out);
+        });
+      const auto r = src.next(std::chrono::milliseconds(control ? 20 : 50));
       if (r.status == ReadStatus::sample) {
         if (r.sample.t_ns <= last_t) continue;
         last_t = r.sample.t_ns;
         if (writer) {
-          if (Status st = writer->write(r.sample); !st) {
+          if (Status st = write_sample(r.sample); !st) {
             exit_code = cli::report(st.error());
             return;
           }
@@ -133,18 +222,23 @@ void add_record(CLI::App& app, int& exit_code) {
         exit_code = cli::report(st.error());
         return;
       }
-    if (Status st = writer->commit(); !st) {
+    control.reset();  // no marks after the end; removes the socket
+    Status st = write_markers_until(INT64_MAX);
+    if (st) st = writer->commit();
+    if (!st) {
       exit_code = cli::report(st.error());
       return;
     }
     nlohmann::json j = {{"output", args->out},  {"driver", info.driver},     {"device", info.path},
                         {"samples", writer->samples_written()}, {"reconnects", reconnects},
-                        {"driver_counters", device->counters()}};
-    if (args->json) cli::print_json(j);
-    else
-      std::printf("recorded %llu samples from %s %s -> %s (%llu reconnects)\n",
-                  static_cast<unsigned long long>(writer->samples_written()), info.driver.c_str(), info.path.c_str(),
+                        {"markers", markers.pushed()}, {"driver_counters", device->counters()}};
+    if (!args->json)
+      std::printf("recorded %llu samples, %llu markers from %s %s -> %s (%llu reconnects)\n",
+                  static_cast<unsigned long long>(writer->samples_written()),
+                  static_cast<unsigned long long>(markers.pushed()), info.driver.c_str(), info.path.c_str(),
                   args->out.c_str(), static_cast<unsigned long long>(reconnects));
+    j["quality"] = recording_quality(args->out, targets, !args->json);
+    if (args->json) cli::print_json(j);
   });
 }
 

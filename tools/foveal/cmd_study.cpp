@@ -1,5 +1,6 @@
 // `foveal study stats`: votes per pair of conditions with the exact binomial test, and
-// mean scores per condition, from a trials CSV (docs/study.md).
+// mean scores per condition and the sigma_UF/sigma_NF estimates, from a trials CSV
+// (docs/study.md). `study run` is in cmd_study_run.cpp.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -25,7 +26,22 @@ nlohmann::json stats_json(const std::string& path, const StudyStats& st) {
                      {"p_value", p.p_value}});
   for (const ConditionScore& c : st.scores)
     scores.push_back({{"condition", c.condition}, {"trials", c.trials}, {"mean", c.mean}, {"sd", c.sd}});
-  return {{"file", path}, {"pairs", pairs}, {"scores", scores}, {"validation_trials", st.validation_trials}};
+  auto estimate = [](const std::optional<SigmaEstimate>& e) -> nlohmann::json {
+    if (!e) return nullptr;
+    return {{"sigma", e->sigma}, {"bound", estimate_bound_name(e->bound)}};
+  };
+  nlohmann::json sigmas = nlohmann::json::array();
+  for (const SigmaEstimates& e : st.sigmas) {
+    nlohmann::json levels = nlohmann::json::array();
+    for (const LevelScore& l : e.levels)
+      levels.push_back({{"sigma_d", l.sigma_d}, {"sigma_nd", l.sigma_nd}, {"trials", l.trials}, {"mean", l.mean}});
+    nlohmann::json j = {{"method", e.method}, {"threshold", e.threshold}, {"levels", levels},
+                        {"sigma_uf", estimate(e.sigma_uf)}, {"sigma_nf", estimate(e.sigma_nf)}};
+    if (e.sigma_nf) j["sigma_nf"]["at_sigma_d"] = e.sigma_nf_at_sigma_d;
+    sigmas.push_back(std::move(j));
+  }
+  return {{"file", path}, {"pairs", pairs}, {"scores", scores}, {"validation_trials", st.validation_trials},
+          {"sigma_estimates", sigmas}};
 }
 
 void print_text(const std::string& path, const StudyStats& st) {
@@ -46,21 +62,42 @@ void print_text(const std::string& path, const StudyStats& st) {
       std::printf("  %-40s %7llu %8.3f %8.3f\n", c.condition.c_str(), static_cast<unsigned long long>(c.trials),
                   c.mean, c.sd);
   }
+  auto bound = [](const SigmaEstimate& x) {
+    switch (x.bound) {
+      case EstimateBound::interpolated: return "";
+      case EstimateBound::at_least: return " or more (no tested level fell below the threshold)";
+      case EstimateBound::below_range: return " or less (the smallest tested level fell below the threshold)";
+    }
+    return "";
+  };
+  for (const SigmaEstimates& e : st.sigmas) {
+    if (e.sigma_uf)
+      std::printf("  %s: sigma_UF %.3f%s; mean score >= %.2f on the uniform levels\n", e.method.c_str(),
+                  e.sigma_uf->sigma, bound(*e.sigma_uf), e.threshold);
+    if (e.sigma_nf)
+      std::printf("  %s: sigma_NF %.3f%s, the dominant eye at sigma %.3g\n", e.method.c_str(), e.sigma_nf->sigma,
+                  bound(*e.sigma_nf), e.sigma_nf_at_sigma_d);
+  }
 }
 
 }  // namespace
 
 void add_study(CLI::App& app, int& exit_code) {
-  CLI::App* study = app.add_subcommand("study", "User studies of foveation: statistics of their trials");
+  CLI::App* study = app.add_subcommand("study", "User studies of foveation: run one (2AFC or random test), statistics of their trials");
   study->require_subcommand(1);
   struct Args {
     std::string file;
+    double threshold = 4.0;
     bool json = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* stats = study->add_subcommand(
-      "stats", "Votes per pair of conditions with the exact binomial test; mean score per condition");
+      "stats", "Votes per pair of conditions with the exact binomial test; mean score per condition; sigma_UF/sigma_NF");
   stats->add_option("file", args->file, "Trials CSV (method_a,method_b,chosen and/or condition,score)")->required();
+  stats->add_option("--threshold", args->threshold,
+                    "sigma_UF/sigma_NF: the mean score that still counts as no visible difference")
+      ->check(CLI::Range(1.0, 5.0))
+      ->capture_default_str();
   stats->add_flag("--json", args->json, "Print the report as JSON");
   stats->callback([args, &exit_code] {
     auto trials = read_study_trials(args->file);
@@ -68,10 +105,11 @@ void add_study(CLI::App& app, int& exit_code) {
       exit_code = cli::report(trials.error());
       return;
     }
-    const StudyStats st = compute_study_stats(*trials);
+    const StudyStats st = compute_study_stats(*trials, args->threshold);
     if (args->json) cli::print_json(stats_json(args->file, st));
     else print_text(args->file, st);
   });
+  add_study_run(*study, exit_code);
 }
 
 }  // namespace foveal::cmd

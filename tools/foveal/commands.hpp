@@ -21,9 +21,11 @@ void add_render(CLI::App& app, int& exit_code);
 void add_foveate(CLI::App& app, int& exit_code);
 void add_metrics(CLI::App& app, int& exit_code);
 void add_bench(CLI::App& app, int& exit_code);
+void add_bench_merge(CLI::App& bench, int& exit_code);  // `bench merge`, called by add_bench
 void add_outputs(CLI::App& app, int& exit_code);
 void add_devices(CLI::App& app, int& exit_code);
 void add_record(CLI::App& app, int& exit_code);
 void add_study(CLI::App& app, int& exit_code);
+void add_study_run(CLI::App& study, int& exit_code);  // `study run`, called by add_study
 
 }  // namespace foveal::cmd

@@ -21,6 +21,18 @@ namespace {
 constexpr const char* kDefaultLog = "data/gaze/vive_pro_eye_TESTNA01.csv";
 constexpr std::uint64_t kWarmupFrames = 100;  // caches, driver pools and histograms are full by then
 
+/// The settings as other programs see them in the shared block (docs/fovea-shm.md).
+FoveaShmSettings shm_settings(const RenderSettings& r) {
+  FoveaShmSettings s{};
+  s.sigma_d = r.sigma_d;
+  s.sigma_nd = r.sigma_nd;
+  s.f_x = r.f_x;
+  s.f_y = r.f_y;
+  s.dominant_eye = r.dominant_eye;
+  s.generation = r.generation;
+  return s;
+}
+
 }  // namespace
 
 Result<Profile> DaemonApp::load_startup_profile() const {
@@ -46,7 +58,9 @@ Status DaemonApp::apply_profile(const Profile& p, const char* why) {
   }
   const bool filter_changed = p.filter != profile_.filter;
   profile_ = p;
-  settings_.store(RenderSettings::from(p, ++settings_generation_));
+  const RenderSettings rs = RenderSettings::from(p, ++settings_generation_);
+  settings_.store(rs);
+  if (shm_) shm_->publish_settings(shm_settings(rs));
   if (loop_ && filter_changed) loop_->set_mapper(make_mapper());
   log::info(std::string("profile '") + p.name + "' " + why + ": dominant " + eye_name(p.dominant_eye) +
             ", sigma_d " + std::to_string(p.sigma_d) + ", sigma_nd " + std::to_string(p.sigma_nd));
@@ -116,8 +130,14 @@ Status DaemonApp::setup() {
   }
   if (o_.shm) {
     auto s = FoveaShm::create(default_fovea_shm_name());
-    if (s) shm_.emplace(std::move(s.value()));
-    else log::warn(s.error().message + "; the fovea stream is off");
+    if (s) {
+      shm_.emplace(std::move(s.value()));
+      RenderSettings rs;
+      (void)settings_.load(rs);
+      shm_->publish_settings(shm_settings(rs));  // those of the startup profile, before any fovea
+    } else {
+      log::warn(s.error().message + "; the fovea stream is off");
+    }
   }
   return {};
 }

@@ -48,6 +48,7 @@ void DaemonApp::control_thread(int signal_fd) {
       ::poll(&p, 1, kPollMs);
     }
     handle_signals(signal_fd);
+    if (shm_) shm_->heartbeat();  // readers take a silent block for a dead foveald
     print_status_line();
     const TimeNs asked = stop_requested_at_.load();
     if (asked > 0 && monotonic_now_ns() - asked > kEmergencyAfterNs && claim_shutdown(control)) emergency_exit();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cinttypes>
 #include <cstdio>
+#include <utility>
 
 #include "foveal/core/data_paths.hpp"
 #include "foveal/image/auto_f.hpp"
@@ -114,6 +115,8 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
   }
   const bool save = frames_ == 0 || (o_.save_every > 0 && frames_ % static_cast<std::uint64_t>(o_.save_every) == 0);
   ++frames_;
+  // Built before taking the lock, so a status request never waits for it.
+  nlohmann::json output = output_->json();
   {
     std::lock_guard lock(snapshot_mutex_);
     snap_.frames = frames_;
@@ -124,7 +127,7 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
     snap_.generation = s.generation;
     if (generation_changed) ++snap_.settings_changes;
     if (auto_f_generation_) snap_.auto_f = {auto_fx_, auto_fy_};
-    snap_.output = output_->json();
+    snap_.output = std::move(output);
     snap_.targets_mb = static_cast<double>(comp_->memory().total()) / (1024.0 * 1024.0);
   }
   if (save) return save_frame();

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "foveal/core/data_paths.hpp"
+#include "foveal/rmfr.hpp"
 
 namespace foveal::gl {
 
@@ -24,10 +25,14 @@ Result<std::string> read_text(const std::string& path) {
 Status expand_into(const std::string& root, const std::string& path, int depth, std::vector<std::string>& files,
                    std::string& out) {
   if (depth > kMaxIncludeDepth) return bad_input(path + ": #include nested deeper than 16 (a cycle?)");
-  auto text = read_text(root + "/" + path);
+  // foveal-rmfr's GLSL (`foveal/...`) comes from the library itself: one copy of RMFR's
+  // mapping for the compositor's shaders and the library's passes.
+  const std::string_view builtin = rmfr::glsl_file(path);
+  const std::string name = builtin.empty() ? root + "/" + path : "foveal-rmfr:" + path;
+  auto text = builtin.empty() ? read_text(name) : Result<std::string>(std::string(builtin));
   if (!text) return text.error();
   const int index = static_cast<int>(files.size());
-  files.push_back(root + "/" + path);
+  files.push_back(name);
   out += "#line 1 " + std::to_string(index) + "\n";
   std::istringstream lines(*text);
   std::string line;

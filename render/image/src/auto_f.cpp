@@ -4,9 +4,11 @@
 #include <cmath>
 #include <vector>
 
-#include "foveal/image/rmfr_mapping.hpp"
+#include "foveal/rmfr_mapping.hpp"
 
 namespace foveal::image {
+
+using namespace foveal::rmfr;  // the one RMFR mapping (foveal/rmfr_mapping.hpp)
 
 namespace {
 
@@ -24,8 +26,7 @@ AxisMap axis_map(int screen, double sigma, double c, double f) {
   AxisMap m;
   m.source.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i)
-    m.source[static_cast<std::size_t>(i)] =
-        std::clamp(static_cast<int>(std::floor(rmfr_inverse((i + 0.5) / n, c, fe) * screen)), 0, screen - 1);
+    m.source[static_cast<std::size_t>(i)] = rmfr_source_pixel(i, n, screen, c, fe);
   m.lo.resize(static_cast<std::size_t>(screen));
   m.hi.resize(static_cast<std::size_t>(screen));
   m.t.resize(static_cast<std::size_t>(screen));

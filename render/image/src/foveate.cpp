@@ -5,9 +5,11 @@
 #include <cmath>
 #include <vector>
 
-#include "foveal/image/rmfr_mapping.hpp"
+#include "foveal/rmfr_mapping.hpp"
 
 namespace foveal::image {
+
+using namespace foveal::rmfr;  // the one RMFR mapping (foveal/rmfr_mapping.hpp)
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include "foveal/image/kfr_mapping.hpp"
-#include "foveal/image/rmfr_mapping.hpp"
+#include "foveal/rmfr_mapping.hpp"
 
 namespace foveal::render {
 
@@ -179,7 +179,7 @@ Result<EyePlan> plan_eye(Method m, const EyeFoveation& e, int W, int H, const Ey
   p.method = m;
   p.screen_w = W, p.screen_h = H;
   p.frustum = frustum;
-  p.fovea = {image::sanitize_fovea(e.fovea_x), 1.0 - image::sanitize_fovea(e.fovea_y)};
+  p.fovea = {rmfr::sanitize_fovea(e.fovea_x), 1.0 - rmfr::sanitize_fovea(e.fovea_y)};
   p.buffer_w = W, p.buffer_h = H;
   // σ = 1 is full-rate rendering for every method; only RMFR's passes run it (identity).
   if (e.sigma <= 1.0 && m != Method::full) m = p.method = Method::rmfr;
@@ -190,13 +190,13 @@ Result<EyePlan> plan_eye(Method m, const EyeFoveation& e, int W, int H, const Ey
       p.fovea = optical_centre(frustum);
       [[fallthrough]];
     case Method::rmfr:
-      p.buffer_w = image::rmfr_buffer_size(W, e.sigma), p.buffer_h = image::rmfr_buffer_size(H, e.sigma);
+      p.buffer_w = rmfr::rmfr_buffer_size(W, e.sigma), p.buffer_h = rmfr::rmfr_buffer_size(H, e.sigma);
       // uniform: RMFR's buffer with the identity map, an even grid that the resolve upsamples.
-      p.f = m == Method::uniform ? glm::dvec2(image::kRmfrIdentityF)
-                                 : glm::dvec2(image::rmfr_effective_f(e.fx, e.sigma), image::rmfr_effective_f(e.fy, e.sigma));
+      p.f = m == Method::uniform ? glm::dvec2(rmfr::kRmfrIdentityF)
+                                 : glm::dvec2(rmfr::rmfr_effective_f(e.fx, e.sigma), rmfr::rmfr_effective_f(e.fy, e.sigma));
       break;
     case Method::kfr: {
-      p.buffer_w = image::rmfr_buffer_size(W, e.sigma), p.buffer_h = image::rmfr_buffer_size(H, e.sigma);
+      p.buffer_w = rmfr::rmfr_buffer_size(W, e.sigma), p.buffer_h = rmfr::rmfr_buffer_size(H, e.sigma);
       p.kfr_log_max = image::kfr_log_max(W, H, p.fovea.x * W, p.fovea.y * H);
       p.kfr_alpha = e.kfr_alpha;
       break;

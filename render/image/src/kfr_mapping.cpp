@@ -4,9 +4,11 @@
 #include <unordered_set>
 #include <vector>
 
-#include "foveal/image/rmfr_mapping.hpp"
+#include "foveal/rmfr_mapping.hpp"
 
 namespace foveal::image {
+
+using namespace foveal::rmfr;  // the one RMFR mapping (foveal/rmfr_mapping.hpp)
 
 namespace {
 

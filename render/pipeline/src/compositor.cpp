@@ -8,10 +8,11 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "foveal/image/rmfr_mapping.hpp"
+#include "foveal/rmfr_mapping.hpp"
 #include "foveal/render/light_rig.hpp"
 #include "foveal/render/scene.hpp"
 #include "foveal/render/stereo_camera.hpp"
+#include "foveal/rmfr.hpp"
 #include "render_targets.hpp"
 
 namespace foveal::render {
@@ -151,6 +152,23 @@ Result<std::size_t> mapping_index(const EyePlan& plan) {
   return bad_input("no mapping for foveation method " + std::to_string(static_cast<int>(plan.method)));
 }
 
+// An RMFR eye's plan as foveal-rmfr takes it (plan_eye computed it with the library's
+// formulas, foveal/rmfr_mapping.hpp).
+rmfr::Plan rmfr_plan(const EyePlan& p) {
+  rmfr::Plan r;
+  r.screen_w = p.screen_w, r.screen_h = p.screen_h;
+  r.buffer_w = p.buffer_w, r.buffer_h = p.buffer_h;
+  r.sigma = static_cast<double>(p.screen_w) / p.buffer_w;  // informative; the passes use the sizes
+  r.fovea_x = p.fovea.x, r.fovea_y = p.fovea.y;
+  r.fx = p.f.x, r.fy = p.f.y;
+  r.frustum = {p.frustum.tan_left, p.frustum.tan_right, p.frustum.tan_bottom, p.frustum.tan_top};
+  return r;
+}
+
+rmfr::Lens rmfr_lens(const LensDistortion& l) {
+  return {l.center.x, l.center.y, l.k1, l.k2, l.k3, {l.channel_scale.x, l.channel_scale.y, l.channel_scale.z}};
+}
+
 // The mapping uniforms of shaders/common/mapping.glsl for one eye's plan.
 void set_mapping(GLuint p, const EyePlan& plan, glm::vec2 texture_size) {
   const bool full = plan.method == Method::full;
@@ -158,7 +176,7 @@ void set_mapping(GLuint p, const EyePlan& plan, glm::vec2 texture_size) {
   set(p, "u_texture_size", texture_size);
   set(p, "u_screen_size", glm::vec2(plan.screen_w, plan.screen_h));
   set(p, "u_fovea", glm::vec2(plan.fovea));
-  const float identity = static_cast<float>(image::kRmfrIdentityF);
+  const float identity = static_cast<float>(rmfr::kRmfrIdentityF);
   set(p, "u_f", full ? glm::vec2(identity) : glm::vec2(plan.f));
   set(p, "u_kfr", glm::vec2(static_cast<float>(plan.kfr_log_max), static_cast<float>(plan.kfr_alpha)));
   set(p, "u_tan", glm::vec4(plan.frustum.tan_left, plan.frustum.tan_right, plan.frustum.tan_bottom, plan.frustum.tan_top));
@@ -179,8 +197,10 @@ struct Compositor::Impl {
   int eye_w = 0, eye_h = 0;
   gl::Program gbuffer_prog, pattern_prog, shadow_prog;
   // One per MAPPING (0 RMFR/full, 1 KFR, 2 layers); resolve also with and without the lens.
+  // RMFR maps and resolves through foveal-rmfr, so its map and resolve slots stay empty.
   std::array<gl::Program, 3> map_progs, lighting_progs;
   std::array<std::array<gl::Program, 2>, 3> resolve_progs;
+  std::optional<rmfr::Foveator> foveator;  // RMFR's mapping and resolve passes
   gl::VertexArray empty_vao;
   gl::Buffer lights_ubo;
   detail::SurfaceTargets gbuffer;
@@ -300,8 +320,9 @@ Result<Compositor> Compositor::create(const CompositorOptions& o, const gl::Shad
   for (std::size_t m = 0; m < 3; ++m) {
     const std::string mapping = "#define MAPPING " + std::to_string(m) + "\n";
     const gl::ShaderStage vert{GL_VERTEX_SHADER, "fullscreen.vert"};
-    if (Status s = build(impl->map_progs[m], {vert, {GL_FRAGMENT_SHADER, "map.frag"}}, mapping); !s) return s.error();
     if (Status s = build(impl->lighting_progs[m], {vert, {GL_FRAGMENT_SHADER, "lighting.frag"}}, mapping); !s) return s.error();
+    if (m == 0) continue;
+    if (Status s = build(impl->map_progs[m], {vert, {GL_FRAGMENT_SHADER, "map.frag"}}, mapping); !s) return s.error();
     for (std::size_t lens = 0; lens < 2; ++lens)
       if (Status s = build(impl->resolve_progs[m][lens], {vert, {GL_FRAGMENT_SHADER, "resolve.frag"}},
                            mapping + (lens ? "#define DISTORTION 1\n" : ""));
@@ -309,6 +330,9 @@ Result<Compositor> Compositor::create(const CompositorOptions& o, const gl::Shad
         return s.error();
   }
 
+  auto foveator = rmfr::Foveator::create();
+  if (!foveator) return foveator.error();
+  impl->foveator = std::move(*foveator);
   impl->empty_vao = gl::VertexArray::create();
   impl->lights_ubo = gl::Buffer::create();
   glNamedBufferStorage(impl->lights_ubo.id(), sizeof(LightBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -389,6 +413,11 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     const detail::SurfaceTargets& tg = *m.transformed[i];
     const detail::ColorTarget& rs = *m.reduced[i];
     const glm::vec2 texture_size(tg.width, tg.height);
+    const auto mapping = mapping_index(plan);
+    if (!mapping) return mapping.error();
+    const std::size_t variant = *mapping;
+    // RMFR's kernel (rmfr, and uniform and fixed as plans on it) runs through foveal-rmfr.
+    const bool rmfr_kernel = variant == 0;
     // The regions each pass draws: the whole buffer, or one per layer of the atlas.
     std::vector<glm::ivec4> regions;
     if (layered)
@@ -396,20 +425,21 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     else
       regions.emplace_back(0, 0, plan.buffer_w, plan.buffer_h);
 
-    // Mapping: G-buffer -> reduced G-buffer.
-    glBindFramebuffer(GL_FRAMEBUFFER, tg.fbo.id());
-    const auto mapping = mapping_index(plan);
-    if (!mapping) return mapping.error();
-    const std::size_t variant = *mapping;
-    const GLuint mp = m.map_progs[variant].id();
-    glUseProgram(mp);
-    set_mapping(mp, plan, texture_size);
-    m.gbuffer.bind_textures();
-    glBindVertexArray(m.empty_vao.id());
-    for (std::size_t r = 0; r < regions.size(); ++r) {
-      glViewport(regions[r].x, regions[r].y, regions[r].z, regions[r].w);
-      set(mp, "u_layer", static_cast<int>(r));
-      glDrawArrays(GL_TRIANGLES, 0, 3);
+    // Mapping: G-buffer -> reduced G-buffer; RMFR's (also full through the lens) is foveal-rmfr's.
+    if (rmfr_kernel) {
+      if (Status s = m.foveator->map(rmfr_plan(plan), m.gbuffer.textures(), tg.fbo.id()); !s) return s.error();
+    } else {
+      glBindFramebuffer(GL_FRAMEBUFFER, tg.fbo.id());
+      const GLuint mp = m.map_progs[variant].id();
+      glUseProgram(mp);
+      set_mapping(mp, plan, texture_size);
+      m.gbuffer.bind_textures();
+      glBindVertexArray(m.empty_vao.id());
+      for (std::size_t r = 0; r < regions.size(); ++r) {
+        glViewport(regions[r].x, regions[r].y, regions[r].z, regions[r].w);
+        set(mp, "u_layer", static_cast<int>(r));
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+      }
     }
     m.timer.mark(Pass::mapping);
 
@@ -425,6 +455,15 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     m.timer.mark(Pass::lighting);
 
     // Resolve into this eye's half of the output. KFR's angle axis wraps around.
+    if (rmfr_kernel) {  // foveal-rmfr's resolve
+      const rmfr::Lens l = rmfr_lens(lens);
+      if (Status s = m.foveator->resolve(rmfr_plan(plan), rs.texture.id(), m.output.fbo.id(), eye_origin.x, eye_origin.y,
+                                         distort ? &l : nullptr);
+          !s)
+        return s.error();
+      m.timer.mark(Pass::inverse);
+      continue;
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, m.output.fbo.id());
     glViewport(eye_origin.x, eye_origin.y, m.eye_w, m.eye_h);
     glTextureParameteri(rs.texture.id(), GL_TEXTURE_WRAP_T, plan.method == Method::kfr ? GL_REPEAT : GL_CLAMP_TO_EDGE);

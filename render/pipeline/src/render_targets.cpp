@@ -38,8 +38,8 @@ SurfaceTargets SurfaceTargets::create(int width, int height, bool depth_as_color
 }
 
 void SurfaceTargets::bind_textures() const {
-  const GLuint t[] = {albedo.id(), normal.id(), material.id(), emissive.id(), depth.id()};
-  glBindTextures(0, 5, t);
+  const std::array<GLuint, 5> t = textures();
+  glBindTextures(0, static_cast<GLsizei>(t.size()), t.data());
 }
 
 ColorTarget ColorTarget::create(int width, int height, GLenum format, bool linear_filter) {

@@ -1,5 +1,6 @@
 #pragma once
 // The compositor's framebuffers. Formats and bytes per pixel are in docs/rmfr.md.
+#include <array>
 #include <cstddef>
 
 #include "foveal/render/gl_objects.hpp"
@@ -14,6 +15,8 @@ struct SurfaceTargets {
   int width = 0, height = 0;
 
   static SurfaceTargets create(int width, int height, bool depth_as_color);
+  /// albedo, normal, material, emissive, depth: the texture units' order.
+  std::array<GLuint, 5> textures() const { return {albedo.id(), normal.id(), material.id(), emissive.id(), depth.id()}; }
   void bind_textures() const;
   std::size_t bytes() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 20; }
 };

@@ -18,6 +18,11 @@ std::string default_control_socket_path() {
   return "/tmp/foveal-" + std::to_string(::getuid()) + "/control.sock";
 }
 
+std::string default_record_socket_path() {
+  std::string p = default_control_socket_path();
+  return p.substr(0, p.rfind('/') + 1) + "record.sock";
+}
+
 namespace control_detail {
 
 namespace {

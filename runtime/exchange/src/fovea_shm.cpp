@@ -7,15 +7,21 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <new>
 #include <utility>
 
+#include "foveal/core/clock.hpp"
 #include "foveal/core/file_mode.hpp"
 
 namespace foveal {
 
-std::string default_fovea_shm_name() { return "/foveal-fovea-" + std::to_string(::getuid()); }
+std::string default_fovea_shm_name() {
+  // FOVEAL_SHM_NAME moves foveald and its clients together (foveal-client reads it too).
+  if (const char* name = std::getenv("FOVEAL_SHM_NAME"); name && *name) return name;
+  return "/foveal-fovea-" + std::to_string(::getuid());
+}
 
 namespace {
 
@@ -74,8 +80,13 @@ Result<FoveaShm> FoveaShm::create(const std::string& name) {
   s.name_ = name;
   s.lock_fd_ = fd;
   s.owner_ = true;
-  s.block_ = new (p) FoveaShmBlock{FoveaShmBlock::kMagic, FoveaShmBlock::kVersion,
-                                   static_cast<std::uint32_t>(sizeof(FoveaShmBlock)), 0, {}};
+  // Everything before the magic: a reader that sees the magic sees a whole block.
+  auto* b = static_cast<FoveaShmBlock*>(p);
+  std::atomic_ref<std::uint32_t>(b->magic).store(0, std::memory_order_relaxed);
+  b = new (p) FoveaShmBlock{0, FoveaShmBlock::kVersion, static_cast<std::uint32_t>(sizeof(FoveaShmBlock)), 0, {}, {},
+                            monotonic_now_ns(), static_cast<std::uint32_t>(::getpid()), FOVEAL_SHM_WRITER_LIVE};
+  std::atomic_ref<std::uint32_t>(b->magic).store(FoveaShmBlock::kMagic, std::memory_order_release);
+  s.block_ = b;
   return s;
 }
 
@@ -83,23 +94,35 @@ Result<FoveaShm> FoveaShm::open(const std::string& name) {
   const int fd = ::shm_open(name.c_str(), O_RDWR | O_CLOEXEC, 0);
   if (fd < 0) return io_error("shared memory " + name + ": " + std::strerror(errno) + " (is foveald running?)");
   struct stat st{};
-  if (::fstat(fd, &st) != 0 || static_cast<std::size_t>(st.st_size) < sizeof(FoveaShmBlock)) {
+  if (::fstat(fd, &st) != 0) {
+    const int e = errno;
     ::close(fd);
-    return bad_input("shared memory " + name + ": too small for a fovea block");
+    return io_error("shared memory " + name + ": " + std::strerror(e));
   }
   if ((st.st_mode & 077) != 0) {  // foveald makes it 0600: a wider block is someone else's bait
     ::close(fd);
     return bad_input("shared memory " + name + ": mode " + mode_text(st.st_mode) +
                      " lets other users write it; not a block of foveald's");
   }
+  // The header first, read rather than mapped: a short or older block is named, not mapped past its end.
+  std::uint32_t header[3] = {};
+  const bool whole_header = ::pread(fd, header, sizeof header, 0) == static_cast<ssize_t>(sizeof header);
+  // Later versions only append (fovea_shm_layout.h): any version from 2 on reads.
+  std::string wrong;
+  if (!whole_header || header[0] != FoveaShmBlock::kMagic) wrong = "not a fovea block (no FOVA magic)";
+  else if (header[1] < FoveaShmBlock::kVersion)
+    wrong = "a version-" + std::to_string(header[1]) + " block (a foveald without settings in the block); this reader needs version " +
+            std::to_string(FoveaShmBlock::kVersion) + " or later";
+  else if (header[2] < sizeof(FoveaShmBlock) || header[2] > static_cast<std::uint64_t>(st.st_size))
+    wrong = "its size field (" + std::to_string(header[2]) + " bytes) does not fit a version-" + std::to_string(header[1]) + " block";
+  if (!wrong.empty()) {
+    ::close(fd);
+    return Error{ErrorKind::unsupported, "shared memory " + name + ": " + wrong};
+  }
   void* p = ::mmap(nullptr, sizeof(FoveaShmBlock), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
   ::close(fd);
   if (p == MAP_FAILED) return io_error("shared memory " + name + ": cannot map: " + std::strerror(errno));
   auto* b = static_cast<FoveaShmBlock*>(p);
-  if (b->magic != FoveaShmBlock::kMagic || b->version != FoveaShmBlock::kVersion || b->size != sizeof(FoveaShmBlock)) {
-    ::munmap(p, sizeof(FoveaShmBlock));
-    return Error{ErrorKind::unsupported, "shared memory " + name + ": not a version-1 fovea block"};
-  }
   FoveaShm s;
   s.name_ = name;
   s.block_ = b;
@@ -115,10 +138,13 @@ FoveaShm::FoveaShm(FoveaShm&& o) noexcept
 
 FoveaShm::~FoveaShm() {
   if (!block_) return;
+  if (owner_) block_->writer_state.store(FOVEAL_SHM_WRITER_STOPPED, std::memory_order_release);  // readers: "foveald stopped"
   ::munmap(block_, sizeof(FoveaShmBlock));
   if (owner_) ::shm_unlink(name_.c_str());
   if (lock_fd_ >= 0) ::close(lock_fd_);  // after the unlink: no second writer takes the name in between
 }
+
+void FoveaShm::heartbeat() { block_->heartbeat_ns.store(monotonic_now_ns(), std::memory_order_release); }
 
 void FoveaShm::publish(const FoveaFrame& f, int eye_width, int eye_height) {
   FoveaShmPayload p{};

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -33,6 +34,59 @@ Result<Eye> eye_from(const std::string& s, const std::string& where) {
   return bad_input(where + ": dominant_eye: '" + s + "' is not left or right");
 }
 
+constexpr const char* kQualityChannels[3] = {"left", "right", "binocular"};
+constexpr std::pair<const char*, double ProfileGazeQuality::Channel::*> kQualityFields[] = {
+    {"accuracy_deg", &ProfileGazeQuality::Channel::accuracy_deg},
+    {"rms_s2s_deg", &ProfileGazeQuality::Channel::rms_s2s_deg},
+    {"std_deg", &ProfileGazeQuality::Channel::std_deg},
+    {"data_loss_pct", &ProfileGazeQuality::Channel::data_loss_pct}};
+
+nlohmann::json quality_to_json(const ProfileGazeQuality& q) {
+  nlohmann::json j = {{"source", q.source}, {"targets", q.targets}};
+  for (std::size_t c = 0; c < 3; ++c)
+    for (const auto& [key, field] : kQualityFields) {
+      const double v = q.channels[c].*field;
+      j[kQualityChannels[c]][key] = std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+    }
+  return j;
+}
+
+Result<ProfileGazeQuality> quality_from_json(const nlohmann::json& j, const std::string& where) {
+  const std::string at = where + ": gaze_quality";
+  if (!j.is_object()) return bad_input(at + ": expected an object");
+  ProfileGazeQuality q;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string& k = it.key();
+    const nlohmann::json& v = it.value();
+    if (k == "source") {
+      if (!v.is_string()) return bad_input(at + ": source: expected a string");
+      q.source = v.get<std::string>();
+      continue;
+    }
+    if (k == "targets") {
+      if (!v.is_number_integer() || v.get<std::int64_t>() < 0) return bad_input(at + ": targets: expected a count >= 0");
+      q.targets = static_cast<int>(std::min<std::int64_t>(v.get<std::int64_t>(), 1'000'000));
+      continue;
+    }
+    std::size_t c = 0;
+    while (c < 3 && k != kQualityChannels[c]) ++c;
+    if (c == 3) return bad_input(at + ": unknown key '" + k + "'");
+    if (!v.is_object()) return bad_input(at + "." + k + ": expected an object");
+    for (auto f = v.begin(); f != v.end(); ++f) {
+      const auto* field = std::find_if(std::begin(kQualityFields), std::end(kQualityFields),
+                                       [&](const auto& kf) { return f.key() == kf.first; });
+      if (field == std::end(kQualityFields)) return bad_input(at + "." + k + ": unknown key '" + f.key() + "'");
+      if (f.value().is_null()) continue;  // not measurable
+      auto d = number(f.value(), at + "." + k, f.key());
+      if (!d) return d.error();
+      // Data loss may dip below 0: a tracker faster than its nominal rate.
+      if (*d < 0 && f.key() != "data_loss_pct") return bad_input(at + "." + k + ": " + f.key() + ": must be >= 0");
+      q.channels[c].*(field->second) = *d;
+    }
+  }
+  return q;
+}
+
 }  // namespace
 
 bool valid_profile_name(const std::string& name) {
@@ -53,6 +107,7 @@ nlohmann::json Profile::to_json() const {
   j["ipd_mm"] = ipd_mm;
   j["display_model"] = display_model;
   j["filter"] = filter;
+  if (gaze_quality) j["gaze_quality"] = quality_to_json(*gaze_quality);
   return j;
 }
 
@@ -98,6 +153,10 @@ Result<Profile> Profile::from_json(const nlohmann::json& j, const std::string& n
       p.display_model = v.get<std::string>();
     } else if (k == "filter") {
       p.filter = v;
+    } else if (k == "gaze_quality") {
+      auto q = quality_from_json(v, where);
+      if (!q) return q.error();
+      p.gaze_quality = std::move(*q);
     } else {
       return bad_input(where + ": unknown key '" + k + "'");
     }

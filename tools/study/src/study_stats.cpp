@@ -19,7 +19,7 @@ T& find_or_add(std::vector<T>& items, Match match, T fresh) {
 
 }  // namespace
 
-StudyStats compute_study_stats(const StudyTrials& trials) {
+StudyStats compute_study_stats(const StudyTrials& trials, double score_threshold) {
   StudyStats st;
   st.validation_trials = trials.validation_trials;
   for (const ChoiceTrial& t : trials.choices) {
@@ -56,6 +56,7 @@ StudyStats compute_study_stats(const StudyTrials& trials) {
     c.mean = sum / n;
     if (c.trials > 1) c.sd = std::sqrt(std::max(0.0, (sum_sq[i] - sum * sum / n) / (n - 1)));
   }
+  st.sigmas = estimate_sigmas(trials.scores, score_threshold);
   return st;
 }
 

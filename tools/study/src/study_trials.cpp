@@ -11,6 +11,7 @@ struct TrialColumns {
   long method_a = -1, method_b = -1, chosen = -1;
   long condition = -1, score = -1;
   long validation = -1;
+  long sigma_d = -1, sigma_nd = -1;
   /// Further condition parameters: (name, column of side a, column of side b).
   struct Parameter {
     std::string name;
@@ -27,6 +28,8 @@ TrialColumns find_columns(const TableReader& t, const std::vector<std::string>& 
   c.condition = t.find_column("condition");
   c.score = t.find_column("score");
   c.validation = t.find_column("validation");
+  c.sigma_d = t.find_column("sigma_d");
+  c.sigma_nd = t.find_column("sigma_nd");
   for (std::size_t i = 0; i < header.size(); ++i) {
     const std::string& h = header[i];
     if (h.size() < 3 || h.compare(h.size() - 2, 2, "_a") != 0 || h == "method_a") continue;
@@ -101,7 +104,23 @@ Result<StudyTrials> read_study_trials(const std::string& path) {
       if (*score < 1 || *score > 5) return t.field_error(col, std::to_string(*score) + " is not a score from 1 to 5");
       const std::string_view cond = t.field(static_cast<std::size_t>(c.condition));
       if (cond.empty()) return t.field_error(static_cast<std::size_t>(c.condition), "empty");
-      out.scores.push_back({std::string(cond), static_cast<int>(*score), t.line()});
+      ScoreTrial trial{std::string(cond), static_cast<int>(*score), t.line(), {}, {}};
+      // Both levels or neither: a score of one eye's level alone places nothing.
+      std::optional<double>* levels[2] = {&trial.sigma_d, &trial.sigma_nd};
+      const long cols[2] = {c.sigma_d, c.sigma_nd};
+      for (int i = 0; i < 2; ++i) {
+        if (cols[i] < 0 || t.field(static_cast<std::size_t>(cols[i])).empty()) continue;
+        auto v = t.number<double>(static_cast<std::size_t>(cols[i]));
+        if (!v) return v.error();
+        if (!(*v >= 1.0)) return t.field_error(static_cast<std::size_t>(cols[i]), "a level must be >= 1");
+        *levels[i] = *v;
+      }
+      if (trial.sigma_d.has_value() != trial.sigma_nd.has_value())
+        return t.field_error(static_cast<std::size_t>(trial.sigma_d ? c.sigma_nd : c.sigma_d),
+                             "empty, but the other level is given");
+      if (trial.sigma_d && *trial.sigma_nd < *trial.sigma_d)
+        return t.field_error(static_cast<std::size_t>(c.sigma_nd), "below sigma_d (EFR: sigma_nd >= sigma_d)");
+      out.scores.push_back(std::move(trial));
     }
   }
   if (out.choices.empty() && out.scores.empty() && out.validation_trials == 0)

@@ -1,8 +1,10 @@
 #pragma once
 // GLSL programs from the files in shaders/, read at run time. Files hold no #version
 // line (the loader adds "#version 450 core" and the caller's defines); a line
-// `#include "path"` pulls in another file relative to the shader root. Compile and link
-// errors are reported as "file:line: message" for the file the line came from.
+// `#include "path"` pulls in another file relative to the shader root (`foveal/...`
+// names foveal-rmfr's GLSL, which comes from the library: foveal::rmfr::glsl_file).
+// Compile and link errors are reported as "file:line: message" for the file the line
+// came from.
 #include <string>
 #include <vector>
 

@@ -18,6 +18,8 @@ namespace foveal {
 /// Where the daemon listens by default: $XDG_RUNTIME_DIR/foveal/control.sock
 /// (/tmp/foveal-<uid>/control.sock when XDG_RUNTIME_DIR is unset).
 std::string default_control_socket_path();
+/// Where `foveal record --control` listens: record.sock beside the daemon's socket.
+std::string default_record_socket_path();
 
 /// Not thread-safe: one thread calls poll(). Requests are answered in order per client.
 /// poll() never waits on a client: replies queue per client and go out when the socket

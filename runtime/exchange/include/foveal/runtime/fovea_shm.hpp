@@ -1,38 +1,46 @@
 #pragma once
 // The fovea stream for other programs: a shared-memory block holding the latest
 // per-eye fovea, published with a seqlock (layout and protocol: docs/fovea-shm.md).
+#include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
 #include "foveal/core/error.hpp"
 #include "foveal/runtime/fovea.hpp"
+#include "foveal/runtime/fovea_shm_layout.h"
 #include "foveal/runtime/seqlock.hpp"
 
 namespace foveal {
 
-/// The payload, version 1. Plain data with fixed-size fields; little-endian.
-struct FoveaShmPayload {
-  std::int64_t t_ns;          ///< CLOCK_MONOTONIC of the gaze sample
-  std::uint32_t eye_width;    ///< viewport size the pixels refer to
-  std::uint32_t eye_height;
-  float x[2], y[2];           ///< per eye (0 left, 1 right): viewport pixels, origin top-left, y down
-  float confidence[2];        ///< 0..1
-  std::uint32_t state[2];     ///< FoveaState: 0 fixation, 1 saccade, 2 pursuit, 3 blink, 4 lost
-  std::uint64_t frame;        ///< increments with every publish
-};
+/// The fovea payload (since version 1) and the settings payload (version 2): the
+/// C layout that foveal-client reads too (fovea_shm_layout.h).
+using FoveaShmPayload = foveal_shm_fovea;
+using FoveaShmSettings = foveal_shm_settings;
 
-/// The whole block: a header readers check, then the seqlock.
+/// The whole block: a header readers check, the fovea seqlock (the gaze thread writes
+/// it), the settings seqlock and the writer's liveness (the control thread writes them).
 struct FoveaShmBlock {
-  static constexpr std::uint32_t kMagic = 0x41564F46;  // "FOVA" little-endian
-  static constexpr std::uint32_t kVersion = 1;
+  static constexpr std::uint32_t kMagic = FOVEAL_SHM_MAGIC;
+  static constexpr std::uint32_t kVersion = FOVEAL_SHM_VERSION;
   std::uint32_t magic;
   std::uint32_t version;
   std::uint32_t size;  ///< sizeof(FoveaShmBlock)
   std::uint32_t reserved;
   SeqLock<FoveaShmPayload> latest;
+  SeqLock<FoveaShmSettings> settings;
+  std::atomic<std::int64_t> heartbeat_ns;  ///< CLOCK_MONOTONIC, refreshed every FOVEAL_SHM_HEARTBEAT_NS
+  std::atomic<std::uint32_t> writer_pid;
+  std::atomic<std::uint32_t> writer_state;  ///< FOVEAL_SHM_WRITER_LIVE, then _STOPPED
 };
+static_assert(offsetof(FoveaShmBlock, latest) == FOVEAL_SHM_FOVEA_SEQ_OFFSET);
+static_assert(offsetof(FoveaShmBlock, settings) == FOVEAL_SHM_SETTINGS_SEQ_OFFSET);
+static_assert(offsetof(FoveaShmBlock, heartbeat_ns) == FOVEAL_SHM_HEARTBEAT_OFFSET);
+static_assert(offsetof(FoveaShmBlock, writer_pid) == FOVEAL_SHM_WRITER_PID_OFFSET);
+static_assert(offsetof(FoveaShmBlock, writer_state) == FOVEAL_SHM_WRITER_STATE_OFFSET);
+static_assert(sizeof(FoveaShmBlock) == FOVEAL_SHM_V2_SIZE);
 
-/// Default name: "/foveal-fovea-<uid>" (a file in /dev/shm).
+/// Default name: $FOVEAL_SHM_NAME when set, else "/foveal-fovea-<uid>" (a file in /dev/shm).
 std::string default_fovea_shm_name();
 
 /// Maps the block: the writer creates it (mode 0600), readers open it read-write
@@ -49,10 +57,16 @@ class FoveaShm {
   FoveaShm& operator=(FoveaShm&&) = delete;
   ~FoveaShm();
 
-  /// Writer side (one thread). Wait-free.
+  /// Writer side. Wait-free. publish() from one thread (the gaze thread);
+  /// publish_settings() and heartbeat() from one thread (the control thread).
   void publish(const FoveaFrame& f, int eye_width, int eye_height);
+  void publish_settings(const FoveaShmSettings& s) { block_->settings.store(s); }
+  /// Tells readers the writer is alive; call at least every FOVEAL_SHM_HEARTBEAT_NS.
+  void heartbeat();
+
   /// Reader side; false if no complete value could be read.
   bool read(FoveaShmPayload& out) const { return block_->latest.load(out); }
+  bool read_settings(FoveaShmSettings& out) const { return block_->settings.load(out); }
 
  private:
   FoveaShm() = default;

@@ -1,6 +1,8 @@
 #pragma once
 // Per-user settings: dominant eye, the EFR pair (sigma_d, sigma_nd), f_x/f_y, IPD,
 // display model and filter overrides (docs/profiles.md).
+#include <array>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +14,21 @@
 
 namespace foveal {
 
+/// The gaze data quality measured in calibration's validation trials (docs/profiles.md,
+/// docs/calibration.md), in the measures of docs/quality.md. NaN: not measurable.
+struct ProfileGazeQuality {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  struct Channel {
+    double accuracy_deg = kNaN;     ///< mean offset from the targets
+    double rms_s2s_deg = kNaN;      ///< precision, sample to sample
+    double std_deg = kNaN;          ///< precision, spread
+    double data_loss_pct = kNaN;
+  };
+  std::array<Channel, 3> channels;  ///< left, right, binocular
+  int targets = 0;                  ///< fixation targets measured
+  std::string source;               ///< where the gaze came from (log path or source spec)
+};
+
 struct Profile {
   std::string name;
   Eye dominant_eye = Eye::right;   ///< ~70% of people are right-eye dominant
@@ -22,6 +39,7 @@ struct Profile {
   double ipd_mm = 63.0;
   std::string display_model = "htc_vive_pro_eye";  ///< a name in data/display or a path
   nlohmann::json filter = nlohmann::json::object(); ///< FilterConfig overrides (validated)
+  std::optional<ProfileGazeQuality> gaze_quality;   ///< from the last calibration with gaze
 
   /// sigma for an eye: sigma_d for the dominant one, sigma_nd for the other.
   double sigma(Eye e) const { return e == dominant_eye ? sigma_d : sigma_nd; }

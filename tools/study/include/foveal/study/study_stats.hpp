@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "foveal/study/sigma_estimates.hpp"
 #include "foveal/study/study_trials.hpp"
 
 namespace foveal {
@@ -28,8 +29,11 @@ struct StudyStats {
   std::vector<PairVotes> pairs;        ///< in order of first appearance
   std::vector<ConditionScore> scores;  ///< in order of first appearance
   std::uint64_t validation_trials = 0;
+  std::vector<SigmaEstimates> sigmas;  ///< per method, from the score trials with sigma_d, sigma_nd
 };
 
-StudyStats compute_study_stats(const StudyTrials& trials);
+/// `score_threshold`: the mean score that still counts as "no visible difference" for
+/// the sigma_UF / sigma_NF estimates, in (1, 5].
+StudyStats compute_study_stats(const StudyTrials& trials, double score_threshold = 4.0);
 
 }  // namespace foveal

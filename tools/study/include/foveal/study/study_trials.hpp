@@ -21,6 +21,8 @@ struct ScoreTrial {
   std::string condition;
   int score = 0;
   std::uint64_t line = 0;
+  /// The optional `sigma_d`, `sigma_nd` columns: the levels scored (for sigma_UF/sigma_NF).
+  std::optional<double> sigma_d, sigma_nd;
 };
 
 struct StudyTrials {

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "foveal/image/rmfr_mapping.hpp"
+#include "foveal/rmfr_mapping.hpp"
 
-using namespace foveal::image;
+using namespace foveal::rmfr;
 
 namespace {
 const double kFoveae[] = {0.0, 1e-6, 0.1, 0.25, 0.5, 0.73, 0.999999, 1.0};

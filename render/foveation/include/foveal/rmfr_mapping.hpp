@@ -1,6 +1,8 @@
 #pragma once
-// RMFR's rectangular mapping on one axis, in normalised coordinates (docs/rmfr.md).
-// The same formulas live in shaders/common/rmfr.glsl; tests hold the two together.
+// RMFR's rectangular mapping on one axis, in normalised coordinates (docs/rmfr.md), and
+// the per-eye quantities derived from σ. Header-only: foveal-rmfr, foveal's image-space
+// tools and automatic f all use these. The GLSL twin is glsl/foveal/rmfr_mapping.glsl;
+// tests hold the two together.
 //
 // Screen coordinate p and buffer coordinate u both lie in [0, 1]; c is the fovea, f > 0
 // the axis parameter (a fraction of the axis length). D is the distance from the fovea
@@ -13,10 +15,12 @@
 // that side simply holds no pixels. Both are continuous at the fovea; the sampling
 // density (du/dp = (f + D)/f at the fovea, f/(f + D) at the edge) differs between the two
 // sides when the fovea is off-centre.
+//
+// Thread safety: pure functions, callable from any thread.
 #include <algorithm>
 #include <cmath>
 
-namespace foveal::image {
+namespace foveal::rmfr {
 
 inline double rmfr_side(double c, double d) { return d < 0 ? c : 1.0 - c; }
 
@@ -48,4 +52,10 @@ inline int rmfr_buffer_size(int size, double sigma) {
   return std::max(1, static_cast<int>(std::lround(static_cast<double>(size) / std::max(sigma, 1.0))));
 }
 
-}  // namespace foveal::image
+/// The screen pixel (0..size-1) whose sample fills buffer texel i of n: floor(inverse((i + 0.5)/n) · size).
+inline int rmfr_source_pixel(int i, int n, int size, double c, double f) {
+  const double p = rmfr_inverse((i + 0.5) / n, c, f);
+  return std::clamp(static_cast<int>(std::floor(p * size)), 0, size - 1);
+}
+
+}  // namespace foveal::rmfr

@@ -1,0 +1,121 @@
+/* foveal-client: foveald's live fovea and settings for any program (docs/sdk.md).
+ *
+ * foveald publishes the latest per-eye fovea and the active profile's settings in a
+ * shared-memory block (docs/fovea-shm.md). This library maps the block and reads it
+ * with the block's seqlock protocol: a read never blocks foveald or the caller, takes
+ * no lock, allocates nothing and makes no system call.
+ *
+ * C11 and C++ (any standard) use the same header. Link with
+ * `pkg-config --cflags --libs foveal-client` or, in CMake,
+ * `find_package(foveal CONFIG REQUIRED)` and `foveal::client`.
+ *
+ * Structs may gain fields at their end in later versions (never reordered); such a
+ * change comes with a new SONAME major, so a program built against this header keeps
+ * running against the library it was built for. */
+#ifndef FOVEAL_CLIENT_H
+#define FOVEAL_CLIENT_H
+
+#include <stdint.h>
+
+#if defined(__GNUC__)
+#define FOVEAL_CLIENT_API __attribute__((visibility("default")))
+#else
+#define FOVEAL_CLIENT_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Error codes: every function that can fail returns one (0 is success). */
+enum foveal_error_code {
+  FOVEAL_OK = 0,
+  FOVEAL_ERR_INVALID_ARGUMENT = 1, /* a null pointer, or a malformed block name */
+  FOVEAL_ERR_NO_WRITER = 2,        /* no foveald publishes there (not running, starting, or stopped) */
+  FOVEAL_ERR_WRONG_VERSION = 3,    /* the block is not one this library reads (older foveald, not a fovea block) */
+  FOVEAL_ERR_DEAD_WRITER = 4,      /* the foveald that published there died or hangs (no heartbeat for 2 s) */
+  FOVEAL_ERR_NOT_FOVEALDS = 5,     /* the block is readable or writable by other users: not one foveald made */
+  FOVEAL_ERR_NO_DATA = 6,          /* foveald runs but has published no fovea yet (waiting for its tracker) */
+  FOVEAL_ERR_BUSY = 7,             /* every try overlapped a write (practically never): try again */
+  FOVEAL_ERR_SYSTEM = 8            /* an operating-system call failed; the message says which */
+};
+
+/* Fovea states (foveal_fovea.state). */
+enum foveal_fovea_state {
+  FOVEAL_STATE_FIXATION = 0,
+  FOVEAL_STATE_SACCADE = 1,
+  FOVEAL_STATE_PURSUIT = 2,
+  FOVEAL_STATE_BLINK = 3, /* the fovea holds its last position */
+  FOVEAL_STATE_LOST = 4   /* no eye tracked: the fovea is the viewport centre, confidence 0 */
+};
+
+/* The latest fovea. Index 0 is the left eye, 1 the right. */
+typedef struct {
+  int64_t t_ns;                  /* CLOCK_MONOTONIC time of the gaze sample, ns */
+  uint32_t eye_width, eye_height; /* the eye viewport (pixels) that x and y refer to */
+  float x[2], y[2];              /* viewport pixels, origin at the top-left corner, y down */
+  float confidence[2];           /* 0..1 */
+  uint32_t state[2];             /* enum foveal_fovea_state */
+  uint64_t frame;                /* increments with every gaze sample foveald publishes */
+} foveal_fovea;
+
+/* The active profile's settings; generation increments with every change (a profile
+ * switch, `foveal ctl set`, SIGHUP reload). */
+typedef struct {
+  double sigma_d, sigma_nd; /* RMFR levels of the dominant and the non-dominant eye (>= 1) */
+  double f_x, f_y;          /* RMFR's fovea-region parameter per axis; negative: automatic */
+  int dominant_eye;         /* 0 left, 1 right */
+  uint64_t generation;
+} foveal_settings;
+
+/* An error as a value: the code and a message naming the block and what is wrong. */
+typedef struct {
+  int code;
+  char message[256];
+} foveal_error;
+
+/* Opaque: one mapping of the block. */
+typedef struct foveal_client foveal_client;
+
+/* Maps foveald's block.
+ *
+ * shm_name_or_null: a POSIX shared-memory name ("/name"), or NULL for the environment's
+ *   FOVEAL_SHM_NAME when set, else foveald's default "/foveal-fovea-<uid>".
+ * err: filled on failure when not NULL (code and message); left alone on success.
+ * Returns the client, or NULL on failure with err->code one of INVALID_ARGUMENT,
+ *   NO_WRITER (no block: is foveald running?; or foveald stopped), WRONG_VERSION,
+ *   NOT_FOVEALDS, DEAD_WRITER, SYSTEM.
+ * Thread safety: may be called from any thread. Allocates the client; the only call
+ *   that does. A client stays bound to the block it mapped: after foveald restarts,
+ *   reads return NO_WRITER (or DEAD_WRITER) and the program opens a new client. */
+FOVEAL_CLIENT_API foveal_client *foveal_client_open(const char *shm_name_or_null, foveal_error *err);
+
+/* Copies the latest fovea into *out.
+ *
+ * Returns FOVEAL_OK, or INVALID_ARGUMENT (c or out NULL), NO_WRITER (foveald stopped),
+ *   DEAD_WRITER, NO_DATA (nothing published yet; *out then holds zeros and the viewport
+ *   size), BUSY. On an error other than NO_DATA, *out is unchanged.
+ * Wait-free for the writer; no lock, allocation or system call (the clock is read
+ *   through the vDSO). Thread safety: any number of threads may read one client at once.
+ *   foveal_error_message(code) gives the code's message. */
+FOVEAL_CLIENT_API int foveal_client_read(foveal_client *c, foveal_fovea *out);
+
+/* Copies the active settings into *out.
+ *
+ * Returns and thread safety as foveal_client_read (NO_DATA does not occur: foveald
+ *   publishes its settings before the first fovea). */
+FOVEAL_CLIENT_API int foveal_client_settings(foveal_client *c, foveal_settings *out);
+
+/* Unmaps the block and frees the client. NULL is allowed (nothing happens).
+ * Thread safety: no other call may use c at the same time or after. */
+FOVEAL_CLIENT_API void foveal_client_close(foveal_client *c);
+
+/* A static English message for an error code ("no foveald publishes there", ...);
+ * never NULL. Thread safety: any thread. */
+FOVEAL_CLIENT_API const char *foveal_error_message(int code);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

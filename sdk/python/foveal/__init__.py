@@ -1,0 +1,23 @@
+"""foveal for Python: foveald's live fovea and settings, and foveal's files as NumPy arrays.
+
+    import foveal
+    with foveal.Client() as c:          # foveald's block (FOVEAL_SHM_NAME, else /foveal-fovea-<uid>)
+        f = c.read()                    # f.x[0], f.y[0]: the left eye's fovea in viewport pixels
+        s = c.settings()                # s.sigma_d, s.sigma_nd, s.dominant_eye, s.generation
+    log = foveal.read_gaze_log("data/gaze/vive_pro_eye_TESTNA01.csv")
+    log.samples["left_dir_x"]           # one NumPy array per column (NaN where a field is empty)
+
+The live side is ctypes over libfoveal-client (no compiled extension); the readers need
+NumPy only. docs/sdk.md.
+"""
+from .client import (BLINK, BUSY, DEAD_WRITER, FIXATION, INVALID_ARGUMENT, LOST, NO_DATA, NO_WRITER,
+                     NOT_FOVEALDS, PURSUIT, SACCADE, SYSTEM, WRONG_VERSION, Client, ClientError, Fovea,
+                     Settings, library_path)
+from .files import FormatError, GazeLog, Trace, read_gaze_log, read_trace
+
+__all__ = [
+    "Client", "ClientError", "Fovea", "Settings", "library_path",
+    "GazeLog", "Trace", "FormatError", "read_gaze_log", "read_trace",
+    "INVALID_ARGUMENT", "NO_WRITER", "WRONG_VERSION", "DEAD_WRITER", "NOT_FOVEALDS", "NO_DATA", "BUSY", "SYSTEM",
+    "FIXATION", "SACCADE", "PURSUIT", "BLINK", "LOST",
+]

@@ -1,0 +1,162 @@
+"""The live fovea and settings: ctypes over libfoveal-client (include/foveal/client.h)."""
+import ctypes
+import os
+from dataclasses import dataclass
+from typing import Optional, Tuple
+
+# enum foveal_error_code
+INVALID_ARGUMENT, NO_WRITER, WRONG_VERSION, DEAD_WRITER, NOT_FOVEALDS, NO_DATA, BUSY, SYSTEM = range(1, 9)
+# enum foveal_fovea_state
+FIXATION, SACCADE, PURSUIT, BLINK, LOST = range(5)
+
+
+class _Fovea(ctypes.Structure):
+    _fields_ = [("t_ns", ctypes.c_int64), ("eye_width", ctypes.c_uint32), ("eye_height", ctypes.c_uint32),
+                ("x", ctypes.c_float * 2), ("y", ctypes.c_float * 2), ("confidence", ctypes.c_float * 2),
+                ("state", ctypes.c_uint32 * 2), ("frame", ctypes.c_uint64)]
+
+
+class _Settings(ctypes.Structure):
+    _fields_ = [("sigma_d", ctypes.c_double), ("sigma_nd", ctypes.c_double), ("f_x", ctypes.c_double),
+                ("f_y", ctypes.c_double), ("dominant_eye", ctypes.c_int), ("generation", ctypes.c_uint64)]
+
+
+class _Error(ctypes.Structure):
+    _fields_ = [("code", ctypes.c_int), ("message", ctypes.c_char * 256)]
+
+
+@dataclass(frozen=True)
+class Fovea:
+    """The latest fovea; index 0 is the left eye. Pixels of the eye viewport, origin top-left, y down."""
+    t_ns: int                       # CLOCK_MONOTONIC of the gaze sample
+    eye_width: int
+    eye_height: int
+    x: Tuple[float, float]
+    y: Tuple[float, float]
+    confidence: Tuple[float, float]
+    state: Tuple[int, int]          # FIXATION, SACCADE, PURSUIT, BLINK, LOST
+    frame: int                      # increments with every published sample
+
+
+@dataclass(frozen=True)
+class Settings:
+    """The active profile's settings; generation increments with every change."""
+    sigma_d: float
+    sigma_nd: float
+    f_x: float                      # negative: automatic
+    f_y: float
+    dominant_eye: int               # 0 left, 1 right
+    generation: int
+
+
+class ClientError(OSError):
+    """A foveal-client error: .code is one of NO_WRITER, WRONG_VERSION, DEAD_WRITER, ..."""
+
+    def __init__(self, code: int, message: str):
+        super().__init__(code, message)
+        self.code = code
+        self.message = message
+
+    def __str__(self) -> str:
+        return self.message
+
+
+def _candidates():
+    explicit = os.environ.get("FOVEAL_CLIENT_LIBRARY")
+    if explicit:
+        yield explicit
+        return
+    try:  # written by `cmake --install`: the library relative to this folder
+        from . import _install
+        yield os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), _install.LIBRARY))
+    except ImportError:
+        pass
+    yield "libfoveal-client.so.0"  # the loader's own search (LD_LIBRARY_PATH, ldconfig)
+
+
+_lib = None
+_lib_path = None
+
+
+def _library():
+    global _lib, _lib_path
+    if _lib is not None:
+        return _lib
+    tried = []
+    for path in _candidates():
+        try:
+            lib = ctypes.CDLL(path)
+        except OSError as e:
+            tried.append(f"{path} ({e})")
+            continue
+        lib.foveal_client_open.restype = ctypes.c_void_p
+        lib.foveal_client_open.argtypes = [ctypes.c_char_p, ctypes.POINTER(_Error)]
+        lib.foveal_client_read.restype = ctypes.c_int
+        lib.foveal_client_read.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Fovea)]
+        lib.foveal_client_settings.restype = ctypes.c_int
+        lib.foveal_client_settings.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Settings)]
+        lib.foveal_client_close.restype = None
+        lib.foveal_client_close.argtypes = [ctypes.c_void_p]
+        lib.foveal_error_message.restype = ctypes.c_char_p
+        lib.foveal_error_message.argtypes = [ctypes.c_int]
+        _lib, _lib_path = lib, path
+        return lib
+    raise ClientError(SYSTEM, "cannot load libfoveal-client: tried " + "; ".join(tried) +
+                      " (set FOVEAL_CLIENT_LIBRARY to its path)")
+
+
+def library_path() -> str:
+    """The libfoveal-client this module loaded (loading it if need be)."""
+    _library()
+    return _lib_path
+
+
+class Client:
+    """One mapping of foveald's block. name: a shared-memory name ("/name"), or None for
+    $FOVEAL_SHM_NAME, else foveald's default. Raises ClientError (NO_WRITER when foveald
+    is not running). read() and settings() take no lock and never block foveald."""
+
+    def __init__(self, name: Optional[str] = None):
+        self._lib = _library()
+        err = _Error()
+        handle = self._lib.foveal_client_open(name.encode() if name is not None else None, ctypes.byref(err))
+        if not handle:
+            raise ClientError(err.code, err.message.decode(errors="replace"))
+        self._handle = handle
+
+    def _check(self, code: int) -> None:
+        if code != 0:
+            raise ClientError(code, self._lib.foveal_error_message(code).decode())
+
+    def read(self) -> Fovea:
+        """The latest fovea. Raises ClientError: NO_DATA before the first sample, NO_WRITER
+        once foveald stopped, DEAD_WRITER when it died."""
+        if self._handle is None:
+            raise ClientError(INVALID_ARGUMENT, "the client is closed")
+        f = _Fovea()  # one per call: threads may share a client
+        self._check(self._lib.foveal_client_read(self._handle, ctypes.byref(f)))
+        return Fovea(f.t_ns, f.eye_width, f.eye_height, tuple(f.x), tuple(f.y), tuple(f.confidence),
+                     tuple(f.state), f.frame)
+
+    def settings(self) -> Settings:
+        """The active settings (raises ClientError as read())."""
+        if self._handle is None:
+            raise ClientError(INVALID_ARGUMENT, "the client is closed")
+        s = _Settings()
+        self._check(self._lib.foveal_client_settings(self._handle, ctypes.byref(s)))
+        return Settings(s.sigma_d, s.sigma_nd, s.f_x, s.f_y, s.dominant_eye, s.generation)
+
+    def close(self) -> None:
+        if self._handle is not None:
+            self._lib.foveal_client_close(self._handle)
+            self._handle = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        if getattr(self, "_handle", None) is not None:
+            self.close()

@@ -1,0 +1,309 @@
+// foveal-client against the runtime's real writer (FoveaShm) in real shared memory:
+// values, settings, and every error a program meets (no writer, wrong version, dead
+// writer, someone else's block), each with its message.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "foveal/client.h"
+#include "foveal/core/clock.hpp"
+#include "foveal/runtime/fovea_shm.hpp"
+
+namespace foveal {
+namespace {
+
+std::string unique_name() {
+  return "/foveal-client-test-" + std::to_string(::getpid()) + "-" +
+         ::testing::UnitTest::GetInstance()->current_test_info()->name();
+}
+
+FoveaFrame frame(float lx, float ly, float rx, float ry) {
+  FoveaFrame f;
+  f.t_ns = 42'000'000'000;
+  f.eyes[0] = {{lx, ly}, FoveaState::fixation, 0.9f};
+  f.eyes[1] = {{rx, ry}, FoveaState::saccade, 0.5f};
+  return f;
+}
+
+/// A mapping of the block that the test may write, as a crafted or broken writer would.
+struct RawBlock {
+  explicit RawBlock(const std::string& block_name, std::size_t bytes = sizeof(FoveaShmBlock), mode_t mode = 0600)
+      : name(block_name), size(bytes) {
+    const int fd = ::shm_open(name.c_str(), O_RDWR | O_CREAT, mode);
+    if (fd < 0) return;
+    ::fchmod(fd, mode);
+    if (::ftruncate(fd, static_cast<off_t>(size)) == 0) {
+      void* m = ::mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+      if (m != MAP_FAILED) p = static_cast<unsigned char*>(m);
+    }
+    ::close(fd);
+  }
+  ~RawBlock() {
+    if (p) ::munmap(p, size);
+  }
+  template <class T>
+  void put(std::size_t offset, T v) {
+    std::memcpy(p + offset, &v, sizeof v);
+  }
+  std::string name;
+  unsigned char* p = nullptr;
+  std::size_t size = 0;
+};
+
+struct Opened {
+  foveal_client* c = nullptr;
+  foveal_error err{-1, "untouched"};
+  explicit Opened(const char* name) { c = foveal_client_open(name, &err); }
+  ~Opened() { foveal_client_close(c); }
+};
+
+TEST(FovealClient, ReadsTheFoveaAndTheSettingsTheWriterPublished) {
+  const std::string name = unique_name();
+  auto writer = FoveaShm::create(name);
+  ASSERT_TRUE(writer) << writer.error().message;
+  writer->publish_settings({2.25, 3.5, 0.3, -1.0, 0, 0, 7});
+  writer->publish(frame(100.5f, 200.25f, 1439.0f, 0.0f), 1440, 1600);
+
+  Opened o(name.c_str());
+  ASSERT_NE(o.c, nullptr) << o.err.message;
+  foveal_fovea f{};
+  ASSERT_EQ(foveal_client_read(o.c, &f), FOVEAL_OK);
+  EXPECT_EQ(f.t_ns, 42'000'000'000);
+  EXPECT_EQ(f.eye_width, 1440u);
+  EXPECT_EQ(f.eye_height, 1600u);
+  EXPECT_FLOAT_EQ(f.x[0], 100.5f);
+  EXPECT_FLOAT_EQ(f.y[0], 200.25f);
+  EXPECT_FLOAT_EQ(f.x[1], 1439.0f);
+  EXPECT_FLOAT_EQ(f.confidence[0], 0.9f);
+  EXPECT_EQ(f.state[0], static_cast<std::uint32_t>(FOVEAL_STATE_FIXATION));
+  EXPECT_EQ(f.state[1], static_cast<std::uint32_t>(FOVEAL_STATE_SACCADE));
+  EXPECT_EQ(f.frame, 1u);
+
+  foveal_settings s{};
+  ASSERT_EQ(foveal_client_settings(o.c, &s), FOVEAL_OK);
+  EXPECT_DOUBLE_EQ(s.sigma_d, 2.25);
+  EXPECT_DOUBLE_EQ(s.sigma_nd, 3.5);
+  EXPECT_DOUBLE_EQ(s.f_x, 0.3);
+  EXPECT_LT(s.f_y, 0.0);  // automatic
+  EXPECT_EQ(s.dominant_eye, 0);
+  EXPECT_EQ(s.generation, 7u);
+
+  // A later change reaches the same client.
+  writer->publish_settings({2.0, 3.0, 0.3, 0.3, 1, 0, 8});
+  ASSERT_EQ(foveal_client_settings(o.c, &s), FOVEAL_OK);
+  EXPECT_DOUBLE_EQ(s.sigma_d, 2.0);
+  EXPECT_EQ(s.dominant_eye, 1);
+  EXPECT_EQ(s.generation, 8u);
+}
+
+TEST(FovealClient, NoBlockIsNoWriterAndSaysSo) {
+  Opened o(("/foveal-client-missing-" + std::to_string(::getpid())).c_str());
+  EXPECT_EQ(o.c, nullptr);
+  EXPECT_EQ(o.err.code, FOVEAL_ERR_NO_WRITER);
+  EXPECT_NE(std::string(o.err.message).find("is foveald running?"), std::string::npos) << o.err.message;
+  EXPECT_NE(std::string(o.err.message).find("/foveal-client-missing-"), std::string::npos) << o.err.message;
+}
+
+TEST(FovealClient, NothingPublishedYetIsNoData) {
+  const std::string name = unique_name();
+  auto writer = FoveaShm::create(name);
+  ASSERT_TRUE(writer);
+  writer->publish_settings({2.0, 3.0, 0.3, 0.3, 1, 0, 1});
+  Opened o(name.c_str());
+  ASSERT_NE(o.c, nullptr) << o.err.message;
+  foveal_fovea f{};
+  EXPECT_EQ(foveal_client_read(o.c, &f), FOVEAL_ERR_NO_DATA);
+  EXPECT_EQ(f.frame, 0u);
+  writer->publish(frame(1, 2, 3, 4), 1440, 1600);
+  EXPECT_EQ(foveal_client_read(o.c, &f), FOVEAL_OK);
+}
+
+TEST(FovealClient, AStoppedWriterIsNoWriter) {
+  const std::string name = unique_name();
+  std::optional<FoveaShm> writer;
+  {
+    auto w = FoveaShm::create(name);
+    ASSERT_TRUE(w) << w.error().message;
+    writer.emplace(std::move(*w));
+  }
+  writer->publish(frame(1, 2, 3, 4), 1440, 1600);
+  Opened o(name.c_str());
+  ASSERT_NE(o.c, nullptr) << o.err.message;
+  writer.reset();  // foveald exits: the block's name is gone, this client's mapping stays
+  foveal_fovea f{};
+  EXPECT_EQ(foveal_client_read(o.c, &f), FOVEAL_ERR_NO_WRITER);
+  foveal_settings s{};
+  EXPECT_EQ(foveal_client_settings(o.c, &s), FOVEAL_ERR_NO_WRITER);
+  EXPECT_NE(std::string(foveal_error_message(FOVEAL_ERR_NO_WRITER)).find("no foveald"), std::string::npos);
+}
+
+TEST(FovealClient, ASilentWriterIsDeadAndAWriterThatResumesIsAlive) {
+  const std::string name = unique_name();
+  auto writer = FoveaShm::create(name);
+  ASSERT_TRUE(writer);
+  writer->publish_settings({2.0, 3.0, 0.3, 0.3, 1, 0, 1});
+  writer->publish(frame(1, 2, 3, 4), 1440, 1600);
+  Opened o(name.c_str());
+  ASSERT_NE(o.c, nullptr) << o.err.message;
+
+  RawBlock raw(name);  // a foveald killed 3 s ago: its last heartbeat
+  ASSERT_NE(raw.p, nullptr);
+  raw.put<std::int64_t>(FOVEAL_SHM_HEARTBEAT_OFFSET, monotonic_now_ns() - 3 * kNsPerSec);
+  foveal_fovea f{};
+  EXPECT_EQ(foveal_client_read(o.c, &f), FOVEAL_ERR_DEAD_WRITER);
+  Opened late(name.c_str());
+  EXPECT_EQ(late.c, nullptr);
+  EXPECT_EQ(late.err.code, FOVEAL_ERR_DEAD_WRITER);
+  EXPECT_NE(std::string(late.err.message).find("pid " + std::to_string(::getpid())), std::string::npos) << late.err.message;
+
+  writer->heartbeat();  // a foveald that was only stalled (or one that took the block over)
+  EXPECT_EQ(foveal_client_read(o.c, &f), FOVEAL_OK);
+}
+
+TEST(FovealClient, AVersionOneBlockIsWrongVersionNamingIt) {
+  const std::string name = unique_name();
+  {
+    RawBlock raw(name, FOVEAL_SHM_V1_SIZE);  // what a foveald before settings made
+    ASSERT_NE(raw.p, nullptr);
+    raw.put<std::uint32_t>(FOVEAL_SHM_MAGIC_OFFSET, FOVEAL_SHM_MAGIC);
+    raw.put<std::uint32_t>(FOVEAL_SHM_VERSION_OFFSET, 1);
+    raw.put<std::uint32_t>(FOVEAL_SHM_SIZE_OFFSET, FOVEAL_SHM_V1_SIZE);
+  }
+  Opened o(name.c_str());
+  EXPECT_EQ(o.c, nullptr);
+  EXPECT_EQ(o.err.code, FOVEAL_ERR_WRONG_VERSION);
+  EXPECT_NE(std::string(o.err.message).find("version-1 block"), std::string::npos) << o.err.message;
+  auto runtime_reader = FoveaShm::open(name);  // the runtime's reader refuses it the same way
+  ASSERT_FALSE(runtime_reader);
+  EXPECT_NE(runtime_reader.error().message.find("version-1 block"), std::string::npos);
+  ::shm_unlink(name.c_str());
+}
+
+TEST(FovealClient, ABlockOfAnotherKindIsWrongVersion) {
+  const std::string name = unique_name();
+  {
+    RawBlock raw(name, 4096);
+    ASSERT_NE(raw.p, nullptr);
+    raw.put<std::uint32_t>(0, 0x12345678);
+  }
+  Opened o(name.c_str());
+  EXPECT_EQ(o.c, nullptr);
+  EXPECT_EQ(o.err.code, FOVEAL_ERR_WRONG_VERSION);
+  EXPECT_NE(std::string(o.err.message).find("not a fovea block"), std::string::npos) << o.err.message;
+  ::shm_unlink(name.c_str());
+}
+
+TEST(FovealClient, ALaterVersionWithMoreSectionsStillReads) {
+  // Later versions append (fovea_shm_layout.h): this library reads what it knows.
+  const std::string name = unique_name();
+  {
+    RawBlock raw(name, 256);
+    ASSERT_NE(raw.p, nullptr);
+    raw.put<std::uint32_t>(FOVEAL_SHM_MAGIC_OFFSET, FOVEAL_SHM_MAGIC);
+    raw.put<std::uint32_t>(FOVEAL_SHM_VERSION_OFFSET, 3);
+    raw.put<std::uint32_t>(FOVEAL_SHM_SIZE_OFFSET, 256);
+    raw.put<std::int64_t>(FOVEAL_SHM_HEARTBEAT_OFFSET, monotonic_now_ns());
+    raw.put<std::uint32_t>(FOVEAL_SHM_WRITER_STATE_OFFSET, FOVEAL_SHM_WRITER_LIVE);
+    raw.put<std::uint64_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, frame), 5);
+    raw.put<float>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, x), 12.5f);
+  }
+  Opened o(name.c_str());
+  ASSERT_NE(o.c, nullptr) << o.err.message;
+  foveal_fovea f{};
+  ASSERT_EQ(foveal_client_read(o.c, &f), FOVEAL_OK);
+  EXPECT_EQ(f.frame, 5u);
+  EXPECT_FLOAT_EQ(f.x[0], 12.5f);
+  ::shm_unlink(name.c_str());
+}
+
+TEST(FovealClient, ABlockOthersMayWriteIsNotFovealds) {
+  const std::string name = unique_name();
+  { RawBlock raw(name, sizeof(FoveaShmBlock), 0666); ASSERT_NE(raw.p, nullptr); }
+  Opened o(name.c_str());
+  EXPECT_EQ(o.c, nullptr);
+  EXPECT_EQ(o.err.code, FOVEAL_ERR_NOT_FOVEALDS);
+  EXPECT_NE(std::string(o.err.message).find("mode 0666"), std::string::npos) << o.err.message;
+  ::shm_unlink(name.c_str());
+}
+
+TEST(FovealClient, BadArgumentsAreInvalidArgument) {
+  Opened bad_name("no-leading-slash");
+  EXPECT_EQ(bad_name.c, nullptr);
+  EXPECT_EQ(bad_name.err.code, FOVEAL_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(foveal_client_open("/a/b", nullptr), nullptr);  // a null err is allowed
+  foveal_fovea f{};
+  foveal_settings s{};
+  EXPECT_EQ(foveal_client_read(nullptr, &f), FOVEAL_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(foveal_client_settings(nullptr, &s), FOVEAL_ERR_INVALID_ARGUMENT);
+  foveal_client_close(nullptr);
+  for (int code = FOVEAL_OK; code <= FOVEAL_ERR_SYSTEM + 1; ++code) EXPECT_NE(foveal_error_message(code), nullptr);
+}
+
+TEST(FovealClient, TheEnvironmentNamesTheBlockForBothSides) {
+  const std::string name = unique_name();
+  ::setenv("FOVEAL_SHM_NAME", name.c_str(), 1);
+  EXPECT_EQ(default_fovea_shm_name(), name);  // foveald's side
+  auto writer = FoveaShm::create(default_fovea_shm_name());
+  ASSERT_TRUE(writer);
+  Opened o(nullptr);
+  ::unsetenv("FOVEAL_SHM_NAME");
+  EXPECT_NE(o.c, nullptr) << o.err.message;
+  EXPECT_EQ(default_fovea_shm_name(), "/foveal-fovea-" + std::to_string(::getuid()));
+}
+
+TEST(FovealClient, ReadersOnManyThreadsSeeOnlyWholeValues) {
+  // The writer publishes frames whose every field derives from one counter: a torn read
+  // would mix two of them. Readers run on several threads on one client (under TSan too).
+  const std::string name = unique_name();
+  auto writer = FoveaShm::create(name);
+  ASSERT_TRUE(writer);
+  Opened o(name.c_str());
+  ASSERT_NE(o.c, nullptr) << o.err.message;
+  std::atomic<bool> stop{false};
+  std::thread w([&] {
+    for (int i = 1; !stop.load(); ++i) {
+      const float v = static_cast<float>(i % 100000);
+      FoveaFrame f = frame(v, v + 1, v + 2, v + 3);
+      f.t_ns = i;
+      writer->publish(f, 1440, 1600);
+      writer->publish_settings({1.0 + i % 1000, 2.0 + i % 1000, 0.3, 0.3, 1, 0, static_cast<std::uint64_t>(i)});
+      writer->heartbeat();
+    }
+  });
+  std::atomic<int> torn{0}, reads{0};
+  std::vector<std::thread> readers;
+  for (int r = 0; r < 3; ++r)
+    readers.emplace_back([&] {
+      for (int k = 0; k < 20000; ++k) {
+        foveal_fovea f{};
+        foveal_settings s{};
+        const int rc = foveal_client_read(o.c, &f);
+        if (rc == FOVEAL_OK) {
+          reads.fetch_add(1);
+          const float v = f.x[0];
+          if (f.y[0] != v + 1 || f.x[1] != v + 2 || f.y[1] != v + 3 || static_cast<float>(f.t_ns % 100000) != v) torn.fetch_add(1);
+        }
+        if (foveal_client_settings(o.c, &s) == FOVEAL_OK && s.sigma_nd != s.sigma_d + 1) torn.fetch_add(1);
+      }
+    });
+  for (auto& t : readers) t.join();
+  stop = true;
+  w.join();
+  EXPECT_EQ(torn.load(), 0);
+  EXPECT_GT(reads.load(), 0);
+}
+
+}  // namespace
+}  // namespace foveal

@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# The SDK as an outside program meets it: install into a temporary prefix, build a C
+# program with pkg-config and a CMake project with find_package(foveal CONFIG), run both
+# and the installed Python module against a live foveald (replay of the bundled log,
+# --no-render), and change sigma_d under them with `foveal ctl set`.
+# Usage: install_test.sh BUILD_DIR SOURCE_DIR PYTHON3
+set -euo pipefail
+build=$1 src=$2 python=$3
+work=$(mktemp -d "${TMPDIR:-/tmp}/foveal-sdk-XXXXXX")
+foveald_pid=""
+cleanup() {
+  if [[ -n $foveald_pid ]]; then kill "$foveald_pid" 2>/dev/null || true; wait "$foveald_pid" 2>/dev/null || true; fi
+  rm -rf "$work"
+}
+trap cleanup EXIT
+fail() { echo "install_test: $*" >&2; exit 1; }
+show() { for f in "$@"; do [[ -s $f ]] && { echo "--- $f"; cat "$f"; }; done; return 0; }
+step() { echo "== $*"; }
+
+step "cmake --install --component sdk into a temporary prefix"
+prefix=$work/prefix
+cmake --install "$build" --component sdk --prefix "$prefix" > "$work/install.log" || { show "$work/install.log"; fail "install failed"; }
+for f in include/foveal/client.h; do [[ -f $prefix/$f ]] || fail "the prefix has no $f"; done
+so=$(find "$prefix" -name 'libfoveal-client.so.*.*.*' | head -1)
+[[ -n $so ]] || fail "the prefix has no versioned libfoveal-client.so"
+readelf -d "$so" | grep -q 'SONAME.*libfoveal-client\.so\.[0-9]' || fail "$so has no SONAME"
+python_dir=$(dirname "$(find "$prefix" -path '*-packages/foveal/__init__.py')")
+python_dir=$(dirname "$python_dir")
+cp -r "$src/tests/sdk/consumers" "$work/src"  # the consumers build outside the source tree
+
+step "a C program with pkg-config --cflags --libs foveal-client"
+export PKG_CONFIG_PATH
+PKG_CONFIG_PATH=$(dirname "$(find "$prefix" -name foveal-client.pc)")
+libdir=$(pkg-config --variable=libdir foveal-client)
+# shellcheck disable=SC2046
+cc -std=c11 -Wall -Wextra -Wpedantic -Werror "$work/src/consumer.c" -o "$work/consumer_c" \
+  $(pkg-config --cflags --libs foveal-client) -Wl,-rpath,"$libdir" || fail "the C consumer does not build"
+
+step "a CMake project with find_package(foveal CONFIG REQUIRED)"
+cmake -S "$work/src/cmake" -B "$work/cmake-build" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
+  > "$work/cmake.log" 2>&1 || { show "$work/cmake.log"; fail "the CMake consumer does not configure"; }
+cmake --build "$work/cmake-build" > "$work/cmake-build.log" 2>&1 || { show "$work/cmake-build.log"; fail "the CMake consumer does not build"; }
+
+step "a live foveald (replay, --no-render) with its own block and control socket"
+export FOVEAL_SHM_NAME=/foveal-sdk-test-$$
+export XDG_RUNTIME_DIR=$work/run XDG_CONFIG_HOME=$work/config
+mkdir -p "$XDG_RUNTIME_DIR" "$XDG_CONFIG_HOME"
+"$build/bin/foveald" --replay "$src/data/gaze/vive_pro_eye_TESTNA01.csv" --no-render --loop --end 12 --duration 90 -q \
+  --out "$work/out" > "$work/foveald.log" 2>&1 &
+foveald_pid=$!
+
+# NAME BINARY SIGMA_D: the consumer reads a fovea and says "ready"; then sigma_d changes.
+run_consumer() {
+  local name=$1 binary=$2 sigma=$3 pid
+  "$binary" "$sigma" > "$work/$name.out" 2> "$work/$name.err" &
+  pid=$!
+  for _ in $(seq 300); do
+    grep -q '^ready' "$work/$name.out" && break
+    kill -0 "$pid" 2>/dev/null || break
+    sleep 0.1
+  done
+  grep -q '^ready' "$work/$name.out" || { show "$work/$name.out" "$work/$name.err" "$work/foveald.log"; fail "$name read no fovea"; }
+  "$build/bin/foveal" ctl set "sigma_d=$sigma" > "$work/ctl.out" 2>&1 || { show "$work/ctl.out"; fail "foveal ctl set failed"; }
+  wait "$pid" || { show "$work/$name.out" "$work/$name.err"; fail "$name did not see sigma_d=$sigma"; }
+  sed "s/^/  $name: /" "$work/$name.out"
+}
+run_consumer c "$work/consumer_c" 2.5
+run_consumer cmake "$work/cmake-build/consumer_cpp" 2.25
+
+step "the installed Python module: live fovea and settings"
+PYTHONPATH=$python_dir "$python" - "$prefix" <<'EOF' || fail "the installed Python module failed"
+import math, sys, foveal
+assert foveal.library_path().startswith(sys.argv[1]), foveal.library_path()  # the prefix's library, found by itself
+with foveal.Client() as c:
+    f = c.read()
+    s = c.settings()
+for e in (0, 1):
+    assert math.isfinite(f.x[e]) and 0 <= f.x[e] <= f.eye_width and 0 <= f.y[e] <= f.eye_height, f
+assert s.sigma_d == 2.25, s
+print(f"  python: frame {f.frame} left ({f.x[0]:.1f}, {f.y[0]:.1f}) sigma_d {s.sigma_d} generation {s.generation}")
+EOF
+
+step "foveald stops: clients are told"
+kill -TERM "$foveald_pid"
+wait "$foveald_pid" || fail "foveald exited with $?"
+foveald_pid=""
+PYTHONPATH=$python_dir "$python" - "$work/out/trace.csv" <<'EOF' || fail "the installed Python module failed"
+import sys, foveal
+try:
+    foveal.Client()
+    sys.exit("opened a block that foveald removed")
+except foveal.ClientError as e:
+    assert e.code == foveal.NO_WRITER, e
+    print(f"  python: {e}")
+t = foveal.read_trace(sys.argv[1])
+assert len(t) > 10 and (t["t_ns"][1:] > t["t_ns"][:-1]).all(), len(t)
+print(f"  python: trace {len(t)} samples")
+EOF
+echo "install_test: all passed"

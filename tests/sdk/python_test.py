@@ -1,0 +1,186 @@
+"""The Python module `foveal` from the build tree, on the system python3 with NumPy:
+the live fovea and settings from a real foveald, and gaze logs and traces as arrays.
+Usage: python_test.py BUILD_DIR SOURCE_DIR  (ctest: FovealPython)."""
+import math
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+BUILD, SOURCE = sys.argv.pop(1), sys.argv.pop(1)
+sys.path.insert(0, os.path.join(SOURCE, "sdk", "python"))
+import numpy as np  # noqa: E402
+
+import foveal  # noqa: E402
+
+LOG = os.path.join(SOURCE, "data", "gaze", "vive_pro_eye_TESTNA01.csv")
+
+
+class Live(unittest.TestCase):
+    """One foveald (replay of the bundled log, gaze only) for the live tests."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.TemporaryDirectory(prefix="foveal-python-")
+        d = cls.dir.name
+        cls.env = dict(os.environ, FOVEAL_SHM_NAME=f"/foveal-python-test-{os.getpid()}",
+                       XDG_RUNTIME_DIR=os.path.join(d, "run"), XDG_CONFIG_HOME=os.path.join(d, "config"))
+        os.makedirs(cls.env["XDG_RUNTIME_DIR"])
+        profiles = os.path.join(cls.env["XDG_CONFIG_HOME"], "foveal", "profiles")
+        os.makedirs(profiles)
+        with open(os.path.join(profiles, "bob.json"), "w") as f:
+            f.write('{"format":"foveal-profile v1","dominant_eye":"left","sigma_d":2.4,"sigma_nd":3.2}')
+        os.environ["FOVEAL_SHM_NAME"] = cls.env["FOVEAL_SHM_NAME"]
+        cls.out = os.path.join(d, "out")
+        cls.foveald = subprocess.Popen(
+            [os.path.join(BUILD, "bin", "foveald"), "--replay", LOG, "--no-render", "--loop", "--end", "12",
+             "--duration", "60", "-q", "--out", cls.out], env=cls.env)
+
+    @classmethod
+    def tearDownClass(cls):
+        if cls.foveald.poll() is None:
+            cls.foveald.kill()
+            cls.foveald.wait()
+        cls.dir.cleanup()
+
+    def client(self):
+        deadline = time.monotonic() + 20
+        while True:
+            try:
+                return foveal.Client()
+            except foveal.ClientError as e:
+                if e.code != foveal.NO_WRITER or time.monotonic() > deadline:
+                    raise
+                time.sleep(0.05)
+
+    def first_fovea(self, c):
+        deadline = time.monotonic() + 20
+        while True:
+            try:
+                return c.read()
+            except foveal.ClientError as e:
+                if e.code != foveal.NO_DATA or time.monotonic() > deadline:
+                    raise
+                time.sleep(0.05)
+
+    def test_1_reads_the_live_fovea_inside_the_viewport(self):
+        with self.client() as c:
+            f = self.first_fovea(c)
+            self.assertGreater(f.frame, 0)
+            self.assertEqual((f.eye_width, f.eye_height), (1440, 1600))  # the Vive Pro Eye's eye viewport
+            for e in (0, 1):
+                self.assertTrue(math.isfinite(f.x[e]) and 0 <= f.x[e] <= f.eye_width, f)
+                self.assertTrue(math.isfinite(f.y[e]) and 0 <= f.y[e] <= f.eye_height, f)
+                self.assertIn(f.state[e], range(5))
+            time.sleep(0.1)
+            self.assertGreater(c.read().frame, f.frame, "the fovea moves on at the replay's rate")
+
+    def test_2_sees_a_settings_change_and_a_profile_switch(self):
+        with self.client() as c:
+            before = c.settings()
+            self.assertEqual((before.sigma_d, before.sigma_nd, before.dominant_eye), (2.0, 3.0, 1))  # the defaults
+            subprocess.run([os.path.join(BUILD, "bin", "foveal"), "ctl", "set", "sigma_d=2.75", "sigma_nd=3.25"],
+                           env=self.env, check=True, stdout=subprocess.DEVNULL)
+            after = c.settings()  # the reply comes after the change is in the block
+            self.assertEqual((after.sigma_d, after.sigma_nd), (2.75, 3.25))
+            self.assertGreater(after.generation, before.generation)
+            # A profile switch, too.
+            subprocess.run([os.path.join(BUILD, "bin", "foveal"), "ctl", "use", "bob"], env=self.env, check=True,
+                           stdout=subprocess.DEVNULL)
+            bob = c.settings()
+            self.assertEqual((bob.sigma_d, bob.sigma_nd, bob.dominant_eye), (2.4, 3.2, 0))
+            self.assertGreater(bob.generation, after.generation)
+
+    def test_3_a_stopped_foveald_is_no_writer(self):
+        c = self.client()
+        self.first_fovea(c)
+        self.foveald.send_signal(signal.SIGTERM)
+        self.assertEqual(self.foveald.wait(10), 0)
+        with self.assertRaises(foveal.ClientError) as caught:
+            c.read()
+        self.assertEqual(caught.exception.code, foveal.NO_WRITER)
+        c.close()
+        with self.assertRaises(foveal.ClientError) as caught:
+            foveal.Client()
+        self.assertEqual(caught.exception.code, foveal.NO_WRITER)
+        self.assertIn("is foveald running?", str(caught.exception))
+        # Its trace, as arrays.
+        t = foveal.read_trace(os.path.join(self.out, "trace.csv"))
+        self.assertGreater(len(t), 10)
+        self.assertEqual(t["t_ns"][0], 0)
+        self.assertTrue(np.all((t["left_state"] <= foveal.LOST)))
+        self.assertTrue(np.all((t["left_x_px"] >= 0) & (t["left_x_px"] <= 1440)))
+
+
+class Files(unittest.TestCase):
+    def test_the_bundled_log_as_arrays(self):
+        log = foveal.read_gaze_log(LOG)
+        self.assertEqual((log.version, log.rate_hz, len(log)), (2, 120.0, 1518))  # as `foveal log validate` says
+        self.assertEqual(log.meta["source"], "sranipal:TESTNA01_2D_Fist3.csv")
+        self.assertEqual(log["t_ns"].dtype, np.int64)
+        self.assertEqual(log["t_ns"][0], 0)
+        self.assertTrue(np.all(np.diff(log["t_ns"]) > 0))
+        self.assertAlmostEqual(float(log["left_dir_x"][0]), -0.1235046, places=7)
+        self.assertAlmostEqual(float(log["head_qz"][0]), 0.032027364, places=9)
+        # combined_valid 0: its fields are empty, NaN here.
+        self.assertEqual(int(log["combined_valid"][0]), 0)
+        self.assertTrue(np.isnan(log["combined_dir_x"][0]))
+        # Invalid left eye (bit 0 clear) in about 14% of the samples, as `log validate` reports.
+        invalid = np.mean((log["left_valid"] & 1) == 0)
+        self.assertAlmostEqual(float(invalid), 0.1403, places=3)
+
+    def write(self, text):
+        f = tempfile.NamedTemporaryFile("w", suffix=".csv", delete=False)
+        f.write(text)
+        f.close()
+        self.addCleanup(os.unlink, f.name)
+        return f.name
+
+    def v1(self, rows):
+        cols = ",".join(foveal.files.gaze_log_columns(1))
+        return "# foveal-gaze-log v1\n# rate_hz=120\n" + cols + "\n" + "".join(r + "\n" for r in rows)
+
+    def row(self, t, x="0.1"):
+        eye = f"15,{x},0.2,-0.97,1,2,3,3.5,0.9"
+        return f"{t},{eye},{eye},0,,,,,,"
+
+    def test_a_v1_log_with_markers(self):
+        path = self.write(self.v1([self.row(0), "#mark,5,trial 1, start", self.row(10), self.row(20)]))
+        log = foveal.read_gaze_log(path)
+        self.assertEqual((log.version, len(log)), (1, 3))
+        self.assertEqual(log.markers, [(5, "trial 1, start")])
+        self.assertNotIn("head_valid", log.samples.dtype.names)
+
+    def test_bad_logs_name_the_line_and_the_column(self):
+        cases = [
+            (self.v1([self.row(0), self.row(10, x="abc")]), 5, "left_dir_x: 'abc' is not a number"),
+            (self.v1([self.row(0), self.row(10, x="nan")]), 5, "left_dir_x: 'nan' is not finite"),
+            (self.v1([self.row(10), self.row(10)]), 5, "t_ns: 10 repeats the previous timestamp"),
+            (self.v1([self.row(0), self.row(10)[:-3]]), 5, "missing"),
+            (self.v1([]), 3, "no samples"),
+            ("# foveal-gaze-log v3\n", 1, "v3 is not supported"),
+            (self.v1([self.row(0)]).replace("right_openness", "right_open"), 3, "column 19 is 'right_open'"),
+            (self.v1([self.row(0)]).replace("\n", "\r\n"), 1, "CRLF"),
+            (self.v1([self.row(0)])[:-1], 4, "truncated last row"),
+            (self.v1([self.row(0), "#note"]), 5, "marker row"),
+        ]
+        for text, line, what in cases:
+            with self.subTest(what=what):
+                with self.assertRaises(foveal.FormatError) as caught:
+                    foveal.read_gaze_log(self.write(text))
+                self.assertEqual(caught.exception.line, line, str(caught.exception))
+                self.assertIn(what, str(caught.exception))
+
+    def test_a_trace_with_a_bad_state_names_it(self):
+        header = "t_ns,left_state,left_x_px,left_y_px,left_confidence,right_state,right_x_px,right_y_px,right_confidence\n"
+        path = self.write(header + "0,fixation,1.5,2.5,0.90,blink,3,4,0.00\n7,dozing,1,2,0.5,lost,720,800,0\n")
+        with self.assertRaises(foveal.FormatError) as caught:
+            foveal.read_trace(path)
+        self.assertIn(":3: left_state: 'dozing' is not a state", str(caught.exception))
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)

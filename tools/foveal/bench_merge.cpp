@@ -1,0 +1,83 @@
+// foveal bench merge --out DIR SHARD_DIR...: joins the shards of one sweep (each the
+// output of `foveal bench --shard K/N`) into the files a single run of the whole sweep
+// writes, from the same rows in the same order (docs/bench.md, "On a cluster").
+#include <algorithm>
+#include <memory>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "bench_outputs.hpp"
+#include "commands.hpp"
+#include "foveal/tools/cli.hpp"
+
+namespace foveal::cmd {
+
+namespace {
+
+struct MergeArgs {
+  std::string out;
+  std::vector<std::string> shards;
+  bool no_png = false, json = false;
+};
+
+// The first option line where two sweeps differ, for the message.
+std::string first_difference(const std::string& a, const std::string& b) {
+  std::istringstream ia(a), ib(b);
+  std::string la, lb;
+  while (true) {
+    const bool more_a = static_cast<bool>(std::getline(ia, la)), more_b = static_cast<bool>(std::getline(ib, lb));
+    if (!more_a && !more_b) return "";
+    if (!more_a) la.clear();
+    if (!more_b) lb.clear();
+    if (la != lb) return "'" + lb + "' against '" + la + "'";
+  }
+}
+
+int merge(const MergeArgs& a) {
+  auto fail = [](const Error& e) { return cli::report(e); };
+  std::vector<bench::ShardFile> files;
+  for (const std::string& dir : a.shards) {
+    auto f = bench::read_shard(dir);
+    if (!f) return fail(f.error());
+    if (!files.empty() && f->kind != files.front().kind)
+      return fail(bad_input(f->path + ": a part of a '" + f->kind + "' sweep, " + files.front().path + " of a '" + files.front().kind + "' one"));
+    if (!files.empty() && f->sweep != files.front().sweep)
+      return fail(bad_input(f->path + ": not the same sweep as " + files.front().path + ": " + first_difference(files.front().sweep, f->sweep)));
+    files.push_back(std::move(*f));
+  }
+  std::vector<bench::SweepRows> parts;
+  std::vector<std::string> names;
+  for (const auto& f : files) parts.push_back(f.rows), names.push_back(f.path);
+  auto merged = bench::SweepRows::merge(parts, names);
+  if (!merged) return fail(merged.error());
+  // The run's facts from the first shard; memory and wall time the largest of any shard.
+  nlohmann::json summary = files.front().summary;
+  for (const char* most : {"peak_rss_mb", "wall_s"}) {
+    double v = 0;
+    for (const auto& f : files)
+      if (f.summary.contains(most) && f.summary[most].is_number()) v = std::max(v, f.summary[most].get<double>());
+    if (summary.contains(most)) summary[most] = v;
+  }
+  for (const auto& f : files) {
+    if (f.summary.value("renderer", nlohmann::json()) != summary.value("renderer", nlohmann::json()))
+      cli::warn(f.path + ": rendered on '" + f.summary.value("renderer", nlohmann::json()).dump() + "', " + files.front().path +
+                " on '" + summary.value("renderer", nlohmann::json()).dump() + "': the timing columns mix machines");
+  }
+  summary["shards"] = files.size();
+  return bench::write_outputs(a.out, *merged, summary, files.front().kind, !a.no_png, a.json);
+}
+
+}  // namespace
+
+void add_bench_merge(CLI::App& bench, int& exit_code) {
+  auto a = std::make_shared<MergeArgs>();
+  CLI::App* sub = bench.add_subcommand("merge", "Join the shards of a sweep (bench --shard K/N) into one run's bench.csv/json and charts");
+  sub->add_option("--out,-o", a->out, "Output directory")->required();
+  sub->add_option("shards", a->shards, "The shards' output directories, all N of them, in any order")->required();
+  sub->add_flag("--no-png", a->no_png, "CSV and JSON only");
+  sub->add_flag("--json", a->json, "Print the merged results as JSON");
+  sub->callback([a, &exit_code] { exit_code = merge(*a); });
+}
+
+}  // namespace foveal::cmd
