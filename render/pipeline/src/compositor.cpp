@@ -179,7 +179,9 @@ void set_material(GLuint p, const Scene& scene, const Material& m) {
 Result<std::size_t> mapping_index(const EyePlan& plan) {
   switch (plan.method) {
     case Method::full:
-    case Method::rmfr: return std::size_t{0};
+    case Method::rmfr:
+    case Method::uniform:
+    case Method::fixed: return std::size_t{0};
     case Method::kfr: return std::size_t{1};
     case Method::hyperbolic:
     case Method::linear: return std::size_t{2};
@@ -349,7 +351,7 @@ struct Compositor::Impl {
     // Mapping: G-buffer -> reduced G-buffer; RMFR's (also full through the lens) is foveal-rmfr's.
     ensure_transformed(eye, plan.buffer_w, plan.buffer_h, !plan.layers.empty());
     const detail::SurfaceTargets& tg = *transformed[eye];
-    if (plan.method == Method::rmfr) {
+    if (variant == 0) {  // RMFR's kernel: rmfr, and uniform and fixed as plans on it
       if (Status s = foveator->map(rmfr_plan(plan), (*g)->textures(), tg.fbo.id()); !s) return s.error();
       timer.mark(Pass::mapping);
       return &tg;
@@ -524,7 +526,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     m.timer.mark(Pass::lighting);
 
     // Resolve into this eye's half of the output. KFR's angle axis wraps around.
-    if (plan.method == Method::rmfr) {  // foveal-rmfr's resolve
+    if (variant == 0) {  // RMFR's kernel (rmfr, uniform, fixed): foveal-rmfr's resolve
       const rmfr::Lens l = rmfr_lens(lens);
       if (Status s = m.foveator->resolve(rmfr_plan(plan), rs.texture.id(), m.output.fbo.id(), eye_origin.x, eye_origin.y,
                                          distort ? &l : nullptr);

@@ -1,0 +1,51 @@
+#!/usr/bin/python3
+"""Joins `foveal bench --gaze` runs that differ only in their logs into one directory
+(docs/bench.md): OUT/gaze.csv and gaze_frames.csv (rows concatenated), gaze.json (logs and
+rows joined; the settings must agree). Chart it afterwards: tools/charts/gaze_charts.py OUT.
+
+Usage: join_gaze_runs.py OUT RUN_DIR...
+"""
+import json
+import os
+import sys
+
+SETTINGS = ("display", "size", "fps", "latency_ms", "start_s", "efr_ratio", "fx", "fy", "patch_deg", "patch_margin_db")
+
+
+def write(path, text):
+    with open(path + ".tmp", "w") as f:
+        f.write(text)
+    os.replace(path + ".tmp", path)
+
+
+def main():
+    if len(sys.argv) < 3:
+        sys.exit(__doc__)
+    out, runs = sys.argv[1], sys.argv[2:]
+    summaries = []
+    for r in runs:
+        with open(os.path.join(r, "gaze.json")) as f:
+            summaries.append(json.load(f))
+    joined = summaries[0]
+    for r, s in zip(runs[1:], summaries[1:]):
+        for k in SETTINGS:
+            if s.get(k) != joined.get(k):
+                sys.exit(f"{r}/gaze.json: {k} is {s.get(k)!r}, {runs[0]} has {joined.get(k)!r}: not the same settings")
+        joined["logs"] += s["logs"]
+        joined["rows"] += s["rows"]
+        joined["wall_s"] += s["wall_s"]
+        joined["peak_rss_mb"] = max(joined["peak_rss_mb"], s["peak_rss_mb"])
+    joined["joined_from"] = runs
+    os.makedirs(out, exist_ok=True)
+    for name in ("gaze.csv", "gaze_frames.csv"):
+        lines = []
+        for i, r in enumerate(runs):
+            with open(os.path.join(r, name)) as f:
+                rows = f.read().splitlines()
+            lines += rows if i == 0 else rows[1:]
+        write(os.path.join(out, name), "\n".join(lines) + "\n")
+    write(os.path.join(out, "gaze.json"), json.dumps(joined, indent=2) + "\n")
+
+
+if __name__ == "__main__":
+    main()
