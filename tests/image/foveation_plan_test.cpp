@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "foveal/image/foveation_plan.hpp"
+#include "foveal/image/rmfr_mapping.hpp"
 
 using namespace foveal;
 using namespace foveal::render;
@@ -24,7 +25,7 @@ EyeFoveation at(double sigma, double x, double y) {
 }  // namespace
 
 TEST(FoveationPlan, EveryMethodShadesAboutWHOverSigmaSquared) {
-  for (Method m : {Method::rmfr, Method::kfr, Method::hyperbolic, Method::linear})
+  for (Method m : {Method::rmfr, Method::kfr, Method::hyperbolic, Method::linear, Method::uniform, Method::fixed})
     for (double sigma : {1.4, 2.0, 2.6, 3.0, 4.0})
       for (const auto& p : kPositions) {
         auto plan = plan_eye(m, at(sigma, p[0], p[1]), kW, kH, kVive);
@@ -117,7 +118,7 @@ TEST(FoveationPlan, RejectsBadLevels) {
 }
 
 TEST(FoveationPlan, UnknownMethodsAreErrorsNamingTheKnownOnes) {
-  EXPECT_EQ(method_names_joined(","), "full,rmfr,kfr,hyperbolic,linear");
+  EXPECT_EQ(method_names_joined(","), "full,rmfr,kfr,hyperbolic,linear,uniform,fixed");
   ASSERT_EQ(method_names().size(), all_methods().size());
   for (std::size_t i = 0; i < all_methods().size(); ++i) {
     EXPECT_EQ(method_names()[i], method_name(all_methods()[i]));
@@ -125,7 +126,7 @@ TEST(FoveationPlan, UnknownMethodsAreErrorsNamingTheKnownOnes) {
   }
   auto bad = parse_method("RMFR");
   ASSERT_FALSE(bad);
-  EXPECT_NE(bad.error().message.find("'RMFR' (full, rmfr, kfr, hyperbolic, linear)"), std::string::npos) << bad.error().message;
+  EXPECT_NE(bad.error().message.find("'RMFR' (full, rmfr, kfr, hyperbolic, linear, uniform, fixed)"), std::string::npos) << bad.error().message;
   // An enum value from elsewhere (a cast, a newer peer) plans nothing, at any level.
   const Method unknown = static_cast<Method>(42);
   EXPECT_FALSE(is_method(unknown));
@@ -134,4 +135,47 @@ TEST(FoveationPlan, UnknownMethodsAreErrorsNamingTheKnownOnes) {
     ASSERT_FALSE(p);
     EXPECT_NE(p.error().message.find("unknown foveation method 42"), std::string::npos) << p.error().message;
   }
+}
+
+TEST(FoveationPlan, UniformIsRmfrsBufferWithTheIdentityMap) {
+  for (double sigma : {1.4, 2.6})
+    for (const auto& p : kPositions) {
+      auto u = plan_eye(Method::uniform, at(sigma, p[0], p[1]), kW, kH, kVive);
+      auto r = plan_eye(Method::rmfr, at(sigma, p[0], p[1]), kW, kH, kVive);
+      ASSERT_TRUE(u && r);
+      EXPECT_EQ(u->method, Method::uniform);
+      EXPECT_EQ(u->buffer_w, r->buffer_w);
+      EXPECT_EQ(u->buffer_h, r->buffer_h);
+      EXPECT_EQ(u->f.x, image::kRmfrIdentityF);
+      EXPECT_EQ(u->f.y, image::kRmfrIdentityF);
+      // The identity map: every screen position lands on itself in the buffer.
+      for (double q : {0.0, 0.1, 0.37, 0.5, 0.9, 1.0}) EXPECT_DOUBLE_EQ(image::rmfr_forward(q, u->fovea.x, u->f.x), q);
+      EXPECT_TRUE(u->layers.empty());
+      EXPECT_EQ(u->fovea, optical_centre(kVive));  // whatever the gaze
+    }
+  EXPECT_FALSE(follows_gaze(Method::uniform));
+}
+
+TEST(FoveationPlan, FixedPinsTheFoveaAtTheOpticalCentreWhateverTheGaze) {
+  // An asymmetric frustum (the original Vive's measured left eye): the optical axis is
+  // off the viewport's centre.
+  const EyeFrustum vive{-1.397f, 1.251f, -1.478f, 1.464f};
+  const glm::dvec2 c = optical_centre(vive);
+  EXPECT_NEAR(c.x, 1.397 / (1.397 + 1.251), 1e-6);
+  EXPECT_NEAR(c.y, 1.478 / (1.478 + 1.464), 1e-6);
+  EXPECT_NEAR(optical_centre(kVive).x, 0.5, 1e-9);
+  for (const auto& p : kPositions) {
+    auto f = plan_eye(Method::fixed, at(2.6, p[0], p[1]), kW, kH, vive);
+    auto r = plan_eye(Method::rmfr, at(2.6, p[0], p[1]), kW, kH, vive);
+    ASSERT_TRUE(f && r);
+    EXPECT_EQ(f->method, Method::fixed);
+    EXPECT_DOUBLE_EQ(f->fovea.x, c.x);
+    EXPECT_DOUBLE_EQ(f->fovea.y, c.y);
+    EXPECT_EQ(f->f, r->f);
+    EXPECT_EQ(f->shaded_samples(), r->shaded_samples());
+  }
+  EXPECT_FALSE(follows_gaze(Method::fixed));
+  EXPECT_FALSE(follows_gaze(Method::full));
+  EXPECT_TRUE(follows_gaze(Method::rmfr));
+  EXPECT_TRUE(follows_gaze(Method::kfr));
 }

@@ -15,7 +15,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLORS = {"full": "black", "rmfr": "tab:red", "kfr": "tab:blue", "hyperbolic": "tab:green", "linear": "tab:orange"}
+COLORS = {"full": "black", "rmfr": "tab:red", "kfr": "tab:blue", "hyperbolic": "tab:green", "linear": "tab:orange",
+          "uniform": "tab:gray", "fixed": "tab:purple"}
 
 
 def num(v):
@@ -150,7 +151,7 @@ def flicker(rows, out):
 
 def table(rows, out):
     """Per scene, each method at the level closest to σ = 2.6 (equal shaded samples)."""
-    methods = [m for m in ("rmfr", "hyperbolic", "kfr", "linear") if any(r["method"] == m for r in rows)]
+    methods = [m for m in ("rmfr", "hyperbolic", "kfr", "linear", "uniform", "fixed") if any(r["method"] == m for r in rows)]
     sigmas = sorted({num(r["sigma"]) for r in rows if r["method"] != "full"})
     if not sigmas or not methods:
         return

@@ -16,6 +16,7 @@
 
 #include "bench_outputs.hpp"
 #include "bench_sweep.hpp"
+#include "bench_gaze.hpp"
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/data_paths.hpp"
@@ -51,6 +52,7 @@ struct Args {
   double grid_sigma = 2.0;
   std::string grid_values = "0.1:0.5:0.05";
   std::string shard;  ///< K/N; empty: the whole sweep
+  GazeBenchOptions gaze;  ///< --gaze runs (bench_gaze.cpp)
 };
 
 std::string num(double v) {
@@ -239,6 +241,11 @@ int run(const Args& a, const std::string& sweep) {
   auto shard = bench::parse_shard(a.shard.empty() ? "1/1" : a.shard);
   if (!shard) return fail(shard.error());
   const std::vector<std::string> scenes = a.scenes.empty() ? std::vector<std::string>{default_scene()} : a.scenes;
+  if (!a.gaze.logs.empty()) {
+    if (a.f_grid || a.rotation || a.stability || a.flicker)
+      return fail(bad_input("--gaze runs on its own: drop --f-grid, --rotation, --stability and --flicker"));
+    return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json});
+  }
 
   std::error_code ec;
   std::filesystem::create_directories(a.out, ec);
@@ -452,6 +459,7 @@ void add_bench(CLI::App& app, int& exit_code) {
   sub->add_option("--flicker-log", a->flicker_log, "Gaze log for --flicker (default: the bundled recording)");
   sub->add_option("--flicker-frames", a->flicker_frames, "Frames per flicker run")->capture_default_str()->check(CLI::Range(2, 10000));
   sub->add_flag("--stability", a->stability, "Also: fovea from the centre to a corner and to a border, patch PSNR and FPSNR per method");
+  add_gaze_bench_options(*sub, a->gaze);
   sub->add_option("--shard", a->shard, "Run only the K-th of N disjoint parts of the sweep (K/N); merge with `bench merge`");
   sub->add_option("--out,-o", a->out, "Output directory (required)");
   sub->add_flag("--no-png", a->no_png, "CSV and JSON only");

@@ -81,7 +81,7 @@ int run(const Args& a) {
     const auto b = comp->buffer_size(e);
     const render::EyePlan& plan = comp->plan(e);
     eyes[eye_name(e)] = {{"sigma", plan.method == render::Method::full ? 1.0 : f.sigma}, {"fx", f.fx}, {"fy", f.fy},
-                         {"fovea", {f.fovea_x, f.fovea_y}}, {"buffer", {b[0], b[1]}},
+                         {"fovea", {plan.fovea.x, 1.0 - plan.fovea.y}}, {"buffer", {b[0], b[1]}},
                          {"shaded_samples", plan.shaded_samples()}};
     if (!plan.layers.empty()) {
       eyes[eye_name(e)]["layer_scale"] = plan.layer_scale;

@@ -87,6 +87,11 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
   last_generation_ = s.generation;
 
   const auto bl = comp_->buffer_size(Eye::left), br = comp_->buffer_size(Eye::right);
+  // The fovea the frame was rendered with (`fixed` pins it at the optical centre).
+  for (Eye e : kEyes) {
+    auto& eye = p.eyes[static_cast<std::size_t>(e)];
+    eye.fovea_x = comp_->plan(e).fovea.x, eye.fovea_y = 1.0 - comp_->plan(e).fovea.y;
+  }
   // The head pose this frame used, in the tracking frame as the log records it (the
   // identity for a static camera); %.9g keeps a float's digits, so the columns equal the log's.
   const Pose& hp = head.pose;

@@ -111,6 +111,8 @@ const char* method_name(Method m) {
     case Method::kfr: return "kfr";
     case Method::hyperbolic: return "hyperbolic";
     case Method::linear: return "linear";
+    case Method::uniform: return "uniform";
+    case Method::fixed: return "fixed";
   }
   return "?";
 }
@@ -122,7 +124,8 @@ Result<Method> parse_method(const std::string& s) {
 }
 
 const std::vector<Method>& all_methods() {
-  static const std::vector<Method> m = {Method::full, Method::rmfr, Method::kfr, Method::hyperbolic, Method::linear};
+  static const std::vector<Method> m = {Method::full,       Method::rmfr,   Method::kfr,  Method::hyperbolic,
+                                              Method::linear,     Method::uniform, Method::fixed};
   return m;
 }
 
@@ -159,6 +162,12 @@ double eccentricity_deg(const EyeFrustum& f, glm::dvec2 p, glm::dvec2 q) {
   return std::acos(c) * 180.0 / kPi;
 }
 
+glm::dvec2 optical_centre(const EyeFrustum& f) {
+  return {-f.tan_left / (f.tan_right - f.tan_left), -f.tan_bottom / (f.tan_top - f.tan_bottom)};
+}
+
+bool follows_gaze(Method m) { return m != Method::full && m != Method::uniform && m != Method::fixed; }
+
 Result<EyePlan> plan_eye(Method m, const EyeFoveation& e, int W, int H, const EyeFrustum& frustum) {
   if (!std::isfinite(e.sigma) || e.sigma < 1.0) return bad_input("sigma must be a number >= 1");
   if (!std::isfinite(e.fx) || !std::isfinite(e.fy) || e.fx <= 0 || e.fy <= 0) return bad_input("fx and fy must be numbers > 0");
@@ -176,9 +185,15 @@ Result<EyePlan> plan_eye(Method m, const EyeFoveation& e, int W, int H, const Ey
   if (e.sigma <= 1.0 && m != Method::full) m = p.method = Method::rmfr;
   switch (m) {
     case Method::full: break;
+    case Method::fixed:
+    case Method::uniform:  // no fovea: pinned too, so that the plan does not depend on the gaze
+      p.fovea = optical_centre(frustum);
+      [[fallthrough]];
     case Method::rmfr:
       p.buffer_w = image::rmfr_buffer_size(W, e.sigma), p.buffer_h = image::rmfr_buffer_size(H, e.sigma);
-      p.f = {image::rmfr_effective_f(e.fx, e.sigma), image::rmfr_effective_f(e.fy, e.sigma)};
+      // uniform: RMFR's buffer with the identity map, an even grid that the resolve upsamples.
+      p.f = m == Method::uniform ? glm::dvec2(image::kRmfrIdentityF)
+                                 : glm::dvec2(image::rmfr_effective_f(e.fx, e.sigma), image::rmfr_effective_f(e.fy, e.sigma));
       break;
     case Method::kfr: {
       p.buffer_w = image::rmfr_buffer_size(W, e.sigma), p.buffer_h = image::rmfr_buffer_size(H, e.sigma);

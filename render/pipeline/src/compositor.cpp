@@ -141,7 +141,9 @@ class PassTimer {
 Result<std::size_t> mapping_index(const EyePlan& plan) {
   switch (plan.method) {
     case Method::full:
-    case Method::rmfr: return std::size_t{0};
+    case Method::rmfr:
+    case Method::uniform:
+    case Method::fixed: return std::size_t{0};
     case Method::kfr: return std::size_t{1};
     case Method::hyperbolic:
     case Method::linear: return std::size_t{2};

@@ -18,7 +18,10 @@
 
 namespace foveal::render {
 
-enum class Method { full, rmfr, kfr, hyperbolic, linear };
+// uniform and fixed are the choices without eye tracking (docs/methods.md): uniform
+// shades a W/σ × H/σ grid and upsamples (RMFR's passes with the identity map); fixed is
+// RMFR with the fovea pinned at the eye's optical centre, whatever the gaze.
+enum class Method { full, rmfr, kfr, hyperbolic, linear, uniform, fixed };
 const char* method_name(Method m);
 /// One of method_names(); bad_input otherwise.
 Result<Method> parse_method(const std::string& s);
@@ -26,7 +29,7 @@ Result<Method> parse_method(const std::string& s);
 const std::vector<Method>& all_methods();
 /// Their names in the same order: the one list for command-line checks, help and defaults.
 const std::vector<std::string>& method_names();
-/// The names joined, e.g. "full,rmfr,kfr,hyperbolic,linear" for ",".
+/// The names joined, e.g. "full,rmfr,kfr,hyperbolic,linear,uniform,fixed" for ",".
 std::string method_names_joined(const std::string& separator);
 /// Whether `m` is one of all_methods() (an enum value from elsewhere may not be).
 bool is_method(Method m);
@@ -72,5 +75,12 @@ Result<EyePlan> plan_eye(Method m, const EyeFoveation& f, int width, int height,
 /// Angle in degrees between the view rays through two points given in normalised GL
 /// viewport coordinates (origin bottom-left), through the eye's frustum.
 double eccentricity_deg(const EyeFrustum& frustum, glm::dvec2 p, glm::dvec2 q);
+
+/// Where the eye's optical axis (direction (0,0,-1)) meets its viewport, normalised, GL
+/// frame (origin bottom-left): the fovea of the `fixed` method.
+glm::dvec2 optical_centre(const EyeFrustum& frustum);
+
+/// Whether the method's fovea follows the gaze (false for full, uniform and fixed).
+bool follows_gaze(Method m);
 
 }  // namespace foveal::render

@@ -1,0 +1,369 @@
+#include "bench_gaze.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "foveal/core/atomic_file.hpp"
+#include "foveal/core/data_paths.hpp"
+#include "foveal/core/gaze_log.hpp"
+#include "foveal/image/metrics.hpp"
+#include "foveal/render/compositor.hpp"
+#include "foveal/render/egl_context.hpp"
+#include "foveal/render/scene.hpp"
+#include "foveal/tools/cli.hpp"
+#include "gaze_timeline.hpp"
+
+namespace foveal::cmd {
+
+namespace {
+
+using render::Method;
+
+std::string fmt(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+nlohmann::json jnum(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(fmt(v)); }
+
+/// Linear interpolation between order statistics (numpy's default), q in [0, 1].
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const double pos = q * static_cast<double>(v.size() - 1);
+  const std::size_t lo = static_cast<std::size_t>(std::floor(pos)), hi = std::min(lo + 1, v.size() - 1);
+  if (!std::isfinite(v[lo]) || !std::isfinite(v[hi])) return v[lo];
+  return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+// Patch PSNRs above this count as this: an RMS error under one 8-bit level is not an
+// error a viewer sees, and an identical patch (∞ dB) would make every other frame "worse".
+constexpr double kPatchCeilingDb = 50.0;
+
+double mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? NAN : s / static_cast<double>(v.size());
+}
+
+Result<DisplayModel> load_model(const std::string& spec) {
+  if (spec.empty()) return DisplayModel::vive_pro_eye();
+  const bool is_path = spec.find('/') != std::string::npos || spec.ends_with(".json");
+  return DisplayModel::load(is_path ? spec : data_path("data/display/" + spec + ".json"));
+}
+
+struct LogInput {
+  std::string path, name;
+  bool head_recorded = false;
+  GazeTimeline timeline;
+};
+
+/// One method × level's frames on one scene and log.
+struct Series {
+  std::vector<double> fpsnr, ssim, psnr, patch, error_deg;
+  std::size_t exceed = 0;
+};
+
+// One method at one level. The oracle is RMFR+EFR with its fovea on the true gaze at
+// display time (perfect, zero-latency tracking): the per-frame bound of the patch error.
+struct Point {
+  Method method;
+  double sigma;
+  bool oracle = false;
+  const char* gaze() const { return oracle ? "true" : render::follows_gaze(method) ? "filtered" : "none"; }
+};
+
+// gaze.csv's columns, in order: the keys of a summary row (docs/bench.md).
+const std::vector<std::string> kSummaryColumns = {
+    "scene", "log", "display", "method", "gaze", "sigma_d", "sigma_nd", "shaded_samples", "cost", "gpu_ms", "cpu_ms",
+    "frames", "blink_frames", "fpsnr_mean", "fpsnr_p5", "fpsnr_min", "ssim_mean", "ssim_p5", "ssim_min", "psnr_mean",
+    "patch_psnr_mean", "patch_psnr_p5", "patch_exceed_share", "fovea_error_deg_mean"};
+
+/// One CSV line of `row`'s values in `columns` order; the header line for a null row.
+std::string csv_line(const nlohmann::json& row, const std::vector<std::string>& columns) {
+  std::string line;
+  for (const std::string& c : columns) {
+    if (!line.empty()) line += ",";
+    if (row.is_null()) line += c;
+    else if (row.at(c).is_string()) line += row.at(c).get<std::string>();
+    else if (row.at(c).is_number_integer() || row.at(c).is_number_unsigned()) line += row.at(c).dump();
+    else line += fmt(row.at(c).get<double>());
+  }
+  return line + "\n";
+}
+
+/// A method × level's figures over the frames of one scene and log.
+nlohmann::json summary_row(const Point& p, const Series& se, const render::PassTimes& t, double efr_ratio, double full_samples) {
+  const std::size_t n = se.fpsnr.size();
+  auto lowest = [n](const std::vector<double>& v) { return n ? *std::min_element(v.begin(), v.end()) : NAN; };
+  return {{"method", render::method_name(p.method)}, {"gaze", p.gaze()}, {"sigma_d", p.sigma},
+          {"sigma_nd", p.sigma * efr_ratio}, {"shaded_samples", t.shaded_samples},
+          {"cost", static_cast<double>(t.shaded_samples) / full_samples}, {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu},
+          {"frames", n}, {"fpsnr_mean", jnum(mean(se.fpsnr))}, {"fpsnr_p5", jnum(quantile(se.fpsnr, 0.05))},
+          {"fpsnr_min", jnum(lowest(se.fpsnr))}, {"ssim_mean", jnum(mean(se.ssim))}, {"ssim_p5", jnum(quantile(se.ssim, 0.05))},
+          {"ssim_min", jnum(lowest(se.ssim))}, {"psnr_mean", jnum(mean(se.psnr))}, {"patch_psnr_mean", jnum(mean(se.patch))},
+          {"patch_psnr_p5", jnum(quantile(se.patch, 0.05))},
+          {"patch_exceed_share", jnum(n ? static_cast<double>(se.exceed) / static_cast<double>(n) : NAN)},
+          {"fovea_error_deg_mean", jnum(mean(se.error_deg))}};
+}
+
+class GazeBench {
+ public:
+  GazeBench(const GazeBenchOptions& g, const GazeBenchSweep& s, render::Compositor& c, const DisplayModel& m,
+            cli::Progress& p)
+      : g_(g), s_(s), comp_(c), model_(m), progress_(p) {
+    const EyeFrustum& f = model_.eye(Eye::left);
+    ppd_ = comp_.eye_width() / (static_cast<double>(f.tan_right) - f.tan_left) * 3.14159265358979323846 / 180.0;
+  }
+
+  double ppd() const { return ppd_; }
+
+  render::FrameParams params(Method m, double sigma, const GazeFrame& f, bool oracle = false) const {
+    render::FrameParams p = render::efr_frame(m, Eye::right, sigma, m == Method::full ? sigma : sigma * g_.efr_ratio, s_.fx, s_.fy);
+    const auto& fovea = oracle ? f.truth : f.fovea;
+    for (std::size_t i = 0; i < 2; ++i) p.eyes[i].fovea_x = fovea[i].x, p.eyes[i].fovea_y = fovea[i].y;
+    if (f.head.valid) p.head = f.head.relative;
+    return p;
+  }
+
+  /// The median frame of warm-up + timed renders (the bench's frame time).
+  Result<render::PassTimes> time(const render::Scene& scene, const render::FrameParams& p) {
+    std::vector<render::PassTimes> t;
+    for (int i = 0; i < s_.warmup + s_.timed_frames; ++i) {
+      auto r = comp_.render(scene, p);
+      if (!r) return r.error();
+      if (i >= s_.warmup) t.push_back(*r);
+    }
+    progress_.update(++done_);
+    return render::median_pass_times(t);
+  }
+
+  Result<image::Image> render(const render::Scene& scene, const render::FrameParams& p) {
+    auto r = comp_.render(scene, p);
+    if (!r) return r.error();
+    progress_.update(++done_);
+    return comp_.read_image();
+  }
+
+  /// The fovea patch of eye `e`: a square of patch_deg degrees around the true gaze.
+  image::Rect patch(Eye e, glm::dvec2 truth) const {
+    const int w = comp_.eye_width(), h = comp_.height();
+    const int half = std::max(1, static_cast<int>(std::lround(g_.patch_deg / 2 * ppd_)));
+    const int cx = static_cast<int>(truth.x * w), cy = static_cast<int>(truth.y * h);
+    const int x0 = std::clamp(cx - half, 0, w - 1), x1 = std::clamp(cx + half, x0 + 1, w);
+    const int y0 = std::clamp(cy - half, 0, h - 1), y1 = std::clamp(cy + half, y0 + 1, h);
+    return {x0 + (e == Eye::right ? w : 0), y0, x1 - x0, y1 - y0};
+  }
+
+ private:
+  const GazeBenchOptions& g_;
+  const GazeBenchSweep& s_;
+  render::Compositor& comp_;
+  const DisplayModel& model_;
+  cli::Progress& progress_;
+  double ppd_ = 13.15;
+  std::uint64_t done_ = 0;
+};
+
+glm::dvec2 gl_point(glm::dvec2 p) { return {p.x, 1.0 - p.y}; }
+
+}  // namespace
+
+void add_gaze_bench_options(CLI::App& sub, GazeBenchOptions& g) {
+  g.size_option = sub.get_option_no_throw("--size");
+  CLI::Option* gaze = sub.add_option("--gaze", g.logs, "Gaze-driven evaluation on these native gaze logs (repeatable; docs/bench.md): "
+                                   "gaze.csv, gaze_frames.csv, gaze.json, gaze.png");
+  sub.add_option("--head", g.head, "--gaze: recorded (the log's head pose moves the camera) or static; default: recorded when the log has one")
+      ->check(CLI::IsMember({"recorded", "static"}))->needs(gaze);
+  sub.add_option("--display", g.display, "--gaze: display-model file or name under data/display (default: htc_vive_pro_eye); "
+                                         "the size follows it unless --size is given")->needs(gaze);
+  sub.add_option("--gaze-fps", g.fps, "--gaze: frame rate of the rendered stream (Hz)")->capture_default_str()->needs(gaze);
+  sub.add_option("--latency-ms", g.latency_ms, "--gaze: frame start to display (ms); default one frame period")->needs(gaze);
+  sub.add_option("--gaze-start", g.start_s, "--gaze: first frame this many seconds into the log")->capture_default_str()->needs(gaze);
+  sub.add_option("--gaze-frames", g.frames, "--gaze: frames scored per log, spread evenly over it")->capture_default_str()->needs(gaze);
+  sub.add_option("--efr-ratio", g.efr_ratio, "--gaze: non-dominant (left) eye's level over the dominant's")
+      ->capture_default_str()->check(CLI::Range(1.0, 4.0))->needs(gaze);
+  sub.add_option("--patch-deg", g.patch_deg, "--gaze: side of the fovea patch around the true gaze (degrees)")
+      ->capture_default_str()->check(CLI::Range(0.1, 60.0))->needs(gaze);
+  sub.add_option("--patch-margin-db", g.patch_margin_db,
+                 "--gaze: a frame's fovea patch is in error when its PSNR is this far below perfect tracking's (dB)")
+      ->capture_default_str()->check(CLI::Range(0.0, 100.0))->needs(gaze);
+}
+
+int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
+  auto fail = [](const Error& e) { return cli::report(e); };
+  const auto started = std::chrono::steady_clock::now();
+  auto model = load_model(g.display);
+  if (!model) return fail(model.error());
+  std::pair<int, int> size = s.size;
+  if (!g.size_option || g.size_option->count() == 0) size = {model->output_width(), model->output_height()};
+
+  GazeTimelineOptions to;
+  to.fps = g.fps, to.latency_ms = g.latency_ms, to.start_s = g.start_s, to.frames = g.frames;
+  std::vector<LogInput> logs;
+  for (const std::string& path : g.logs) {
+    auto samples = read_gaze_log(path);
+    if (!samples) return fail(samples.error());
+    const bool has_pose = std::any_of(samples->begin(), samples->end(), [](const GazeSample& x) { return x.head.valid; });
+    if (g.head == "recorded" && !has_pose)
+      return fail(bad_input("--head recorded: " + path + " carries no head pose (a native log v2 with head columns has one)"));
+    LogInput in{path, std::filesystem::path(path).stem().string(), g.head.empty() ? has_pose : g.head == "recorded", {}};
+    to.head_recorded = in.head_recorded;
+    // The filter foveald runs without a profile (docs/filtering.md).
+    auto tl = build_gaze_timeline(*samples, *model, FilterConfig{}, to);
+    if (!tl) return fail(Error{tl.error().kind, path + ": " + tl.error().message});
+    in.timeline = std::move(*tl);
+    logs.push_back(std::move(in));
+  }
+
+  std::error_code ec;
+  std::filesystem::create_directories(s.out, ec);
+  if (ec) return fail(io_error(s.out + ": cannot create directory: " + ec.message()));
+  auto ctx = gl::EglContext::create();
+  if (!ctx) return fail(ctx.error());
+  render::CompositorOptions co;
+  co.width = size.first, co.height = size.second;
+  co.model = *model;
+  auto comp = render::Compositor::create(co);
+  if (!comp) return fail(comp.error());
+
+  // Level by level, the oracle first: each frame's patch bound comes from it.
+  std::vector<Point> points;
+  for (double sigma : s.sigmas) {
+    points.push_back({Method::rmfr, sigma, true});
+    for (Method m : s.methods) points.push_back({m, sigma});
+  }
+  std::uint64_t total = s.scenes.size() * points.size();
+  for (const LogInput& l : logs) {
+    std::uint64_t renders = l.head_recorded ? 0 : 1;  // the full reference: per frame, or once with a static head
+    for (const GazeFrame& f : l.timeline.frames) renders += f.blink ? 0 : points.size() + (l.head_recorded ? 1 : 0);
+    total += s.scenes.size() * renders;
+  }
+  cli::Progress progress("bench --gaze", total, !s.json);
+  GazeBench bench(g, s, *comp, *model, progress);
+  const double full_samples = static_cast<double>(co.width) * co.height;
+
+  std::string csv = csv_line(nullptr, kSummaryColumns);
+  std::string frames_csv =
+      "scene,log,frame,t_render_s,t_display_s,t_sample_s,true_l_x,true_l_y,true_r_x,true_r_y,method,gaze,sigma_d,fovea_l_x,"
+      "fovea_l_y,fovea_r_x,fovea_r_y,error_l_deg,error_r_deg,fpsnr_db,ssim,psnr_db,patch_psnr_db,exceeds\n";
+  nlohmann::json rows = nlohmann::json::array();
+  for (const std::string& spec : s.scenes) {
+    auto scene = render::load_scene(spec);
+    if (!scene) return fail(scene.error());
+    for (const std::string& w : scene->warnings) cli::warn(w);
+    const std::string scene_name = std::filesystem::path(spec).stem().string();
+    // Frame time per point: the bench's median, at the first log's first frame.
+    std::vector<render::PassTimes> times;
+    for (const Point& p : points) {
+      auto t = bench.time(*scene, bench.params(p.method, p.sigma, logs.front().timeline.frames.front(), p.oracle));
+      if (!t) return fail(t.error());
+      times.push_back(*t);
+    }
+    for (const LogInput& log : logs) {
+      std::vector<Series> series(points.size());
+      const TimeNs t0 = log.timeline.frames.front().t_render - static_cast<TimeNs>(std::llround(g.start_s * 1e9));
+      auto secs = [&](TimeNs t) { return fmt(static_cast<double>(t - t0) / 1e9); };
+      std::size_t blinks = 0;
+      std::optional<image::Image> ref;  // a static head sees the same reference every frame
+      for (const GazeFrame& f : log.timeline.frames) {
+        if (f.blink) {
+          ++blinks;
+          continue;
+        }
+        if (!ref || f.head.valid) {
+          auto r = bench.render(*scene, bench.params(Method::full, 1.0, f));
+          if (!r) return fail(r.error());
+          ref = std::move(*r);
+        }
+        image::MetricsOptions mo;
+        mo.ppd = bench.ppd();
+        mo.fovea = {f.truth[0].x, f.truth[0].y};
+        mo.fovea_right = {f.truth[1].x, f.truth[1].y};
+        const std::string frame_head = scene_name + "," + log.name + "," + std::to_string(f.index) + "," + secs(f.t_render) +
+                                       "," + secs(f.t_display) + "," + secs(f.t_sample) + "," + fmt(f.truth[0].x) + "," +
+                                       fmt(f.truth[0].y) + "," + fmt(f.truth[1].x) + "," + fmt(f.truth[1].y);
+        double bound = -INFINITY;  // the oracle's patch PSNR minus the margin, at this level
+        for (std::size_t k = 0; k < points.size(); ++k) {
+          const Point& p = points[k];
+          auto img = bench.render(*scene, bench.params(p.method, p.sigma, f, p.oracle));
+          if (!img) return fail(img.error());
+          auto q = image::compute_stereo_metrics(*ref, *img, mo);
+          if (!q) return fail(q.error());
+          std::array<glm::dvec2, 2> used{};
+          std::array<double, 2> err{};
+          double patch = INFINITY;
+          for (Eye e : kEyes) {
+            const std::size_t i = static_cast<std::size_t>(e);
+            const render::EyePlan& plan = comp->plan(e);
+            used[i] = gl_point(plan.fovea);
+            err[i] = render::eccentricity_deg(plan.frustum, plan.fovea, gl_point(f.truth[i]));
+            patch = std::min({patch, image::psnr(*ref, *img, bench.patch(e, f.truth[i])), kPatchCeilingDb});
+          }
+          if (p.oracle) bound = patch - g.patch_margin_db;
+          const bool exceeds = patch < bound;
+          Series& se = series[k];
+          se.fpsnr.push_back(q->combined.fpsnr_db);
+          se.ssim.push_back(q->combined.ssim);
+          se.psnr.push_back(q->combined.psnr_db);
+          se.patch.push_back(patch);
+          se.error_deg.push_back(0.5 * (err[0] + err[1]));
+          se.exceed += exceeds ? 1 : 0;
+          frames_csv += frame_head + "," + render::method_name(p.method) + "," + p.gaze() + "," + fmt(p.sigma) + "," + fmt(used[0].x) + "," +
+                        fmt(used[0].y) + "," + fmt(used[1].x) + "," + fmt(used[1].y) + "," + fmt(err[0]) + "," + fmt(err[1]) +
+                        "," + fmt(q->combined.fpsnr_db) + "," + fmt(q->combined.ssim) + "," + fmt(q->combined.psnr_db) + "," +
+                        fmt(patch) + "," + (exceeds ? "1" : "0") + "\n";
+        }
+      }
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        nlohmann::json row = summary_row(points[k], series[k], times[k], g.efr_ratio, full_samples);
+        row.update({{"scene", scene_name}, {"log", log.name}, {"display", model->name}, {"blink_frames", blinks}});
+        csv += csv_line(row, kSummaryColumns);
+        rows.push_back(std::move(row));
+      }
+    }
+  }
+  progress.finish();
+
+  rusage ru{};
+  ::getrusage(RUSAGE_SELF, &ru);
+  nlohmann::json log_info = nlohmann::json::array();
+  for (const LogInput& l : logs)
+    log_info.push_back({{"path", l.path}, {"name", l.name}, {"head", l.head_recorded ? "recorded" : "static"},
+                        {"stream_frames", l.timeline.stream_frames}, {"stride", l.timeline.stride},
+                        {"scored_frames", l.timeline.frames.size()}});
+  const nlohmann::json summary = {
+      {"renderer", comp->renderer()}, {"display", model->name}, {"size", {co.width, co.height}},
+      {"ppd", bench.ppd()}, {"fps", g.fps}, {"latency_ms", logs.front().timeline.latency_ms},
+      {"start_s", g.start_s}, {"efr_ratio", g.efr_ratio}, {"dominant", "right"}, {"fx", s.fx}, {"fy", s.fy},
+      {"patch_deg", g.patch_deg}, {"patch_margin_db", g.patch_margin_db}, {"filter", "FilterConfig defaults (foveald without a profile)"},
+      {"timed_frames", s.timed_frames}, {"logs", log_info}, {"rows", rows},
+      {"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()},
+      {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
+  if (Status st = write_file_atomically(s.out + "/gaze.csv", csv); !st) return fail(st.error());
+  if (Status st = write_file_atomically(s.out + "/gaze_frames.csv", frames_csv); !st) return fail(st.error());
+  if (Status st = write_file_atomically(s.out + "/gaze.json", summary.dump(2) + "\n"); !st) return fail(st.error());
+  if (!s.no_png) {
+    const std::string cmd = "/usr/bin/python3 '" + data_path("tools/charts/gaze_charts.py") + "' '" + s.out + "'";
+    if (std::system(cmd.c_str()) != 0)
+      return fail(io_error("charts: '" + cmd + "' failed (is python3-matplotlib installed?); the CSV and JSON files are written"));
+  }
+  if (s.json) cli::print_json(summary);
+  else std::printf("bench --gaze: %zu rows -> %s/gaze.{csv,json}, gaze_frames.csv%s\n", rows.size(), s.out.c_str(),
+                   s.no_png ? "" : ", gaze.png");
+  return cli::kExitOk;
+}
+
+}  // namespace foveal::cmd

@@ -1,0 +1,44 @@
+#pragma once
+// foveal bench --gaze: every method × level scored frame by frame on a recorded gaze log,
+// the fovea where the runtime would have put it and the metric where the eyes really
+// were (docs/bench.md, "Gaze-driven evaluation").
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "foveal/image/foveation_plan.hpp"
+
+namespace foveal::cmd {
+
+/// The options only a --gaze run has.
+struct GazeBenchOptions {
+  std::vector<std::string> logs;  ///< native gaze logs (after `foveal import`)
+  std::string head;               ///< recorded | static; empty: recorded when the log has a pose
+  std::string display;            ///< display-model file or name under data/display; empty: Vive Pro Eye
+  double fps = 90, latency_ms = -1, start_s = 1.0;
+  int frames = 24;
+  double efr_ratio = 1.5;         ///< σ_nd / σ_d (dominant right eye)
+  double patch_deg = 5.0, patch_margin_db = 3.0;
+  const CLI::Option* size_option = nullptr;  ///< the bench's --size: given or not
+};
+
+/// What the bench's common options say.
+struct GazeBenchSweep {
+  std::vector<std::string> scenes;
+  std::vector<render::Method> methods;  ///< without full (the reference)
+  std::vector<double> sigmas;
+  std::pair<int, int> size{2880, 1600};
+  std::string out;
+  int timed_frames = 3, warmup = 1;
+  double fx = 0.3, fy = 0.3;
+  bool no_png = false, json = false;
+};
+
+/// Adds --gaze and its options to `foveal bench` (call after --size is added).
+void add_gaze_bench_options(CLI::App& bench, GazeBenchOptions& g);
+/// Runs the gaze-driven evaluation; returns the exit code.
+int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s);
+
+}  // namespace foveal::cmd
