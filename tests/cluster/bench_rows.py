@@ -49,13 +49,17 @@ def differences(expected_dir, actual_dir):
         for i, (ra, rb) in enumerate(zip(a, b)):
             if ra != rb:
                 out.append(f"{name} line {i + 1}: {ra} expected, {rb} found")
-    with open(os.path.join(expected_dir, "bench.json")) as f:
+    # bench.json, or gaze.json for a --gaze sweep: its rows, and the settings that shape them.
+    name = "bench.json" if os.path.exists(os.path.join(expected_dir, "bench.json")) else "gaze.json"
+    with open(os.path.join(expected_dir, name)) as f:
         ja = json.load(f)
-    with open(os.path.join(actual_dir, "bench.json")) as f:
+    if not os.path.exists(os.path.join(actual_dir, name)):
+        return out + [f"{name}: missing in {actual_dir}"]
+    with open(os.path.join(actual_dir, name)) as f:
         jb = json.load(f)
-    for key in ("rows", "auto_f", "size", "frames", "fovea"):
+    for key in ("rows", "auto_f", "size", "frames", "fovea", "display", "ppd", "logs"):
         if strip_timing(ja.get(key)) != strip_timing(jb.get(key)):
-            out.append(f"bench.json {key}: {strip_timing(ja.get(key))} expected, {strip_timing(jb.get(key))} found")
+            out.append(f"{name} {key}: {strip_timing(ja.get(key))} expected, {strip_timing(jb.get(key))} found")
     return out
 
 

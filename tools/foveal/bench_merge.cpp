@@ -40,6 +40,8 @@ int merge(const MergeArgs& a) {
   for (const std::string& dir : a.shards) {
     auto f = bench::read_shard(dir);
     if (!f) return fail(f.error());
+    if (!files.empty() && f->kind != files.front().kind)
+      return fail(bad_input(f->path + ": a part of a '" + f->kind + "' sweep, " + files.front().path + " of a '" + files.front().kind + "' one"));
     if (!files.empty() && f->sweep != files.front().sweep)
       return fail(bad_input(f->path + ": not the same sweep as " + files.front().path + ": " + first_difference(files.front().sweep, f->sweep)));
     files.push_back(std::move(*f));
@@ -49,18 +51,21 @@ int merge(const MergeArgs& a) {
   for (const auto& f : files) parts.push_back(f.rows), names.push_back(f.path);
   auto merged = bench::SweepRows::merge(parts, names);
   if (!merged) return fail(merged.error());
-  // The run's facts from the first shard; memory is the largest any shard needed.
+  // The run's facts from the first shard; memory and wall time the largest of any shard.
   nlohmann::json summary = files.front().summary;
-  double peak = 0;
+  for (const char* most : {"peak_rss_mb", "wall_s"}) {
+    double v = 0;
+    for (const auto& f : files)
+      if (f.summary.contains(most) && f.summary[most].is_number()) v = std::max(v, f.summary[most].get<double>());
+    if (summary.contains(most)) summary[most] = v;
+  }
   for (const auto& f : files) {
-    if (f.summary.contains("peak_rss_mb") && f.summary["peak_rss_mb"].is_number()) peak = std::max(peak, f.summary["peak_rss_mb"].get<double>());
     if (f.summary.value("renderer", nlohmann::json()) != summary.value("renderer", nlohmann::json()))
       cli::warn(f.path + ": rendered on '" + f.summary.value("renderer", nlohmann::json()).dump() + "', " + files.front().path +
                 " on '" + summary.value("renderer", nlohmann::json()).dump() + "': the timing columns mix machines");
   }
-  summary["peak_rss_mb"] = peak;
   summary["shards"] = files.size();
-  return bench::write_outputs(a.out, *merged, summary, !a.no_png, a.json);
+  return bench::write_outputs(a.out, *merged, summary, files.front().kind, !a.no_png, a.json);
 }
 
 }  // namespace

@@ -18,6 +18,21 @@ namespace {
 constexpr const char* kShardFormat = "foveal bench shard";
 constexpr int kShardVersion = 1;
 
+struct Kind {
+  const char* name;
+  const char* json_file;
+  const char* charts;  ///< under the data directory
+};
+constexpr Kind kKinds[] = {
+    {"bench", "bench.json", "tools/charts/bench_charts.py"},
+};
+
+const Kind* find_kind(const std::string& name) {
+  for (const Kind& k : kKinds)
+    if (name == k.name) return &k;
+  return nullptr;
+}
+
 double number(const nlohmann::json& v) { return v.is_string() ? INFINITY : v.get<double>(); }
 
 // Each scene's automatic f against the best point of its f grid. The grid's points are
@@ -67,37 +82,45 @@ Status make_dir(const std::string& dir) {
 
 nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json("inf"); }
 
-int write_outputs(const std::string& dir, const SweepRows& rows, nlohmann::json summary, bool charts, bool json) {
+int write_outputs(const std::string& dir, const SweepRows& rows, nlohmann::json summary, const std::string& kind, bool charts,
+                  bool json) {
   auto fail = [](const Error& e) { return cli::report(e); };
-  auto autos = auto_f_results(rows);
-  if (!autos) return fail(autos.error());
+  const Kind* k = find_kind(kind);
+  if (!k) return fail(Error{ErrorKind::internal, "bench: no outputs of kind '" + kind + "'"});
   summary["rows"] = rows.list("rows");
-  summary["auto_f"] = std::move(*autos);
+  if (kind == "bench") {
+    auto autos = auto_f_results(rows);
+    if (!autos) return fail(autos.error());
+    summary["auto_f"] = std::move(*autos);
+  }
   if (Status s = make_dir(dir); !s) return fail(s.error());
   if (Status s = write_tables(dir, rows); !s) return fail(s.error());
-  if (Status s = write_file_atomically(dir + "/bench.json", summary.dump(2) + "\n"); !s) return fail(s.error());
+  if (Status s = write_file_atomically(dir + "/" + k->json_file, summary.dump(2) + "\n"); !s) return fail(s.error());
   if (charts) {
-    const std::string cmd = "/usr/bin/python3 '" + data_path("tools/charts/bench_charts.py") + "' '" + dir + "'";
+    const std::string cmd = "/usr/bin/python3 '" + data_path(k->charts) + "' '" + dir + "'";
     if (std::system(cmd.c_str()) != 0)
       return fail(io_error("charts: '" + cmd + "' failed (is python3-matplotlib installed?); the CSV and JSON files are written"));
   }
   if (json) cli::print_json(summary);
-  else std::printf("bench: %zu rows -> %s/bench.{csv,json}%s\n", summary["rows"].size(), dir.c_str(), charts ? " and charts" : "");
+  else
+    std::printf("bench: %zu rows -> %s/%s and its tables%s\n", summary["rows"].size(), dir.c_str(), k->json_file,
+                charts ? " and charts" : "");
   return cli::kExitOk;
 }
 
-int write_shard(const std::string& dir, const SweepRows& rows, const nlohmann::json& summary, const std::string& sweep, bool json) {
+int write_shard(const std::string& dir, const SweepRows& rows, const nlohmann::json& summary, const std::string& sweep,
+                const std::string& kind, bool json) {
   auto fail = [](const Error& e) { return cli::report(e); };
-  const nlohmann::json file = {{"format", kShardFormat}, {"version", kShardVersion}, {"sweep", sweep}, {"summary", summary},
-                               {"rows", rows.to_json()}};
+  const nlohmann::json file = {{"format", kShardFormat}, {"version", kShardVersion}, {"sweep", sweep}, {"kind", kind},
+                               {"summary", summary}, {"rows", rows.to_json()}};
   if (Status s = make_dir(dir); !s) return fail(s.error());
   if (Status s = write_tables(dir, rows); !s) return fail(s.error());
   if (Status s = write_file_atomically(dir + "/shard.json", file.dump(1) + "\n"); !s) return fail(s.error());
-  const std::size_t own = rows.lines("bench.csv");
-  if (json) cli::print_json({{"shard", rows.shard().text()}, {"points", rows.points()}, {"bench_rows", own}, {"out", dir + "/shard.json"}});
+  const std::size_t own = rows.list("rows").size();
+  if (json) cli::print_json({{"shard", rows.shard().text()}, {"points", rows.points()}, {"rows", own}, {"out", dir + "/shard.json"}});
   else
-    std::printf("bench: shard %s of a sweep of %zu points: %zu bench rows -> %s/shard.json\n", rows.shard().text().c_str(),
-                rows.points(), own, dir.c_str());
+    std::printf("bench: shard %s of a sweep of %zu points: %zu rows -> %s/shard.json\n", rows.shard().text().c_str(), rows.points(),
+                own, dir.c_str());
   return cli::kExitOk;
 }
 
@@ -118,10 +141,16 @@ Result<ShardFile> read_shard(const std::string& dir) {
   if (!j.contains("version") || j["version"] != kShardVersion)
     return bad_input(f.path + ": field 'version': expected " + std::to_string(kShardVersion) + " (written by another foveal version?)");
   if (!j.contains("sweep") || !j["sweep"].is_string()) return bad_input(f.path + ": field 'sweep': expected a string");
+  if (!j.contains("kind") || !j["kind"].is_string() || !find_kind(j["kind"].get<std::string>())) {
+    std::string known;
+    for (const Kind& k : kKinds) known += std::string(known.empty() ? "" : ", ") + k.name;
+    return bad_input(f.path + ": field 'kind': expected one of " + known);
+  }
   if (!j.contains("summary") || !j["summary"].is_object()) return bad_input(f.path + ": field 'summary': expected an object");
   auto rows = SweepRows::from_json(j.contains("rows") ? j["rows"] : nlohmann::json(), f.path);
   if (!rows) return rows.error();
   f.sweep = j["sweep"].get<std::string>();
+  f.kind = j["kind"].get<std::string>();
   f.summary = j["summary"];
   f.rows = std::move(*rows);
   return f;

@@ -15,18 +15,22 @@ namespace foveal::bench {
 /// A figure as bench.json holds it: the number, or "inf" (a PSNR of identical images).
 nlohmann::json json_number(double v);
 
-/// `summary`: the run's facts besides the rows (renderer, size, frames, fovea, peak RSS).
-/// Writes every table, then bench.json (summary + rows + auto_f), then the charts unless
-/// `charts` is false; prints the summary as JSON or a line. Returns the exit code.
-int write_outputs(const std::string& dir, const SweepRows& rows, nlohmann::json summary, bool charts, bool json);
+/// What a sweep writes besides its tables, by kind (the table in bench_outputs.cpp):
+/// "bench" (bench.json with the list "rows" and the automatic-f results, bench_charts.py).
+/// `summary`: the run's facts besides the rows (renderer, size, peak RSS, settings).
+/// Writes every table, then the JSON (summary + rows), then the charts unless `charts`
+/// is false; prints the summary as JSON or a line. Returns the exit code.
+int write_outputs(const std::string& dir, const SweepRows& rows, nlohmann::json summary, const std::string& kind, bool charts,
+                  bool json);
 
 /// A shard's directory: its tables (its own rows only) and shard.json, which holds the
-/// tagged rows, the summary and `sweep` (the options that define the grid) for the merge.
-int write_shard(const std::string& dir, const SweepRows& rows, const nlohmann::json& summary, const std::string& sweep, bool json);
+/// tagged rows, the summary, the kind and `sweep` (the options that define the grid).
+int write_shard(const std::string& dir, const SweepRows& rows, const nlohmann::json& summary, const std::string& sweep,
+                const std::string& kind, bool json);
 
 struct ShardFile {
   std::string path;   ///< DIR/shard.json
-  std::string sweep;
+  std::string sweep, kind;
   nlohmann::json summary;
   SweepRows rows;
 };

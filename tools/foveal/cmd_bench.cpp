@@ -418,8 +418,8 @@ int run(const Args& a, const std::string& sweep) {
   const nlohmann::json summary = {{"renderer", comp->renderer()}, {"size", {co.width, co.height}}, {"frames", a.frames},
                                   {"fovea", {fovea->first, fovea->second}}, {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
   // --shard given (1/1 too): a part for `bench merge`.
-  if (!a.shard.empty()) return bench::write_shard(a.out, rows, summary, sweep, a.json);
-  return bench::write_outputs(a.out, rows, summary, !a.no_png, a.json);
+  if (!a.shard.empty()) return bench::write_shard(a.out, rows, summary, sweep, "bench", a.json);
+  return bench::write_outputs(a.out, rows, summary, "bench", !a.no_png, a.json);
 }
 
 /// The options that define a sweep's grid, as CLI11 writes them (one `name=value` line
