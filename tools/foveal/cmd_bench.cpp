@@ -244,7 +244,7 @@ int run(const Args& a, const std::string& sweep) {
   if (!a.gaze.logs.empty()) {
     if (a.f_grid || a.rotation || a.stability || a.flicker)
       return fail(bad_input("--gaze runs on its own: drop --f-grid, --rotation, --stability and --flicker"));
-    return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json});
+    return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json, a.shard, sweep});
   }
 
   std::error_code ec;
