@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """`foveal bench --shard K/N` and `foveal bench merge` without a cluster: four shards of a
-small sweep run one after the other, merged in a shuffled order, must give the single
-run's rows, row for row (timing columns left out: bench_rows.py); bad merges and shard
-specs exit 2 naming what is wrong and write nothing.
+small sweep (and three of a `--gaze` sweep) run one after the other, merged in a shuffled
+order, must give the single run's rows, row for row (timing columns left out:
+bench_rows.py); bad merges and shard specs exit 2 naming what is wrong and write nothing.
 
 Usage: bench_shard_test.py --foveal BIN. Exit 0 passed, 1 failed.
 """
@@ -18,7 +18,8 @@ sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 import bench_rows  # noqa: E402
 
 # Every table the bench writes, with a tiny grid: 2 scenes, 2 levels, a 2×2 f grid,
-# rotation, stability, flicker; every method (the default list). About 10 s of CPU.
+# rotation, stability, flicker; every method (the default list); and a --gaze sweep on
+# two synthetic logs. About 15 s of CPU.
 SWEEP = ["--scene", "pattern:noise", "--scene", "pattern:checker", "--sigmas", "2,2.6", "--size", "64x36",
          "--frames", "1", "--warmup", "0", "--f-grid", "--grid-values", "0.2,0.3", "--rotation", "--stability",
          "--flicker", "--flicker-frames", "3"]
@@ -68,6 +69,23 @@ def main():
         check(r.returncode == 0 and os.path.exists(d("one", "shard.json")), "--shard 1/1 writes a shard " + r.stderr.strip())
         r = run(a.foveal, ["bench", "merge", "--no-png", "--out", d("one-merged"), d("one")])
         check(r.returncode == 0 and not bench_rows.differences(d("single"), d("one-merged")), "a merge of 1/1 equals the single run")
+
+        # A --gaze sweep (scene × log × level, its frames looped over inside): three shards.
+        for name, seed in (("g", 3), ("h", 4)):
+            r = run(a.foveal, ["synth", "--seed", str(seed), "--duration", "4", "--out", d(name + ".csv")])
+            check(r.returncode == 0, f"synth {name}.csv " + r.stderr.strip())
+        gaze = ["--gaze", d("g.csv"), "--gaze", d("h.csv"), "--scene", "pattern:noise", "--methods", "rmfr,kfr",
+                "--sigmas", "2,3", "--size", "64x36", "--gaze-frames", "3", "--frames", "1", "--warmup", "0"]
+        r = run(a.foveal, ["bench"] + gaze + ["--no-png", "--out", d("gaze-single")])
+        check(r.returncode == 0, "the single --gaze run " + r.stderr.strip())
+        for k in range(1, 4):
+            r = run(a.foveal, ["bench"] + gaze + ["--shard", f"{k}/3", "--out", d(f"gaze-{k}")])
+            check(r.returncode == 0, f"--gaze shard {k}/3 " + r.stderr.strip())
+        r = run(a.foveal, ["bench", "merge", "--out", d("gaze-merged")] + [d(f"gaze-{k}") for k in (2, 3, 1)])
+        check(r.returncode == 0 and os.path.exists(d("gaze-merged", "gaze.png")), "merge of the --gaze shards, gaze.png " + r.stderr.strip())
+        diffs = bench_rows.differences(d("gaze-single"), d("gaze-merged"))
+        check(not diffs, "the --gaze merge equals the single run row for row (gaze.csv, gaze_frames.csv, gaze.json; "
+              "timing left out)" + "".join("\n      " + x for x in diffs[:10]))
 
         # Bad input: exit 2, a message naming it, no output.
         r = run(a.foveal, ["bench"] + SWEEP[:2] + ["--sigmas", "3", "--size", "64x36", "--frames", "1", "--shard", "2/4",

@@ -19,6 +19,8 @@
 #include "foveal/render/compositor.hpp"
 #include "foveal/render/egl_context.hpp"
 #include "foveal/render/scene.hpp"
+#include "bench_outputs.hpp"
+#include "bench_sweep.hpp"
 #include "foveal/tools/cli.hpp"
 #include "gaze_timeline.hpp"
 
@@ -205,6 +207,8 @@ void add_gaze_bench_options(CLI::App& sub, GazeBenchOptions& g) {
 int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   auto fail = [](const Error& e) { return cli::report(e); };
   const auto started = std::chrono::steady_clock::now();
+  auto shard = bench::parse_shard(s.shard.empty() ? "1/1" : s.shard);
+  if (!shard) return fail(shard.error());
   auto model = load_model(g.display);
   if (!model) return fail(model.error());
   std::pair<int, int> size = s.size;
@@ -251,28 +255,45 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
     for (const GazeFrame& f : l.timeline.frames) renders += f.blink ? 0 : points.size() + (l.head_recorded ? 1 : 0);
     total += s.scenes.size() * renders;
   }
-  cli::Progress progress("bench --gaze", total, !s.json);
+  cli::Progress progress("bench --gaze", total / static_cast<std::uint64_t>(shard->n), !s.json);
   GazeBench bench(g, s, *comp, *model, progress);
   const double full_samples = static_cast<double>(co.width) * co.height;
 
-  std::string csv = csv_line(nullptr, kSummaryColumns);
-  std::string frames_csv =
-      "scene,log,frame,t_render_s,t_display_s,t_sample_s,true_l_x,true_l_y,true_r_x,true_r_y,method,gaze,sigma_d,fovea_l_x,"
-      "fovea_l_y,fovea_r_x,fovea_r_y,error_l_deg,error_r_deg,fpsnr_db,ssim,psnr_db,patch_psnr_db,exceeds\n";
-  nlohmann::json rows = nlohmann::json::array();
+  // The sweep's points (bench_sweep.hpp): scene × log × level, each level with its oracle
+  // (every frame's patch bound) and every method. The frame loop visits a scene and log's
+  // levels again and again, so a shard takes its points first and tags the rows with them.
+  auto chomp = [](std::string line) { return line.substr(0, line.size() - 1); };
+  bench::SweepRows rows(*shard);
+  rows.table("gaze.csv", chomp(csv_line(nullptr, kSummaryColumns)));
+  rows.table("gaze_frames.csv",
+             "scene,log,frame,t_render_s,t_display_s,t_sample_s,true_l_x,true_l_y,true_r_x,true_r_y,method,gaze,sigma_d,fovea_l_x,"
+             "fovea_l_y,fovea_r_x,fovea_r_y,error_l_deg,error_r_deg,fpsnr_db,ssim,psnr_db,patch_psnr_db,exceeds");
+  const std::size_t per_level = 1 + s.methods.size();
   for (const std::string& spec : s.scenes) {
+    // owned[log][level]: the point, where this shard runs it.
+    std::vector<std::vector<std::optional<std::size_t>>> owned(logs.size(), std::vector<std::optional<std::size_t>>(s.sigmas.size()));
+    std::vector<bool> level_owned(s.sigmas.size(), false);
+    for (auto& log_points : owned)
+      for (std::size_t v = 0; v < log_points.size(); ++v)
+        if (std::size_t id = 0; rows.take(&id)) log_points[v] = id, level_owned[v] = true;
+    if (std::none_of(level_owned.begin(), level_owned.end(), [](bool b) { return b; })) continue;
     auto scene = render::load_scene(spec);
     if (!scene) return fail(scene.error());
     for (const std::string& w : scene->warnings) cli::warn(w);
     const std::string scene_name = std::filesystem::path(spec).stem().string();
     // Frame time per point: the bench's median, at the first log's first frame.
-    std::vector<render::PassTimes> times;
-    for (const Point& p : points) {
+    std::vector<render::PassTimes> times(points.size());
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      if (!level_owned[k / per_level]) continue;
+      const Point& p = points[k];
       auto t = bench.time(*scene, bench.params(p.method, p.sigma, logs.front().timeline.frames.front(), p.oracle));
       if (!t) return fail(t.error());
-      times.push_back(*t);
+      times[k] = *t;
     }
-    for (const LogInput& log : logs) {
+    for (std::size_t li = 0; li < logs.size(); ++li) {
+      const LogInput& log = logs[li];
+      const auto& mine = owned[li];
+      if (std::none_of(mine.begin(), mine.end(), [](const auto& p) { return p.has_value(); })) continue;
       std::vector<Series> series(points.size());
       const TimeNs t0 = log.timeline.frames.front().t_render - static_cast<TimeNs>(std::llround(g.start_s * 1e9));
       auto secs = [&](TimeNs t) { return fmt(static_cast<double>(t - t0) / 1e9); };
@@ -297,6 +318,7 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
                                        fmt(f.truth[0].y) + "," + fmt(f.truth[1].x) + "," + fmt(f.truth[1].y);
         double bound = -INFINITY;  // the oracle's patch PSNR minus the margin, at this level
         for (std::size_t k = 0; k < points.size(); ++k) {
+          if (!mine[k / per_level]) continue;
           const Point& p = points[k];
           auto img = bench.render(*scene, bench.params(p.method, p.sigma, f, p.oracle));
           if (!img) return fail(img.error());
@@ -321,17 +343,20 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
           se.patch.push_back(patch);
           se.error_deg.push_back(0.5 * (err[0] + err[1]));
           se.exceed += exceeds ? 1 : 0;
-          frames_csv += frame_head + "," + render::method_name(p.method) + "," + p.gaze() + "," + fmt(p.sigma) + "," + fmt(used[0].x) + "," +
-                        fmt(used[0].y) + "," + fmt(used[1].x) + "," + fmt(used[1].y) + "," + fmt(err[0]) + "," + fmt(err[1]) +
-                        "," + fmt(q->combined.fpsnr_db) + "," + fmt(q->combined.ssim) + "," + fmt(q->combined.psnr_db) + "," +
-                        fmt(patch) + "," + (exceeds ? "1" : "0") + "\n";
+          rows.add_line("gaze_frames.csv",
+                        frame_head + "," + render::method_name(p.method) + "," + p.gaze() + "," + fmt(p.sigma) + "," + fmt(used[0].x) +
+                            "," + fmt(used[0].y) + "," + fmt(used[1].x) + "," + fmt(used[1].y) + "," + fmt(err[0]) + "," +
+                            fmt(err[1]) + "," + fmt(q->combined.fpsnr_db) + "," + fmt(q->combined.ssim) + "," +
+                            fmt(q->combined.psnr_db) + "," + fmt(patch) + "," + (exceeds ? "1" : "0"),
+                        *mine[k / per_level]);
         }
       }
       for (std::size_t k = 0; k < points.size(); ++k) {
+        if (!mine[k / per_level]) continue;
         nlohmann::json row = summary_row(points[k], series[k], times[k], g.efr_ratio, full_samples);
         row.update({{"scene", scene_name}, {"log", log.name}, {"display", model->name}, {"blink_frames", blinks}});
-        csv += csv_line(row, kSummaryColumns);
-        rows.push_back(std::move(row));
+        rows.add_line("gaze.csv", chomp(csv_line(row, kSummaryColumns)), *mine[k / per_level]);
+        rows.add_item("rows", std::move(row), *mine[k / per_level]);
       }
     }
   }
@@ -349,21 +374,12 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
       {"ppd", bench.ppd()}, {"fps", g.fps}, {"latency_ms", logs.front().timeline.latency_ms},
       {"start_s", g.start_s}, {"efr_ratio", g.efr_ratio}, {"dominant", "right"}, {"fx", s.fx}, {"fy", s.fy},
       {"patch_deg", g.patch_deg}, {"patch_margin_db", g.patch_margin_db}, {"filter", "FilterConfig defaults (foveald without a profile)"},
-      {"timed_frames", s.timed_frames}, {"logs", log_info}, {"rows", rows},
+      {"timed_frames", s.timed_frames}, {"logs", log_info},
       {"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()},
       {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
-  if (Status st = write_file_atomically(s.out + "/gaze.csv", csv); !st) return fail(st.error());
-  if (Status st = write_file_atomically(s.out + "/gaze_frames.csv", frames_csv); !st) return fail(st.error());
-  if (Status st = write_file_atomically(s.out + "/gaze.json", summary.dump(2) + "\n"); !st) return fail(st.error());
-  if (!s.no_png) {
-    const std::string cmd = "/usr/bin/python3 '" + data_path("tools/charts/gaze_charts.py") + "' '" + s.out + "'";
-    if (std::system(cmd.c_str()) != 0)
-      return fail(io_error("charts: '" + cmd + "' failed (is python3-matplotlib installed?); the CSV and JSON files are written"));
-  }
-  if (s.json) cli::print_json(summary);
-  else std::printf("bench --gaze: %zu rows -> %s/gaze.{csv,json}, gaze_frames.csv%s\n", rows.size(), s.out.c_str(),
-                   s.no_png ? "" : ", gaze.png");
-  return cli::kExitOk;
+  // --shard given (1/1 too): a part for `bench merge`.
+  if (!s.shard.empty()) return bench::write_shard(s.out, rows, summary, s.sweep, "gaze", s.json);
+  return bench::write_outputs(s.out, rows, summary, "gaze", !s.no_png, s.json);
 }
 
 }  // namespace foveal::cmd

@@ -34,6 +34,8 @@ struct GazeBenchSweep {
   int timed_frames = 3, warmup = 1;
   double fx = 0.3, fy = 0.3;
   bool no_png = false, json = false;
+  std::string shard;  ///< --shard K/N (empty: the whole sweep; bench_sweep.hpp)
+  std::string sweep;  ///< the options that define the sweep, for the shard file
 };
 
 /// Adds --gaze and its options to `foveal bench` (call after --size is added).

@@ -25,6 +25,7 @@ struct Kind {
 };
 constexpr Kind kKinds[] = {
     {"bench", "bench.json", "tools/charts/bench_charts.py"},
+    {"gaze", "gaze.json", "tools/charts/gaze_charts.py"},
 };
 
 const Kind* find_kind(const std::string& name) {

@@ -14,9 +14,9 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "bench_gaze.hpp"
 #include "bench_outputs.hpp"
 #include "bench_sweep.hpp"
+#include "bench_gaze.hpp"
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/data_paths.hpp"
@@ -53,8 +53,8 @@ struct Args {
   int flicker_frames = 48;
   double grid_sigma = 2.0;
   std::string grid_values = "0.1:0.5:0.05";
-  GazeBenchOptions gaze;  ///< --gaze runs (bench_gaze.cpp)
   std::string shard;  ///< K/N; empty: the whole sweep
+  GazeBenchOptions gaze;  ///< --gaze runs (bench_gaze.cpp)
 };
 
 std::string num(double v) {
@@ -247,9 +247,9 @@ int run(const Args& a, const std::string& sweep) {
   if (!shard) return fail(shard.error());
   const std::vector<std::string> scenes = a.scenes.empty() ? std::vector<std::string>{default_scene()} : a.scenes;
   if (!a.gaze.logs.empty()) {
-    if (a.f_grid || a.rotation || a.stability || a.flicker || !a.shard.empty())
-      return fail(bad_input("--gaze runs on its own: drop --f-grid, --rotation, --stability, --flicker and --shard"));
-    return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json});
+    if (a.f_grid || a.rotation || a.stability || a.flicker)
+      return fail(bad_input("--gaze runs on its own: drop --f-grid, --rotation, --stability and --flicker"));
+    return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json, a.shard, sweep});
   }
 
   std::error_code ec;
