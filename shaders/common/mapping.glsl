@@ -50,6 +50,7 @@ ivec2 source_pixel(ivec2 texel) {
 }
 
 float eccentricity_deg(vec2 p_norm) { return foveal_eccentricity_deg(p_norm, u_fovea, u_tan); }
+
 // The screen position (pixels, unclamped) that buffer position t (texels, continuous)
 // stands for: source_pixel's mapping before it picks and clamps a pixel.
 vec2 source_point(vec2 t) {
@@ -84,14 +85,6 @@ vec4 texture_footprint(sampler2D tex, vec2 uv, vec2 dx, vec2 dy) {
   vec2 size = vec2(textureSize(tex, 0));
   float lod = log2(max(length(dx * size), length(dy * size)));
   return textureLod(tex, uv, isnan(lod) || isinf(lod) ? 0.0 : clamp(lod, -16.0, 16.0));
-}
-
-vec3 view_ray(vec2 p_norm) {
-  return normalize(vec3(mix(u_tan.x, u_tan.y, p_norm.x), mix(u_tan.z, u_tan.w, p_norm.y), -1.0));
-}
-
-float eccentricity_deg(vec2 p_norm) {
-  return degrees(acos(clamp(dot(view_ray(p_norm), view_ray(u_fovea)), -1.0, 1.0)));
 }
 
 // Layer i's lit value at screen pixel centre p (bilinear, kept inside the layer).
