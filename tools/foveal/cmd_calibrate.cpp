@@ -9,6 +9,7 @@
 
 #include "calibration_window.hpp"
 #include "commands.hpp"
+#include "scripted_words.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/core/json_file.hpp"
 #include "foveal/drivers/probe.hpp"
@@ -23,30 +24,7 @@ namespace foveal::cmd {
 
 namespace {
 
-struct ScriptedAnswer {
-  Answer answer;
-  int line;
-};
-
-// One answer per word; '#' starts a comment.
-Result<std::vector<ScriptedAnswer>> read_answers(const std::string& path) {
-  auto text = read_regular_file(path, kMaxJsonFileBytes, "answers file");
-  if (!text) return text.error();
-  std::istringstream in(*text);
-  std::vector<ScriptedAnswer> out;
-  std::string line;
-  for (int n = 1; std::getline(in, line); ++n) {
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    std::istringstream words(line);
-    std::string w;
-    while (words >> w) {
-      auto a = parse_answer(w);
-      if (!a) return bad_input(path + ":" + std::to_string(n) + ": " + a.error().message);
-      out.push_back({*a, n});
-    }
-  }
-  return out;
-}
+using ScriptedAnswer = ScriptedWord<Answer>;
 
 double mean_finite(const std::vector<double>& v) {
   double sum = 0;
@@ -194,18 +172,18 @@ void add_calibrate(CLI::App& app, int& exit_code) {
     }
     std::vector<ScriptedAnswer> scripted;
     if (!a->answers.empty()) {
-      auto answers = read_answers(a->answers);
+      auto answers = read_scripted_words<Answer>(a->answers, parse_answer);
       if (!answers) return fail(answers.error());
       scripted = std::move(*answers);
     }
     for (const ScriptedAnswer& s : scripted) {
       if (cal.done()) return fail(bad_input(a->answers + ":" + std::to_string(s.line) + ": more answers than prompts"));
       const CalibrationPrompt p = cal.prompt();
-      if (Status st = cal.answer(s.answer); !st)
+      if (Status st = cal.answer(s.value); !st)
         return fail(bad_input(a->answers + ":" + std::to_string(s.line) + ": " + calibration_stage_name(p.stage) +
                               " trial " + std::to_string(p.trial + 1) + ": " + st.error().message));
       steps.push_back({{"stage", calibration_stage_name(p.stage)}, {"trial", p.trial}, {"sigma_left", p.sigma_left},
-                       {"sigma_right", p.sigma_right}, {"answer", answer_name(s.answer)}});
+                       {"sigma_right", p.sigma_right}, {"answer", answer_name(s.value)}});
     }
     if (!cal.done())  // only the scripted mode can end early
       return fail(bad_input(a->answers + ": answers ended during " + calibration_stage_name(cal.prompt().stage) +

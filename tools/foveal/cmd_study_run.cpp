@@ -19,6 +19,7 @@
 #include "foveal/tools/args.hpp"
 #include "foveal/tools/cli.hpp"
 #include "render_args.hpp"
+#include "scripted_words.hpp"
 #include "study_window.hpp"
 
 namespace foveal::cmd {
@@ -35,30 +36,7 @@ struct Args {
   bool json = false;
 };
 
-struct ScriptedResponse {
-  StudyResponse response;
-  int line;
-};
-
-// One response per word; '#' starts a comment.
-Result<std::vector<ScriptedResponse>> read_responses(const std::string& path) {
-  auto text = read_regular_file(path, kMaxJsonFileBytes, "answers file");
-  if (!text) return text.error();
-  std::istringstream in(*text);
-  std::vector<ScriptedResponse> out;
-  std::string line;
-  for (int n = 1; std::getline(in, line); ++n) {
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    std::istringstream words(line);
-    std::string w;
-    while (words >> w) {
-      auto r = parse_study_response(w);
-      if (!r) return bad_input(path + ":" + std::to_string(n) + ": " + r.error().message);
-      out.push_back({*r, n});
-    }
-  }
-  return out;
-}
+using ScriptedResponse = ScriptedWord<StudyResponse>;
 
 Result<StudyOptions> study_options(const Args& a) {
   StudyOptions o;
@@ -94,7 +72,7 @@ Result<StudyOptions> study_options(const Args& a) {
 // Scripted: each trial's two presentations are rendered (and saved when asked), then
 // the next response is taken; pauses are counted, not waited for.
 Status run_scripted(StudySession& session, StudyFrames& frames, const Args& a) {
-  auto responses = read_responses(a.answers);
+  auto responses = read_scripted_words<StudyResponse>(a.answers, parse_study_response);
   if (!responses) return responses.error();
   for (const ScriptedResponse& r : *responses) {
     if (session.done())
@@ -110,7 +88,7 @@ Status run_scripted(StudySession& session, StudyFrames& frames, const Args& a) {
         if (Status st = image::save_png(a.frames_out + name, frames.compositor().read_image()); !st) return st;
       }
     }
-    if (Status st = session.respond(r.response); !st)
+    if (Status st = session.respond(r.value); !st)
       return bad_input(a.answers + ":" + std::to_string(r.line) + ": trial " + std::to_string(t.index) + ": " +
                        st.error().message);
   }
