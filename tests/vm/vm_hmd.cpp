@@ -122,8 +122,15 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
     t_plug = monotonic_now_ns();
     if (!write_udc(udc_file, udc_name)) problem = "cannot bind " + udc_name;
   }
+  // The first frame can take many seconds in the guest (shader compilation on one slow
+  // core): the checked window needs frames for 4 s after they start, not just 6 s of clock.
+  TimeNs t_frames = 0;
   if (problem.empty() && !wait_for([&] {
-        return !alive() || (ask() && poses() >= 100 && frames() >= 3 && monotonic_now_ns() > t_plug + kSettleNs + 6 * kNsPerSec);
+        if (!alive()) return true;
+        if (!ask() || poses() < 100 || frames() < 3) return false;
+        const TimeNs now = monotonic_now_ns();
+        if (t_frames == 0) t_frames = now;
+        return now > t_plug + kSettleNs + 6 * kNsPerSec && now > t_frames + 4 * kNsPerSec;
       }, 180 * kNsPerSec, kAskEveryNs))
     problem = "no poses and frames within 180 s of the plug-in: " + status.dump().substr(0, 400);
   if (problem.empty() && !alive()) problem = "foveald exited";
