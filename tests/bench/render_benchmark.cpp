@@ -18,8 +18,6 @@
 #include <cstdlib>
 #include <optional>
 
-#include <glm/geometric.hpp>
-
 #include "foveal/render/compositor.hpp"
 #include "foveal/render/egl_context.hpp"
 #include "foveal/render/pipeline_comparison.hpp"
@@ -31,16 +29,6 @@ namespace {
 using namespace foveal;
 using render::Method;
 using render::Pipeline;
-
-// Moves the viewer along its line of sight until the scene's bounding sphere spans the
-// view (an object seen from its framing distance covers a fraction of the frame).
-void fill_view(render::Scene& s) {
-  glm::mat4& m = s.view.head_to_world;
-  const glm::vec3 eye(m[3]), centre = s.bounds.center();
-  const glm::vec3 dir = glm::normalize(centre - eye);
-  const float r = std::max(s.bounds.radius(), 1e-4f);
-  m[3] = glm::vec4(centre - dir * (1.05f * r), 1.0f);
-}
 
 struct Fixture {
   std::optional<gl::EglContext> ctx;

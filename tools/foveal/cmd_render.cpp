@@ -30,6 +30,7 @@ struct Args {
   int frames = 5, warmup = 2;
   bool json = false;
   bool compare_pipelines = false;
+  bool fill_view = false;
 };
 
 // Both pipelines' full and foveated frames, per pass, with the speedups against the
@@ -64,6 +65,7 @@ int run(const Args& a) {
   auto scene = render::load_scene(setup->scene);
   if (!scene) return cli::report(scene.error());
   for (const std::string& w : scene->warnings) cli::warn(w);
+  if (a.fill_view) render::fill_view(*scene);
   auto comp = render::Compositor::create(setup->compositor);
   if (!comp) return cli::report(comp.error());
 
@@ -182,6 +184,8 @@ void add_render(CLI::App& app, int& exit_code) {
   sub->add_option("--frames", args->frames, "Timed frames (the median is reported)")->capture_default_str();
   sub->add_option("--warmup", args->warmup, "Untimed frames first")->capture_default_str()->check(CLI::Range(0, 1000));
   sub->add_flag("--json", args->json, "Print sizes, per-pass milliseconds and memory as JSON");
+  sub->add_flag("--fill-view", args->fill_view,
+                "Move the viewer along its line of sight until the scene's bounding sphere fills the view (object scenes)");
   sub->add_flag("--compare-pipelines", args->compare_pipelines,
                 "Also time full and the frame through both pipelines (--frames each, interleaved): per pass, the speedup "
                 "against the faster full pipeline, the Amdahl limit");

@@ -378,7 +378,7 @@ struct Compositor::Impl {
                                                    const std::vector<glm::ivec4>& regions) {
     visibility->visibility_pass(scene, view);
     timer.mark(Pass::gbuffer);
-    const detail::MaterialSurface& dst = plan.method == Method::full
+    detail::MaterialSurface& dst = plan.method == Method::full
                                              ? visibility->full_surface()
                                              : visibility->eye_surface(eye, plan.buffer_w, plan.buffer_h, !plan.layers.empty());
     visibility->material_pass(scene, view, plan, variant, regions, dst);

@@ -100,4 +100,16 @@ MaterialSurface MaterialSurface::create(int width, int height) {
   return m;
 }
 
+MaterialTiles MaterialTiles::create(int width, int height, int tile, std::size_t slots) {
+  MaterialTiles t;
+  t.across = (width + tile - 1) / tile;
+  t.down = (height + tile - 1) / tile;
+  t.slots = slots;
+  t.commands = gl::Buffer::create();
+  glNamedBufferStorage(t.commands.id(), static_cast<GLsizeiptr>(slots * 16), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  t.lists = gl::Buffer::create();
+  glNamedBufferStorage(t.lists.id(), static_cast<GLsizeiptr>(slots * t.count() * 4), nullptr, 0);
+  return t;
+}
+
 }  // namespace foveal::render::detail

@@ -56,17 +56,34 @@ struct VisibilityTarget {
   std::size_t bytes() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 12; }
 };
 
+/// Per material slot, the tiles of a buffer that hold the material and the indirect draw
+/// of them (layout in shaders/common/material_tiles.glsl): 16 bytes of command and room
+/// for every tile, per slot.
+struct MaterialTiles {
+  gl::Buffer commands, lists;
+  int across = 0, down = 0;
+  std::size_t slots = 0;
+
+  static MaterialTiles create(int width, int height, int tile, std::size_t slots);
+  std::size_t count() const { return static_cast<std::size_t>(across) * static_cast<std::size_t>(down); }
+  std::size_t bytes() const { return slots * (16 + count() * 4); }
+};
+
 /// What the visibility pipeline's material pass writes: a SurfaceTargets (depth as a
 /// colour target) plus a D32F depth attachment that holds each texel's material for the
-/// per-material passes (shaders/classify.frag).
+/// per-material passes (shaders/classify.frag), and its tile lists (made for the scene's
+/// material count on first use).
 struct MaterialSurface {
   SurfaceTargets surface;
   gl::Texture material_depth;
+  MaterialTiles tiles;
 
   static MaterialSurface create(int width, int height);
   int width() const { return surface.width; }
   int height() const { return surface.height; }
-  std::size_t bytes() const { return surface.bytes() + static_cast<std::size_t>(width()) * static_cast<std::size_t>(height()) * 4; }
+  std::size_t bytes() const {
+    return surface.bytes() + static_cast<std::size_t>(width()) * static_cast<std::size_t>(height()) * 4 + tiles.bytes();
+  }
 };
 
 }  // namespace foveal::render::detail

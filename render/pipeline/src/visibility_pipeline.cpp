@@ -1,13 +1,11 @@
 #include "visibility_pipeline.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <optional>
 #include <string>
 
 #include <glm/matrix.hpp>
 
-#include "foveal/rmfr_mapping.hpp"
 #include "foveal/render/scene.hpp"
 #include "foveal/render/stereo_camera.hpp"
 #include "pass_uniforms.hpp"
@@ -22,6 +20,14 @@ constexpr float kMaterialDepthScale = 1.0f / 1048576.0f;
 
 float material_depth(std::size_t material) { return static_cast<float>(material + 1) * kMaterialDepthScale; }
 
+// The material passes' tiles (texels a side) and the material slots with a tile list of
+// their own; materials past the last slot share its list (shaders/common/material_tiles.glsl).
+constexpr int kMaterialTile = 32;
+constexpr std::size_t kMaterialSlots = 1024;
+std::string tile_defines() {
+  return "#define MATERIAL_TILE " + std::to_string(kMaterialTile) + "\n#define MATERIAL_SLOTS " + std::to_string(kMaterialSlots) + "\n";
+}
+
 // Which material slots (Scene::materials, then the default) any draw uses.
 std::vector<std::size_t> used_materials(const Scene& scene) {
   std::vector<bool> used(scene.materials.size() + 1, false);
@@ -35,64 +41,10 @@ std::vector<std::size_t> used_materials(const Scene& scene) {
   return out;
 }
 
-const MaterialSurface& ensure(std::optional<MaterialSurface>& slot, int w, int h, bool grow_only) {
+MaterialSurface& ensure(std::optional<MaterialSurface>& slot, int w, int h, bool grow_only) {
   if (auto size = realloc_size(slot.has_value(), slot ? slot->width() : 0, slot ? slot->height() : 0, w, h, grow_only))
     slot = MaterialSurface::create(size->first, size->second);
   return *slot;
-}
-
-// Where a material can be in the eye's buffer: the union over its draws of their bounds
-// projected to the screen, mapped into the buffer. Only for the RMFR mapping (variant 0,
-// full included), whose forward map is monotonic per axis so a screen rectangle maps onto
-// a buffer rectangle; else, or when a draw reaches behind the eye, the whole buffer.
-// x0, y0, x1, y1 in texels, with a margin.
-struct TexelRect {
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-};
-
-std::vector<std::optional<TexelRect>> material_rects(const Scene& scene, const glm::mat4& view_proj, const EyePlan& plan,
-                                                     std::size_t mapping) {
-  std::vector<std::optional<TexelRect>> rects(scene.materials.size() + 1);
-  std::vector<bool> whole(rects.size(), mapping != 0);
-  std::vector<glm::dvec4> screen(rects.size(), glm::dvec4(1, 1, 0, 0));  // normalised x0, y0, x1, y1
-  for (const DrawItem& d : scene.draws) {
-    const Primitive& p = scene.primitives[static_cast<std::size_t>(d.primitive)];
-    const std::size_t m = p.material >= 0 ? static_cast<std::size_t>(p.material) : scene.materials.size();
-    if (whole[m]) continue;
-    const glm::mat4 to_clip = view_proj * d.world;
-    for (int k = 0; k < 8; ++k) {
-      const glm::vec3 c((k & 1) ? p.local_bounds.max.x : p.local_bounds.min.x, (k & 2) ? p.local_bounds.max.y : p.local_bounds.min.y,
-                        (k & 4) ? p.local_bounds.max.z : p.local_bounds.min.z);
-      const glm::vec4 q = to_clip * glm::vec4(c, 1.0f);
-      if (!(q.w > 1e-6f)) {
-        whole[m] = true;
-        break;
-      }
-      const glm::dvec2 n = (glm::dvec2(q.x, q.y) / static_cast<double>(q.w) + 1.0) * 0.5;
-      screen[m] = glm::dvec4(std::min(screen[m].x, n.x), std::min(screen[m].y, n.y), std::max(screen[m].z, n.x), std::max(screen[m].w, n.y));
-    }
-  }
-  const bool full = plan.method == Method::full;
-  const glm::dvec2 f = full ? glm::dvec2(rmfr::kRmfrIdentityF) : plan.f;
-  const glm::dvec2 margin(1.0 / plan.screen_w, 1.0 / plan.screen_h);  // a pixel: the rasteriser's coverage
-  for (std::size_t m = 0; m < rects.size(); ++m) {
-    if (whole[m]) continue;
-    if (screen[m].x > screen[m].z) {  // no draw
-      rects[m] = TexelRect{};
-      continue;
-    }
-    auto to_buffer = [&](double p, int axis, int size) {
-      const double u = rmfr::rmfr_forward(std::clamp(p, 0.0, 1.0), plan.fovea[axis], f[axis]);
-      return u * size;
-    };
-    TexelRect r;
-    r.x0 = std::max(0, static_cast<int>(std::floor(to_buffer(screen[m].x - margin.x, 0, plan.buffer_w))) - 1);
-    r.y0 = std::max(0, static_cast<int>(std::floor(to_buffer(screen[m].y - margin.y, 1, plan.buffer_h))) - 1);
-    r.x1 = std::min(plan.buffer_w, static_cast<int>(std::ceil(to_buffer(screen[m].z + margin.x, 0, plan.buffer_w))) + 1);
-    r.y1 = std::min(plan.buffer_h, static_cast<int>(std::ceil(to_buffer(screen[m].w + margin.y, 1, plan.buffer_h))) + 1);
-    rects[m] = r;
-  }
-  return rects;
 }
 
 }  // namespace
@@ -114,10 +66,14 @@ Result<VisibilityPipeline> VisibilityPipeline::create(const gl::ShaderLoader& sh
   for (std::size_t m = 0; m < 3; ++m) {
     const std::string mapping = "#define MAPPING " + std::to_string(m) + "\n";
     if (Status s = build(v.classify_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "classify.frag"}}, mapping); !s) return s.error();
-    if (Status s = build(v.material_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "material.frag"}}, mapping); !s) return s.error();
+    if (Status s = build(v.material_progs_[m], {{GL_VERTEX_SHADER, "material_tile.vert"}, {GL_FRAGMENT_SHADER, "material.frag"}},
+                         mapping + tile_defines());
+        !s)
+      return s.error();
     if (Status s = build(v.pattern_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "material.frag"}}, mapping + "#define PATTERN 1\n"); !s)
       return s.error();
   }
+  if (Status s = build(v.tiles_prog_, {{GL_COMPUTE_SHADER, "material_tiles.comp"}}, tile_defines()); !s) return s.error();
   v.empty_vao_ = gl::VertexArray::create();
   return v;
 }
@@ -154,7 +110,7 @@ void VisibilityPipeline::visibility_pass(const Scene& scene, const EyeView& view
 }
 
 void VisibilityPipeline::material_pass(const Scene& scene, const EyeView& view, const EyePlan& plan, std::size_t mapping,
-                                       const std::vector<glm::ivec4>& regions, const MaterialSurface& dst) {
+                                       const std::vector<glm::ivec4>& regions, MaterialSurface& dst) {
   const GLuint fbo = dst.surface.fbo.id();
   const glm::vec2 texture_size(dst.width(), dst.height());
   glBindFramebuffer(GL_FRAMEBUFFER, fbo);
@@ -203,32 +159,59 @@ void VisibilityPipeline::material_pass(const Scene& scene, const EyeView& view, 
   set_mapping(c, plan, texture_size);
   draw_regions(c);
 
-  // One pass per material, drawn at its depth: the EQUAL test runs the material's shader
-  // only on its own texels, and early enough that the others cost no shading.
+  // Which materials each tile holds: per material a list of tiles and an indirect draw.
+  const std::size_t slots = std::min(scene.materials.size() + 1, kMaterialSlots);
+  MaterialTiles& tiles = dst.tiles;
+  if (tiles.slots < slots) tiles = MaterialTiles::create(dst.width(), dst.height(), kMaterialTile, slots);
+  const std::vector<GLuint> empty_draws = [&] {
+    std::vector<GLuint> cmds(4 * slots, 0);
+    for (std::size_t k = 0; k < slots; ++k) cmds[4 * k] = 6;  // one quad per instance, no instances
+    return cmds;
+  }();
+  glNamedBufferSubData(tiles.commands.id(), 0, static_cast<GLsizeiptr>(empty_draws.size() * sizeof(GLuint)), empty_draws.data());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, tiles.commands.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, tiles.lists.id());
+  glBindTextureUnit(7, dst.material_depth.id());
+  glUseProgram(tiles_prog_.id());
+  set(tiles_prog_.id(), "u_list_capacity", static_cast<unsigned>(tiles.count()));
+  glDispatchCompute(static_cast<GLuint>(tiles.across), static_cast<GLuint>(tiles.down), 1);
+  glBindTextureUnit(7, 0);  // attached as depth below: not also bound for sampling
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+
+  // One pass per material over its tiles, drawn at its depth: the EQUAL test runs the
+  // material's shader only on its own texels, and early enough that the others in its
+  // tiles cost no shading. The tiles are in the surface's texels: the viewport is the
+  // whole surface and each region a scissor.
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDepthMask(GL_FALSE);
   glDepthFunc(GL_EQUAL);
+  glViewport(0, 0, dst.width(), dst.height());
+  glEnable(GL_SCISSOR_TEST);
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, tiles.commands.id());
   const GLuint p = material_progs_[mapping].id();
   glUseProgram(p);
   set_mapping(p, plan, texture_size);
   set(p, "u_view_proj", view.view_proj);
-  const auto rects = material_rects(scene, view.view_proj, plan, mapping);
+  set(p, "u_tiles_across", static_cast<unsigned>(tiles.across));
+  set(p, "u_surface_size", texture_size);
   for (std::size_t m : used_materials(scene)) {
-    if (const auto& r = rects[m]) {  // only where the material can be
-      if (r->x1 <= r->x0 || r->y1 <= r->y0) continue;
-      glEnable(GL_SCISSOR_TEST);
-      glScissor(r->x0, r->y0, r->x1 - r->x0, r->y1 - r->y0);
-    }
     const Material& mat = material_of(scene, m < scene.materials.size() ? static_cast<int>(m) : -1);
     set_material(p, scene, mat);
     const int texs[] = {mat.base_color_tex, mat.metal_rough_tex, mat.normal_tex, mat.occlusion_tex, mat.emissive_tex};
     for (GLuint unit = 0; unit < 5; ++unit)
       glBindSampler(unit, texs[unit] >= 0 ? scene.isotropic_samplers[static_cast<std::size_t>(texs[unit])].id() : 0);
+    const std::size_t slot = std::min(m, kMaterialSlots - 1);
+    set(p, "u_list_base", static_cast<unsigned>(slot * tiles.count()));
     const float z = material_depth(m);
     glDepthRangef(z, z);
-    draw_regions(p);
-    glDisable(GL_SCISSOR_TEST);
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+      glScissor(regions[r].x, regions[r].y, regions[r].z, regions[r].w);
+      set(p, "u_layer", static_cast<int>(r));
+      glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(slot * 16));
+    }
   }
+  glDisable(GL_SCISSOR_TEST);
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   glBindSamplers(0, 5, nullptr);
   glDepthRangef(0.0f, 1.0f);
   glDepthMask(GL_TRUE);
@@ -236,9 +219,9 @@ void VisibilityPipeline::material_pass(const Scene& scene, const EyeView& view, 
   glDisable(GL_DEPTH_TEST);
 }
 
-const MaterialSurface& VisibilityPipeline::full_surface() { return ensure(full_, eye_w_, eye_h_, false); }
+MaterialSurface& VisibilityPipeline::full_surface() { return ensure(full_, eye_w_, eye_h_, false); }
 
-const MaterialSurface& VisibilityPipeline::eye_surface(std::size_t eye, int w, int h, bool grow_only) {
+MaterialSurface& VisibilityPipeline::eye_surface(std::size_t eye, int w, int h, bool grow_only) {
   return ensure(eyes_[eye], w, h, grow_only);
 }
 

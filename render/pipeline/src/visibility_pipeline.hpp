@@ -36,12 +36,12 @@ class VisibilityPipeline {
   /// layered plan) with the G-buffer of the samples `plan` keeps, through MAPPING
   /// variant `mapping` (mapping_index). The mapping uniforms are set here.
   void material_pass(const Scene& scene, const EyeView& view, const EyePlan& plan, std::size_t mapping,
-                     const std::vector<glm::ivec4>& regions, const MaterialSurface& dst);
+                     const std::vector<glm::ivec4>& regions, MaterialSurface& dst);
 
   /// The W×H surface of the full method, shared by both eyes.
-  const MaterialSurface& full_surface();
+  MaterialSurface& full_surface();
   /// Eye `eye`'s surface: exactly w×h, or at least w×h when `grow_only` (layered atlases).
-  const MaterialSurface& eye_surface(std::size_t eye, int w, int h, bool grow_only);
+  MaterialSurface& eye_surface(std::size_t eye, int w, int h, bool grow_only);
 
   /// Bytes of the id/depth target, of the eyes' surfaces, of the full surface.
   std::size_t visibility_bytes() const { return visibility_ ? visibility_->bytes() : 0; }
@@ -50,7 +50,7 @@ class VisibilityPipeline {
 
  private:
   int eye_w_ = 0, eye_h_ = 0;
-  gl::Program visibility_prog_, visibility_mask_prog_;
+  gl::Program visibility_prog_, visibility_mask_prog_, tiles_prog_;
   std::array<gl::Program, 3> classify_progs_, material_progs_, pattern_progs_;  // per MAPPING
   gl::VertexArray empty_vao_;
   std::optional<VisibilityTarget> visibility_;

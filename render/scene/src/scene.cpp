@@ -52,4 +52,12 @@ Result<Scene> load_scene(const std::string& spec) {
   return scene;
 }
 
+void fill_view(Scene& scene) {
+  glm::mat4& m = scene.view.head_to_world;
+  const glm::vec3 eye(m[3]), centre = scene.bounds.center();
+  const glm::vec3 dir = glm::normalize(centre - eye);
+  m[3] = glm::vec4(centre - dir * (1.05f * std::max(scene.bounds.radius(), 1e-4f)), 1.0f);
+  scene.view.source += ", filled";
+}
+
 }  // namespace foveal::render

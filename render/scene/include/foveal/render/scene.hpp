@@ -82,6 +82,11 @@ struct Scene {
 /// required extension, unsupported primitive modes or accessors.
 Result<Scene> load_scene(const std::string& spec);
 
+/// Moves the viewer along its line of sight to 1.05 bounding radii from the scene's
+/// centre, so that an object scene fills the view (the benchmarks' "filled" framing; an
+/// object seen from its framing distance covers a fraction of the frame).
+void fill_view(Scene& scene);
+
 /// The names load_scene accepts after "pattern:".
 const std::vector<std::string>& pattern_names();
 
