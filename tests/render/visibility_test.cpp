@@ -114,6 +114,58 @@ image::Image expect_same_material(render::Compositor& c, const std::string& spec
   return vis;
 }
 
+
+// A grid of `count` small quads facing the viewer, each with a material of its own (plain
+// colours): more materials than the material passes have tile lists for
+// (kMaterialSlots in render/pipeline/src/visibility_pipeline.cpp), so the last list is
+// shared.
+std::string many_materials_model(test::TempDir& dir, int count) {
+  const int across = 40, down = (count + across - 1) / across;
+  const float cell_w = 3.2f / static_cast<float>(across), cell_h = 2.0f / static_cast<float>(down);
+  std::vector<float> pos, nrm;
+  std::vector<std::uint32_t> idx;
+  json accessors = json::array(), primitives = json::array(), materials = json::array();
+  for (int q = 0; q < count; ++q) {
+    const float x0 = -1.6f + cell_w * static_cast<float>(q % across), y0 = -1.0f + cell_h * static_cast<float>(q / across);
+    const float x1 = x0 + 0.8f * cell_w, y1 = y0 + 0.8f * cell_h;
+    const auto v = static_cast<std::uint32_t>(pos.size() / 3);
+    for (float p : {x0, y0, 0.0f, x1, y0, 0.0f, x1, y1, 0.0f, x0, y1, 0.0f}) pos.push_back(p);
+    for (int k = 0; k < 4; ++k) nrm.insert(nrm.end(), {0.0f, 0.0f, 1.0f});
+    for (std::uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) idx.push_back(v + k);
+    accessors.push_back({{"bufferView", 2}, {"byteOffset", 24 * q}, {"componentType", 5125}, {"type", "SCALAR"}, {"count", 6}});
+    primitives.push_back({{"attributes", {{"POSITION", 0}, {"NORMAL", 1}}}, {"indices", q + 2}, {"material", q}});
+    const unsigned h = static_cast<unsigned>(q) * 2654435761u;
+    materials.push_back({{"pbrMetallicRoughness",
+                          {{"baseColorFactor", {(h & 255) / 255.0, ((h >> 8) & 255) / 255.0, ((h >> 16) & 255) / 255.0, 1.0}},
+                           {"metallicFactor", 0.0},
+                           {"roughnessFactor", 0.6}}}});
+  }
+  const auto vertices = static_cast<int>(pos.size() / 3);
+  const json normals = {{"bufferView", 1}, {"componentType", 5126}, {"type", "VEC3"}, {"count", vertices}};
+  const json positions = {{"bufferView", 0}, {"componentType", 5126}, {"type", "VEC3"}, {"count", vertices},
+                          {"min", {-1.6, -1.0, 0.0}}, {"max", {1.6, 1.0, 0.0}}};
+  accessors.insert(accessors.begin(), normals);
+  accessors.insert(accessors.begin(), positions);
+  std::string bin;
+  json views = json::array();
+  auto view = [&](const auto& v) {
+    views.push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", v.size() * sizeof(v[0])}});
+    append(bin, v);
+  };
+  view(pos), view(nrm), view(idx);
+  json j = {{"asset", {{"version", "2.0"}}},
+            {"scene", 0},
+            {"scenes", {{{"nodes", {0}}}}},
+            {"nodes", {{{"mesh", 0}}}},
+            {"meshes", {{{"primitives", primitives}}}},
+            {"materials", materials},
+            {"accessors", accessors},
+            {"bufferViews", views},
+            {"buffers", {{{"uri", "many.bin"}, {"byteLength", bin.size()}}}}};
+  test::write_file(dir.path("many.bin"), bin);
+  test::write_file(dir.path("many.gltf"), j.dump());
+  return dir.path("many.gltf");
+}
 }  // namespace
 
 TEST(Visibility, SigmaOneEqualsFull) {
@@ -195,4 +247,23 @@ TEST(Visibility, PipelineNamesParse) {
   auto bad = render::parse_pipeline("deferred");
   ASSERT_FALSE(bad);
   EXPECT_NE(bad.error().message.find("gbuffer, visibility"), std::string::npos);
+}
+
+// Materials are shaded only over the tiles that hold them (per-material tile lists), also
+// past the last list of their own: 1100 one-colour materials render as in the G-buffer
+// pipeline, at full rate and foveated through every mapping.
+TEST(Visibility, ManyMaterialsRenderAsInTheGBufferPipeline) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir d;
+  const std::string spec = many_materials_model(d, 1100);
+  expect_pipelines_agree(spec, 60.0);
+  render::Compositor c = test::make_compositor(kW, kH);
+  render::Scene s = test::scene(spec);
+  ASSERT_EQ(s.materials.size(), 1100u);
+  for (Method m : render::all_methods()) {
+    if (m == Method::full) continue;
+    const render::FrameParams f = render::efr_frame(m, Eye::right, 2.0, 3.0, 0.3, 0.3);
+    EXPECT_GE(image::psnr(test::render_frame(c, s, f), test::render_frame(c, s, through(Pipeline::visibility, f))), 45.0)
+        << render::method_name(m);
+  }
 }
