@@ -16,6 +16,10 @@
 layout(binding = 5) uniform usampler2D u_ids;
 layout(binding = 6) uniform sampler2D u_depth;  // the visibility pass's depth
 uniform mat4 u_view_proj;
+// Each material's draw covers its tiles, where the depth test EQUAL picks its texels: the
+// test must run before shading (llvmpipe would also choose that here, as nothing in the
+// shader writes depth or memory or discards; this makes it a guarantee).
+layout(early_fragment_tests) in;
 #endif
 
 layout(location = 0) out vec4 o_albedo;
