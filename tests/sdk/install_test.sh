@@ -6,24 +6,13 @@
 # Usage: install_test.sh BUILD_DIR SOURCE_DIR PYTHON3
 set -euo pipefail
 build=$1 src=$2 python=$3
-work=$(mktemp -d "${TMPDIR:-/tmp}/foveal-sdk-XXXXXX")
-foveald_pid=""
-cleanup() {
-  if [[ -n $foveald_pid ]]; then kill "$foveald_pid" 2>/dev/null || true; wait "$foveald_pid" 2>/dev/null || true; fi
-  rm -rf "$work"
-}
-trap cleanup EXIT
-fail() { echo "install_test: $*" >&2; exit 1; }
-show() { for f in "$@"; do [[ -s $f ]] && { echo "--- $f"; cat "$f"; }; done; return 0; }
-step() { echo "== $*"; }
+test_name=install_test
+# shellcheck source=../support/prefix_test.sh
+source "$src/tests/support/prefix_test.sh"
 
-step "cmake --install --component sdk into a temporary prefix"
-prefix=$work/prefix
-cmake --install "$build" --component sdk --prefix "$prefix" > "$work/install.log" || { show "$work/install.log"; fail "install failed"; }
+install_sdk
 for f in include/foveal/client.h; do [[ -f $prefix/$f ]] || fail "the prefix has no $f"; done
-so=$(find "$prefix" -name 'libfoveal-client.so.*.*.*' | head -1)
-[[ -n $so ]] || fail "the prefix has no versioned libfoveal-client.so"
-readelf -d "$so" | grep -q 'SONAME.*libfoveal-client\.so\.[0-9]' || fail "$so has no SONAME"
+check_soname libfoveal-client
 python_dir=$(dirname "$(find "$prefix" -path '*-packages/foveal/__init__.py')")
 python_dir=$(dirname "$python_dir")
 cp -r "$src/tests/sdk/consumers" "$work/src"  # the consumers build outside the source tree
@@ -41,13 +30,7 @@ cmake -S "$work/src/cmake" -B "$work/cmake-build" -G Ninja -DCMAKE_PREFIX_PATH="
   > "$work/cmake.log" 2>&1 || { show "$work/cmake.log"; fail "the CMake consumer does not configure"; }
 cmake --build "$work/cmake-build" > "$work/cmake-build.log" 2>&1 || { show "$work/cmake-build.log"; fail "the CMake consumer does not build"; }
 
-step "a live foveald (replay, --no-render) with its own block and control socket"
-export FOVEAL_SHM_NAME=/foveal-sdk-test-$$
-export XDG_RUNTIME_DIR=$work/run XDG_CONFIG_HOME=$work/config
-mkdir -p "$XDG_RUNTIME_DIR" "$XDG_CONFIG_HOME"
-"$build/bin/foveald" --replay "$src/data/gaze/vive_pro_eye_TESTNA01.csv" --no-render --loop --end 12 --duration 90 -q \
-  --out "$work/out" > "$work/foveald.log" 2>&1 &
-foveald_pid=$!
+start_foveald 90
 
 # NAME BINARY SIGMA_D: the consumer reads a fovea and says "ready"; then sigma_d changes.
 run_consumer() {
