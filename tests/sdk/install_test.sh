@@ -2,7 +2,8 @@
 # The SDK as an outside program meets it: install into a temporary prefix, build a C
 # program with pkg-config and a CMake project with find_package(foveal CONFIG), run both
 # and the installed Python module against a live foveald (replay of the bundled log,
-# --no-render), and change sigma_d under them with `foveal ctl set`.
+# --no-render), change sigma_d under them with `foveal ctl set`, and put a marker into
+# foveald's trace through the library.
 # Usage: install_test.sh BUILD_DIR SOURCE_DIR PYTHON3
 set -euo pipefail
 build=$1 src=$2 python=$3
@@ -50,7 +51,7 @@ run_consumer() {
 run_consumer c "$work/consumer_c" 2.5
 run_consumer cmake "$work/cmake-build/consumer_cpp" 2.25
 
-step "the installed Python module: live fovea and settings"
+step "the installed Python module: live fovea, settings and a marker"
 PYTHONPATH=$python_dir "$python" - "$prefix" <<'EOF' || fail "the installed Python module failed"
 import math, sys, foveal
 assert foveal.library_path().startswith(sys.argv[1]), foveal.library_path()  # the prefix's library, found by itself
@@ -61,6 +62,20 @@ for e in (0, 1):
     assert math.isfinite(f.x[e]) and 0 <= f.x[e] <= f.eye_width and 0 <= f.y[e] <= f.eye_height, f
 assert s.sigma_d == 2.25, s
 print(f"  python: frame {f.frame} left ({f.x[0]:.1f}, {f.y[0]:.1f}) sigma_d {s.sigma_d} generation {s.generation}")
+t_ns = foveal.mark("sdk: a marker from python")    # through libfoveal-client to the control socket
+assert t_ns > 0, t_ns
+for bad, code in (("two\nlines", foveal.INVALID_ARGUMENT), ("", foveal.INVALID_ARGUMENT)):
+    try:
+        foveal.mark(bad)
+        sys.exit(f"mark({bad!r}) was taken")
+    except foveal.ClientError as e:
+        assert e.code == code, e
+try:
+    foveal.mark("nobody", socket=sys.argv[1] + "/no.sock")
+    sys.exit("a mark to a missing socket was taken")
+except foveal.ClientError as e:
+    assert e.code == foveal.NO_WRITER and "no.sock" in str(e), e
+print(f"  python: marker at {t_ns} ns")
 EOF
 
 step "foveald stops: clients are told"
@@ -77,6 +92,7 @@ except foveal.ClientError as e:
     print(f"  python: {e}")
 t = foveal.read_trace(sys.argv[1])
 assert len(t) > 10 and (t["t_ns"][1:] > t["t_ns"][:-1]).all(), len(t)
-print(f"  python: trace {len(t)} samples")
+assert [m for m in t.markers if m[1] == "sdk: a marker from python"], t.markers
+print(f"  python: trace {len(t)} samples, markers {t.markers}")
 EOF
 echo "install_test: all passed"
