@@ -7,6 +7,7 @@
 // filters the texture area it covers. Writes the G-buffer layout the lighting pass reads.
 // PATTERN: the variant for `pattern:` scenes (common/pattern.glsl), which have no triangles.
 #include "common/mapping.glsl"
+#include "common/anisotropic_filter.glsl"
 #ifdef PATTERN
 #include "common/gbuffer_encoding.glsl"
 #include "common/pattern.glsl"
@@ -31,14 +32,14 @@ vec2 g_dx[2], g_dy[2];
 vec4 sample_slot(sampler2D tex, int slot, vec2 uv) {
   mat2 m = mat2(u_uv_matrix[slot]);
   int set = u_uv_set[slot] == 1 ? 1 : 0;
-  return texture_footprint(tex, uv, m * g_dx[set], m * g_dy[set]);
+  return texture_anisotropic(tex, uv, m * g_dx[set], m * g_dy[set]);
 }
 #endif
 
 void main() {
   ivec2 texel = ivec2(gl_FragCoord.xy);
   ivec2 pixel = source_pixel(texel);
-  mat2 footprint = texel_footprint(texel);
+  mat2 footprint = filter_footprint(texel_footprint(texel));
 #ifdef PATTERN
   o_depth = 0.5;  // what the G-buffer pass's full-screen triangle leaves
   mat2 g = pattern_uv_per_pixel() * footprint;
