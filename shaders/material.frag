@@ -7,11 +7,11 @@
 // filters the texture area it covers. Writes the G-buffer layout the lighting pass reads.
 // PATTERN: the variant for `pattern:` scenes (common/pattern.glsl), which have no triangles.
 #include "common/mapping.glsl"
-#include "common/anisotropic_filter.glsl"
 #ifdef PATTERN
 #include "common/gbuffer_encoding.glsl"
 #include "common/pattern.glsl"
 #else
+#include "common/anisotropic_filter.glsl"
 #include "common/material.glsl"
 #include "common/visibility_geometry.glsl"
 layout(binding = 5) uniform usampler2D u_ids;
@@ -39,7 +39,7 @@ vec4 sample_slot(sampler2D tex, int slot, vec2 uv) {
 void main() {
   ivec2 texel = ivec2(gl_FragCoord.xy);
   ivec2 pixel = source_pixel(texel);
-  mat2 footprint = filter_footprint(texel_footprint(texel));
+  mat2 footprint = texel_footprint(texel);
 #ifdef PATTERN
   o_depth = 0.5;  // what the G-buffer pass's full-screen triangle leaves
   mat2 g = pattern_uv_per_pixel() * footprint;
@@ -68,7 +68,8 @@ void main() {
   vec2 ndc_per_pixel = 2.0 / u_screen_size;
   mat2 uv0_per_pixel = mat2(mix3(b.dx, v0.uv, v1.uv, v2.uv) * ndc_per_pixel.x, mix3(b.dy, v0.uv, v1.uv, v2.uv) * ndc_per_pixel.y);
   mat2 uv1_per_pixel = mat2(mix3(b.dx, v0.uv1, v1.uv1, v2.uv1) * ndc_per_pixel.x, mix3(b.dy, v0.uv1, v1.uv1, v2.uv1) * ndc_per_pixel.y);
-  mat2 g0 = uv0_per_pixel * footprint, g1 = uv1_per_pixel * footprint;
+  mat2 filtered = filter_footprint(footprint);
+  mat2 g0 = uv0_per_pixel * filtered, g1 = uv1_per_pixel * filtered;
   g_dx[0] = g0[0], g_dy[0] = g0[1], g_dx[1] = g1[0], g_dy[1] = g1[1];
 
   mat3 normal_matrix = mat3(d.normal_matrix[0].xyz, d.normal_matrix[1].xyz, d.normal_matrix[2].xyz);
