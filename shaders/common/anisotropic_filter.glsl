@@ -9,16 +9,18 @@
 const int MAX_ANISOTROPY = 8;  // the scene textures' GL_TEXTURE_MAX_ANISOTROPY (gpu_upload.cpp)
 
 // The screen footprint a texel's texture reads are filtered over, from its mapping
-// footprint (screen-pixel steps of one texel step, columns x and y): each axis at half its
-// length, so that the filter below (a Gaussian of a quarter of an axis's length as its
-// standard deviation) has about the second moment of a box over the texel's own area
-// (0.29 of its side), rather than blurring twice as wide; and never under one pixel, so
-// no texel is sharper than the full-resolution frame it stands in for (RMFR magnifies the
-// fovea). At σ = 1 it is the pixel's own footprint, as in the G-buffer pass.
+// footprint (screen-pixel steps of one texel step, columns x and y): each axis at 0.35 of
+// its length, and never under one pixel. The resolve already blurs each texel over a
+// bilinear tent of its own width, so the reads need remove only what that leaves to
+// alias; filtering over the whole footprint blurred twice over (Dungeon, RMFR σ 2: -1 dB
+// FPSNR against the G-buffer pipeline; 0.35 measured best of 0, 0.35, 0.5 and 1:
+// docs/results/pipeline_quality.md). Never under a pixel: RMFR magnifies the fovea, and a
+// texel there must not be sharper than the full-resolution frame it stands in for. At
+// σ = 1 it is the pixel's own footprint, as in the G-buffer pass.
 mat2 filter_footprint(mat2 texel) {
   for (int c = 0; c < 2; ++c) {
     float len = length(texel[c]);
-    if (len > 0.0) texel[c] *= max(0.5, 1.0 / len);
+    if (len > 0.0) texel[c] *= max(0.35, 1.0 / len);
   }
   return texel;
 }
