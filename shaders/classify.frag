@@ -13,5 +13,5 @@ float material_depth(uint material) { return float(material + 1u) / 1048576.0; }
 void main() {
   uvec2 id = texelFetch(u_ids, source_pixel(ivec2(gl_FragCoord.xy)), 0).rg;
   if (id.x == 0u) discard;
-  gl_FragDepth = material_depth(draws[id.x - 1u].material);
+  gl_FragDepth = material_depth(draw_material(id.x - 1u));
 }

@@ -58,11 +58,9 @@ void main() {
   for (int k = 1; k < 4 && id.x == 0u; ++k)
     id = texelFetch(u_ids, source_pixel(texel ^ ivec2(k & 1, k >> 1)), 0).rg;
   id = id.x == 0u ? uvec2(1u, 0u) : id;
-  DrawRecord d = draws[id.x - 1u];
-  uint i = d.first_index + 3u * id.y;
-  Vertex v0 = fetch_vertex(d.base_vertex + index_data[i]);
-  Vertex v1 = fetch_vertex(d.base_vertex + index_data[i + 1u]);
-  Vertex v2 = fetch_vertex(d.base_vertex + index_data[i + 2u]);
+  DrawRecord d = fetch_draw(id.x - 1u);
+  uvec3 tri = fetch_triangle(d, id.y);
+  Vertex v0 = fetch_vertex(tri.x), v1 = fetch_vertex(tri.y), v2 = fetch_vertex(tri.z);
   mat4 to_clip = u_view_proj * d.model;
   vec4 c0 = to_clip * vec4(v0.position, 1.0), c1 = to_clip * vec4(v1.position, 1.0), c2 = to_clip * vec4(v2.position, 1.0);
   vec2 ndc = (vec2(pixel) + 0.5) / u_screen_size * 2.0 - 1.0;

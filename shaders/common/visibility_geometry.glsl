@@ -3,16 +3,39 @@
 // data, 32-bit indices, one record per draw; and the surface point of a triangle seen
 // through a screen pixel, with perspective-correct barycentrics.
 
+// Read through texture-buffer views (SceneGeometry): one gather per texel, where
+// llvmpipe would read a storage buffer one scalar per lane at a time.
+layout(binding = 8) uniform samplerBuffer u_vertex_pairs;  // GltfVertex: 9 RG32F texels
+layout(binding = 9) uniform usamplerBuffer u_triangles;    // indices: one RGB32UI texel per triangle
+layout(binding = 10) uniform samplerBuffer u_draw_floats;  // DrawRecord: 8 RGBA32F texels
+layout(binding = 11) uniform usamplerBuffer u_draw_uints;  // the same as RGBA32UI
+
 struct DrawRecord {
   mat4 model;
   vec4 normal_matrix[3];  // columns of transpose(inverse(mat3(model)))
-  uint first_index, base_vertex, material, pad;
+  uint first_index, base_vertex, material;
 };
-layout(std430, binding = 0) readonly buffer Draws { DrawRecord draws[]; };
-layout(std430, binding = 1) readonly buffer Vertices { float vertex_data[]; };
-layout(std430, binding = 2) readonly buffer Indices { uint index_data[]; };
 
-const uint VERTEX_FLOATS = 18u;  // position 3, normal 3, uv 2, tangent 4, uv1 2, colour 4
+const int DRAW_TEXELS = 8;
+
+DrawRecord fetch_draw(uint draw) {
+  int b = int(draw) * DRAW_TEXELS;
+  DrawRecord d;
+  d.model = mat4(texelFetch(u_draw_floats, b), texelFetch(u_draw_floats, b + 1), texelFetch(u_draw_floats, b + 2),
+                 texelFetch(u_draw_floats, b + 3));
+  for (int c = 0; c < 3; ++c) d.normal_matrix[c] = texelFetch(u_draw_floats, b + 4 + c);
+  uvec4 u = texelFetch(u_draw_uints, b + 7);
+  d.first_index = u.x, d.base_vertex = u.y, d.material = u.z;
+  return d;
+}
+
+uint draw_material(uint draw) { return texelFetch(u_draw_uints, int(draw) * DRAW_TEXELS + 7).z; }
+
+// The vertex indices of triangle `t` of a draw (a primitive's indices start at a
+// multiple of 3: every primitive is a triangle list).
+uvec3 fetch_triangle(DrawRecord d, uint t) { return texelFetch(u_triangles, int(d.first_index / 3u + t)).xyz + d.base_vertex; }
+
+const int VERTEX_PAIRS = 9;  // position 3, normal 3, uv 2, tangent 4, uv1 2, colour 4: 18 floats
 
 struct Vertex {
   vec3 position, normal;
@@ -22,17 +45,17 @@ struct Vertex {
   vec4 color;
 };
 
-float vf(uint base, uint k) { return vertex_data[base + k]; }
-
 Vertex fetch_vertex(uint v) {
-  uint b = v * VERTEX_FLOATS;
+  int b = int(v) * VERTEX_PAIRS;
+  vec2 p[VERTEX_PAIRS];
+  for (int k = 0; k < VERTEX_PAIRS; ++k) p[k] = texelFetch(u_vertex_pairs, b + k).xy;
   Vertex o;
-  o.position = vec3(vf(b, 0u), vf(b, 1u), vf(b, 2u));
-  o.normal = vec3(vf(b, 3u), vf(b, 4u), vf(b, 5u));
-  o.uv = vec2(vf(b, 6u), vf(b, 7u));
-  o.tangent = vec4(vf(b, 8u), vf(b, 9u), vf(b, 10u), vf(b, 11u));
-  o.uv1 = vec2(vf(b, 12u), vf(b, 13u));
-  o.color = vec4(vf(b, 14u), vf(b, 15u), vf(b, 16u), vf(b, 17u));
+  o.position = vec3(p[0], p[1].x);
+  o.normal = vec3(p[1].y, p[2]);
+  o.uv = p[3];
+  o.tangent = vec4(p[4], p[5]);
+  o.uv1 = p[6];
+  o.color = vec4(p[7], p[8]);
   return o;
 }
 

@@ -146,9 +146,9 @@ void VisibilityPipeline::material_pass(const Scene& scene, const EyeView& view, 
 
   const GLuint textures[2] = {visibility_->ids.id(), visibility_->depth.id()};
   glBindTextures(5, 2, textures);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, scene.geometry.draws.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, scene.geometry.vertices.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, scene.geometry.indices.id());
+  const SceneGeometry& geo = scene.geometry;
+  const GLuint geometry[4] = {geo.vertex_pairs.id(), geo.triangles.id(), geo.draw_floats.id(), geo.draw_uints.id()};
+  glBindTextures(8, 4, geometry);
 
   // Classification: each covered texel's material into the depth attachment.
   glEnable(GL_DEPTH_TEST);
@@ -213,6 +213,7 @@ void VisibilityPipeline::material_pass(const Scene& scene, const EyeView& view, 
   glDisable(GL_SCISSOR_TEST);
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   glBindSamplers(0, 5, nullptr);
+  glBindTextures(8, 4, nullptr);
   glDepthRangef(0.0f, 1.0f);
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);

@@ -60,6 +60,17 @@ void upload_geometry(Scene& scene, const std::vector<GltfVertex>& vertices, cons
   scene.geometry.vertices = storage(vertices);
   scene.geometry.indices = storage(indices);
   scene.geometry.draws = storage(records);
+  auto texels = [](const gl::Buffer& b, GLenum format) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
+    glTextureBuffer(id, format, b.id());
+    return gl::Texture(id);
+  };
+  static_assert(sizeof(GltfVertex) == 9 * 8 && sizeof(DrawRecord) == 8 * 16, "texel views of the geometry");
+  scene.geometry.vertex_pairs = texels(scene.geometry.vertices, GL_RG32F);
+  scene.geometry.triangles = texels(scene.geometry.indices, GL_RGB32UI);
+  scene.geometry.draw_floats = texels(scene.geometry.draws, GL_RGBA32F);
+  scene.geometry.draw_uints = texels(scene.geometry.draws, GL_RGBA32UI);
 }
 
 gl::Sampler isotropic_sampler(GLenum wrap_s, GLenum wrap_t) {

@@ -30,10 +30,16 @@ struct Primitive {
 };
 
 /// Every primitive's vertices (GltfVertex, interleaved) and indices concatenated into
-/// shader storage buffers, and one record per DrawItem (DrawRecord): what the visibility
-/// pipeline's material pass fetches a triangle from (shaders/common/visibility_geometry.glsl).
+/// buffers, and one record per DrawItem (DrawRecord): what the visibility pipeline's
+/// material pass fetches a triangle from (shaders/common/visibility_geometry.glsl),
+/// through texture-buffer views of them (llvmpipe reads a shader storage buffer one
+/// scalar per lane at a time, a texel fetch as one gather per texel).
 struct SceneGeometry {
   gl::Buffer vertices, indices, draws;
+  gl::Texture vertex_pairs;  ///< vertices as RG32F: 9 texels per GltfVertex
+  gl::Texture triangles;     ///< indices as RGB32UI: one texel per triangle
+  gl::Texture draw_floats;   ///< draws as RGBA32F: 8 texels per DrawRecord
+  gl::Texture draw_uints;    ///< draws as RGBA32UI: texel 7 of each is first_index, base_vertex, material
 };
 
 /// One DrawItem as the shaders read it (std430; the layout of visibility_geometry.glsl).
