@@ -28,6 +28,27 @@ TEST(RenderCli, WritesAPngAndReportsPassesAsJson) {
   EXPECT_EQ(img->width, 160);
 }
 
+// --fill-view moves the viewer in until an object fills the view (the benchmarks' framing
+// of the object scenes); --compare-pipelines adds both pipelines' full and foveated frames.
+TEST(RenderCli, FillViewMovesTheViewerInAndComparePipelinesReportsBoth) {
+  test::TempDir d;
+  const std::string base = test::bin("foveal") + " render --scene " + test::source_path("data/scenes/WaterBottle/WaterBottle.gltf") +
+                           " --size 160x90 --frames 1 --warmup 0 --pipeline visibility --json";
+  auto framed = test::run(base + " --out " + d.path("framed.png"));
+  auto filled = test::run(base + " --fill-view --compare-pipelines --out " + d.path("filled.png"));
+  ASSERT_EQ(framed.exit_code, 0) << framed.err;
+  ASSERT_EQ(filled.exit_code, 0) << filled.err;
+  const auto j = nlohmann::json::parse(filled.out);
+  EXPECT_NE(j["view"].get<std::string>().find("filled"), std::string::npos) << j["view"];
+  for (const char* p : {"gbuffer", "visibility"}) {
+    EXPECT_GT(j["pipelines"][p]["speedup"].get<double>(), 0.0) << p;
+    EXPECT_GT(j["pipelines"][p]["foveated_ms"]["gpu_total"].get<double>(), 0.0) << p;
+  }
+  auto a = image::load(d.path("framed.png")), b = image::load(d.path("filled.png"));
+  ASSERT_TRUE(a && b);
+  EXPECT_LT(image::psnr(*a, *b), 25.0) << "the filled view is another picture";
+}
+
 TEST(RenderCli, BadInputsExitTwoWithAClearMessageAndNoOutput) {
   test::TempDir d;
   const std::string out = " --out " + d.path("x.png");
