@@ -125,7 +125,7 @@ TEST(BenchFlicker, BadInputExitsTwoNamingTheOptionAndWritesNothing) {
   expect_bad("--flicker --flicker-pipelines gbuffer,gbuffer", "--flicker-pipelines: 'gbuffer' is listed twice");
   expect_bad("--flicker --camera-pivot 0", "--camera-pivot");
   expect_bad("--flicker --flicker-sigma-nd 0.5", "--flicker-sigma-nd");
-  expect_bad("--camera-path orbit", "--camera-path sets up --flicker runs: add --flicker");
+  expect_bad("--camera-path orbit", "--camera-path requires --flicker");
   // A log without head poses cannot drive the recorded camera.
   ASSERT_EQ(test::run(test::bin("foveal") + " synth --seed 3 --duration 3 --out " + d.path("g.csv")).exit_code, 0);
   expect_bad("--flicker --flicker-frames 3 --camera-path recorded --flicker-log " + d.path("g.csv"), d.path("g.csv") + " has no head pose");

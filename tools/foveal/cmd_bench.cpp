@@ -52,7 +52,6 @@ struct Args {
   std::string camera_paths = "static", flicker_gaze = "raw,filtered", flicker_pipelines;  ///< bench_flicker.hpp
   std::optional<double> camera_pivot, flicker_sigma_nd;
   bool camera_fill = false;
-  std::vector<const CLI::Option*> flicker_only;  ///< options that need --flicker
   double grid_sigma = 2.0;
   std::string grid_values = "0.1:0.5:0.05";
   std::string shard;  ///< K/N; empty: the whole sweep
@@ -169,8 +168,6 @@ int run(const Args& a, const std::string& sweep) {
   auto shard = bench::parse_shard(a.shard.empty() ? "1/1" : a.shard);
   if (!shard) return fail(shard.error());
   const std::vector<std::string> scenes = a.scenes.empty() ? std::vector<std::string>{default_scene()} : a.scenes;
-  for (const CLI::Option* o : a.flicker_only)
-    if (!a.flicker && o->count()) return fail(bad_input(o->get_name() + " sets up --flicker runs: add --flicker"));
   FlickerOptions fo;
   if (a.flicker) {
     auto cameras = parse_camera_paths(a.camera_paths);
@@ -404,10 +401,10 @@ void add_bench(CLI::App& app, int& exit_code) {
   sub->add_option("--grid-values", a->grid_values, "f values of the grid")->capture_default_str();
   sub->add_option("--grid-sigma", a->grid_sigma, "Level of the grid and rotation experiments")->capture_default_str();
   sub->add_flag("--rotation", a->rotation, "Also: rotated stripes 0-180 degrees, FPSNR per method");
-  sub->add_flag("--flicker", a->flicker,
+  CLI::Option* flicker = sub->add_flag("--flicker", a->flicker,
                 "Also, on every scene: periphery flicker against the full reference, the fovea on real gaze (raw, filtered) or fixed, "
                 "the camera still or moving, per method and pipeline (docs/stability.md)");
-  a->flicker_only = {
+  for (CLI::Option* o : {
       sub->add_option("--flicker-log", a->flicker_log, "Gaze log for --flicker (default: the bundled recording)"),
       sub->add_option("--flicker-frames", a->flicker_frames, "Frames per flicker run (one per gaze sample)")->capture_default_str()->check(CLI::Range(2, 10000)),
       sub->add_option("--flicker-sigma-nd", a->flicker_sigma_nd,
@@ -419,7 +416,8 @@ void add_bench(CLI::App& app, int& exit_code) {
                       "pivot and back, half its distance, default a quarter of it per second), recorded (the log's head pose)")
           ->capture_default_str(),
       sub->add_option("--camera-pivot", a->camera_pivot, "Pivot distance ahead of the head, metres (default: from the scene's bounds)"),
-      sub->add_flag("--camera-fill", a->camera_fill, "Start the camera where the scene's bounding sphere fills the view (object scenes)")};
+      sub->add_flag("--camera-fill", a->camera_fill, "Start the camera where the scene's bounding sphere fills the view (object scenes)")})
+    o->needs(flicker);
   sub->add_flag("--stability", a->stability, "Also: fovea from the centre to a corner and to a border, patch PSNR and FPSNR per method");
   add_gaze_bench_options(*sub, a->gaze);
   sub->add_option("--shard", a->shard, "Run only the K-th of N disjoint parts of the sweep (K/N); merge with `bench merge`");
