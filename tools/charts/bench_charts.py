@@ -158,7 +158,9 @@ def flicker(rows, out):
         ax.set_xticks(range(len(methods)))
         ax.set_xticklabels(methods)
         ax.set_ylabel("flicker: mean |ΔF − ΔR| in the periphery (8-bit)")
-        ax.set_title(f"{scene}, camera {camera}, σ = {mine[-1]['sigma']}, {mine[0]['frames']} frames", fontsize=9)
+        last = mine[-1]
+        sigma = last["sigma"] + (f"/{last['sigma_nd']}" if last.get("sigma_nd") not in (None, "", last["sigma"]) else "")
+        ax.set_title(f"{scene}, camera {camera}, σ = {sigma}, {mine[0]['frames']} frames", fontsize=9)
         ax.legend(fontsize=7)
         ax.grid(alpha=0.3, axis="y")
     fig.suptitle("Flicker against the full-resolution reference along the same path")
