@@ -250,10 +250,10 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
     f.head = head;
     return f;
   };
-  auto render_frame = [&](const render::FrameParams& f) -> Result<Samples> {
+  auto render_image = [&](const render::FrameParams& f) -> Result<image::Image> {
     auto r = comp.render(*scene, f);
     if (!r) return r.error();
-    return sample(comp.read_image());
+    return comp.read_image();
   };
 
   auto foveae_of = [&](FlickerGaze gaze) {
@@ -288,8 +288,9 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
       image::Image img;
       for (std::size_t k = 0; k < heads.size(); ++k) {
         if (k == 0 || !still) {
-          if (auto r = comp.render(*scene, frame(Method::full, kReferencePipeline, window->raw[k], heads[k])); !r) return r.error();
-          img = comp.read_image();
+          auto r = render_image(frame(Method::full, kReferencePipeline, window->raw[k], heads[k]));
+          if (!r) return r.error();
+          img = std::move(*r);
           reference.push_back(sample(img));
         }
         for (std::size_t gi = 0; has_rmfr && gi < o.gazes.size(); ++gi) {
@@ -322,9 +323,9 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
             Samples cur;
             if (is_reference) cur = ref(k);
             else {
-              auto r = render_frame(frame(m, pipeline, foveae[k], heads[k]));
+              auto r = render_image(frame(m, pipeline, foveae[k], heads[k]));
               if (!r) return r.error();
-              cur = std::move(*r);
+              cur = sample(*r);
             }
             if (k > 0)
               accumulate({&prev, &ref(k - 1), &ideal_at(k - 1)}, {&cur, &ref(k), &ideal_at(k)}, foveae[k - 1], foveae[k], eye_w, eye_h, f_px, sums);
