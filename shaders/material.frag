@@ -11,6 +11,7 @@
 #include "common/gbuffer_encoding.glsl"
 #include "common/pattern.glsl"
 #else
+#include "common/anisotropic_filter.glsl"
 #include "common/material.glsl"
 #include "common/visibility_geometry.glsl"
 layout(binding = 5) uniform usampler2D u_ids;
@@ -31,7 +32,7 @@ vec2 g_dx[2], g_dy[2];
 vec4 sample_slot(sampler2D tex, int slot, vec2 uv) {
   mat2 m = mat2(u_uv_matrix[slot]);
   int set = u_uv_set[slot] == 1 ? 1 : 0;
-  return texture_footprint(tex, uv, m * g_dx[set], m * g_dy[set]);
+  return texture_anisotropic(tex, uv, m * g_dx[set], m * g_dy[set]);
 }
 #endif
 
@@ -67,7 +68,8 @@ void main() {
   vec2 ndc_per_pixel = 2.0 / u_screen_size;
   mat2 uv0_per_pixel = mat2(mix3(b.dx, v0.uv, v1.uv, v2.uv) * ndc_per_pixel.x, mix3(b.dy, v0.uv, v1.uv, v2.uv) * ndc_per_pixel.y);
   mat2 uv1_per_pixel = mat2(mix3(b.dx, v0.uv1, v1.uv1, v2.uv1) * ndc_per_pixel.x, mix3(b.dy, v0.uv1, v1.uv1, v2.uv1) * ndc_per_pixel.y);
-  mat2 g0 = uv0_per_pixel * footprint, g1 = uv1_per_pixel * footprint;
+  mat2 filtered = filter_footprint(footprint);
+  mat2 g0 = uv0_per_pixel * filtered, g1 = uv1_per_pixel * filtered;
   g_dx[0] = g0[0], g_dy[0] = g0[1], g_dx[1] = g1[0], g_dy[1] = g1[1];
 
   mat3 normal_matrix = mat3(d.normal_matrix[0].xyz, d.normal_matrix[1].xyz, d.normal_matrix[2].xyz);

@@ -76,11 +76,9 @@ mat2 texel_footprint(ivec2 texel) {
 }
 
 // A texture read filtered over a footprint of texture-coordinate steps dx, dy: one
-// trilinear tap at the GL specification's isotropic level of detail, through a sampler
-// without anisotropy (Scene::isotropic_samplers). Not textureGrad: llvmpipe ignores its
-// gradients on anisotropic samplers and takes the 2×2 quad's implicit ones, which in a
-// full-screen pass span unrelated texels; and in-shader anisotropic taps made the
-// material pass several times slower there (docs/rmfr.md).
+// trilinear tap at the GL specification's isotropic level of detail. The pattern variant
+// of the material pass reads its tile this way; scene materials take the anisotropic
+// filter of common/anisotropic_filter.glsl (docs/rmfr.md, "Texture filtering").
 vec4 texture_footprint(sampler2D tex, vec2 uv, vec2 dx, vec2 dy) {
   vec2 size = vec2(textureSize(tex, 0));
   float lod = log2(max(length(dx * size), length(dy * size)));

@@ -8,29 +8,16 @@
 # Usage: rmfr_example_test.sh BUILD_DIR SOURCE_DIR PYTHON3
 set -euo pipefail
 build=$1 src=$2 python=$3
-work=$(mktemp -d "${TMPDIR:-/tmp}/foveal-rmfr-example-XXXXXX")
-foveald_pid=""
-cleanup() {
-  if [[ -n $foveald_pid ]]; then kill "$foveald_pid" 2>/dev/null || true; wait "$foveald_pid" 2>/dev/null || true; fi
-  rm -rf "$work"
-}
-trap cleanup EXIT
-fail() { echo "rmfr_example_test: $*" >&2; exit 1; }
-show() { for f in "$@"; do [[ -s $f ]] && { echo "--- $f"; cat "$f"; }; done; return 0; }
-step() { echo "== $*"; }
+test_name=rmfr_example_test
+# shellcheck source=../support/prefix_test.sh
+source "$src/tests/support/prefix_test.sh"
 
-step "cmake --install --component sdk into a temporary prefix"
-prefix=$work/prefix
-cmake --install "$build" --component sdk --prefix "$prefix" > "$work/install.log" || { show "$work/install.log"; fail "install failed"; }
+install_sdk
 for f in include/foveal/rmfr.hpp include/foveal/rmfr_mapping.hpp include/foveal/core/error.hpp include/foveal/client.h; do
   [[ -f $prefix/$f ]] || fail "the prefix has no $f"
 done
 [[ -n $(find "$prefix" -path '*/foveal/rmfr/glsl/foveal/rmfr.glsl') ]] || fail "the prefix has no GLSL include files"
-so=$(find "$prefix" -name 'libfoveal-rmfr.so.*.*.*' | head -1)
-[[ -n $so ]] || fail "the prefix has no versioned libfoveal-rmfr.so"
-# (Outputs are captured first: with pipefail, `cmd | grep -q` fails when grep stops reading early.)
-dynamic=$(readelf -d "$so")
-grep -q 'SONAME.*libfoveal-rmfr\.so\.[0-9]' <<< "$dynamic" || fail "$so has no SONAME"
+check_soname libfoveal-rmfr
 # Only the library's own API is exported (foveal::image and core are linked in, hidden).
 leaked=$(nm -D --defined-only -C "$so" | grep ' foveal::' | grep -v ' foveal::rmfr::' || true)
 [[ -z $leaked ]] || { echo "$leaked" | head; fail "$so exports foveal symbols outside foveal::rmfr"; }
@@ -64,13 +51,7 @@ example=$work/ex/rmfr_deferred
 libs=$(ldd "$example")
 grep -q "$prefix.*libfoveal-rmfr" <<< "$libs" || { echo "$libs"; fail "the example does not load the prefix's libfoveal-rmfr"; }
 
-step "a live foveald (replay, --no-render) with its own block and control socket"
-export FOVEAL_SHM_NAME=/foveal-rmfr-example-$$
-export XDG_RUNTIME_DIR=$work/run XDG_CONFIG_HOME=$work/config
-mkdir -p "$XDG_RUNTIME_DIR" "$XDG_CONFIG_HOME"
-"$build/bin/foveald" --replay "$src/data/gaze/vive_pro_eye_TESTNA01.csv" --no-render --loop --end 12 --duration 120 -q \
-  --out "$work/out" > "$work/foveald.log" 2>&1 &
-foveald_pid=$!
+start_foveald 120
 
 render() {  # NAME ARGS...: one frame set, its JSON line kept as NAME.json
   local name=$1

@@ -87,10 +87,11 @@ const json kTextured = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index"
 const json kPlain = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.5, 0.3, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}}};
 
 // σ = 1 through the visibility pipeline (RMFR with the fovea anywhere) against the full
-// method, both pipelines. Against the G-buffer pipeline the bound is `gbuffer_db`: where
-// the G-buffer pass filters the scene's textures 8× anisotropically, the material pass
-// isotropically at its own level of detail (docs/rmfr.md): measured 55 dB on
-// WaterBottle, 34.6 dB on Dungeon (grazing floors), ~30 dB on the tilted textured quad;
+// method, both pipelines. Against the G-buffer pipeline the bound is `gbuffer_db`: the
+// G-buffer pass's reads are llvmpipe's 8× anisotropic (EWA) filter, the material pass's
+// its in-shader one (common/anisotropic_filter.glsl, docs/rmfr.md): measured 60.3 dB on
+// WaterBottle and 39.9 dB on Dungeon (grazing floors; 55.0 and 34.6 with the former
+// single isotropic tap, so the Dungeon bound fails without the anisotropic filter);
 // untextured and pattern scenes: exact.
 void expect_pipelines_agree(const std::string& spec, double gbuffer_db) {
   render::Compositor c = test::make_compositor(kW, kH);
@@ -121,8 +122,8 @@ TEST(Visibility, SigmaOneEqualsFull) {
   test::TempDir d;
   expect_pipelines_agree("pattern:noise@20", 60.0);
   expect_pipelines_agree(quad_model(d, "plain", kPlain), 60.0);
-  expect_pipelines_agree(test::source_path("data/scenes/WaterBottle/WaterBottle.gltf"), 30.0);
-  expect_pipelines_agree(test::source_path("data/scenes/Dungeon/dungeon_simplified.gltf"), 30.0);
+  expect_pipelines_agree(test::source_path("data/scenes/WaterBottle/WaterBottle.gltf"), 57.0);
+  expect_pipelines_agree(test::source_path("data/scenes/Dungeon/dungeon_simplified.gltf"), 37.0);
 }
 
 // Each kind of material renders alike in both pipelines, and each feature makes the

@@ -44,12 +44,13 @@ TEST(Window, CalibrationTakesAnswersFromTheKeyboard) {
   ASSERT_TRUE(have_x_tools());
   test::TempDir d;
   // Left-dominant Miles answers, then the slider and validation: the same answers as the
-  // scripted test "l l l same different s s s".
+  // scripted test "l l l same different s s s". The inner script's $ are escaped so that
+  // the inner shell, inside the X server, expands them (not the outer one).
   const std::string script =
       test::bin("foveal") + " calibrate --profile w --scene pattern:checker --json > " + d.path("out.json") + " 2> " +
-      d.path("err.txt") + " & P=$!; " +
-      "W=$(xdotool search --sync --name 'foveal calibrate' | head -1); sleep 0.5; xdotool windowfocus --sync $W; "
-      "xdotool key --delay 150 l l l s d s s s; wait $P";
+      d.path("err.txt") + " & P=\\$!; " +
+      "W=\\$(xdotool search --sync --name 'foveal calibrate' | head -1); sleep 0.5; xdotool windowfocus --sync \\$W; "
+      "xdotool key --delay 150 l l l s d s s s; wait \\$P";
   auto r = test::run("XDG_CONFIG_HOME=" + d.path() + " timeout 120 xvfb-run -a -s '-screen 0 1280x720x24' sh -c \"" + script + "\"");
   ASSERT_EQ(r.exit_code, 0) << r.err << test::read_file(d.path("err.txt"));
   const auto out = nlohmann::json::parse(test::read_file(d.path("out.json")));

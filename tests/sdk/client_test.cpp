@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -271,7 +272,7 @@ TEST(FovealClient, ReadersOnManyThreadsSeeOnlyWholeValues) {
   ASSERT_TRUE(writer);
   Opened o(name.c_str());
   ASSERT_NE(o.c, nullptr) << o.err.message;
-  std::atomic<bool> stop{false};
+  std::atomic<bool> stop{false}, published{false};
   std::thread w([&] {
     for (int i = 1; !stop.load(); ++i) {
       const float v = static_cast<float>(i % 100000);
@@ -280,8 +281,15 @@ TEST(FovealClient, ReadersOnManyThreadsSeeOnlyWholeValues) {
       writer->publish(f, 1440, 1600);
       writer->publish_settings({1.0 + i % 1000, 2.0 + i % 1000, 0.3, 0.3, 1, 0, static_cast<std::uint64_t>(i)});
       writer->heartbeat();
+      published = true;
+      // Flat out, but with a gap now and then: a writer that never pauses can leave a
+      // reader on a loaded 2-core machine overlapping a write on every try (BUSY).
+      if (i % 64 == 0) std::this_thread::sleep_for(std::chrono::microseconds(20));
     }
   });
+  // The readers start once the writer has published (on a loaded machine they could
+  // otherwise finish before its first write and see only NO_DATA).
+  while (!published.load()) std::this_thread::yield();
   std::atomic<int> torn{0}, reads{0};
   std::vector<std::thread> readers;
   for (int r = 0; r < 3; ++r)

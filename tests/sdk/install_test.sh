@@ -2,28 +2,18 @@
 # The SDK as an outside program meets it: install into a temporary prefix, build a C
 # program with pkg-config and a CMake project with find_package(foveal CONFIG), run both
 # and the installed Python module against a live foveald (replay of the bundled log,
-# --no-render), and change sigma_d under them with `foveal ctl set`.
+# --no-render), change sigma_d under them with `foveal ctl set`, and put a marker into
+# foveald's trace through the library.
 # Usage: install_test.sh BUILD_DIR SOURCE_DIR PYTHON3
 set -euo pipefail
 build=$1 src=$2 python=$3
-work=$(mktemp -d "${TMPDIR:-/tmp}/foveal-sdk-XXXXXX")
-foveald_pid=""
-cleanup() {
-  if [[ -n $foveald_pid ]]; then kill "$foveald_pid" 2>/dev/null || true; wait "$foveald_pid" 2>/dev/null || true; fi
-  rm -rf "$work"
-}
-trap cleanup EXIT
-fail() { echo "install_test: $*" >&2; exit 1; }
-show() { for f in "$@"; do [[ -s $f ]] && { echo "--- $f"; cat "$f"; }; done; return 0; }
-step() { echo "== $*"; }
+test_name=install_test
+# shellcheck source=../support/prefix_test.sh
+source "$src/tests/support/prefix_test.sh"
 
-step "cmake --install --component sdk into a temporary prefix"
-prefix=$work/prefix
-cmake --install "$build" --component sdk --prefix "$prefix" > "$work/install.log" || { show "$work/install.log"; fail "install failed"; }
+install_sdk
 for f in include/foveal/client.h; do [[ -f $prefix/$f ]] || fail "the prefix has no $f"; done
-so=$(find "$prefix" -name 'libfoveal-client.so.*.*.*' | head -1)
-[[ -n $so ]] || fail "the prefix has no versioned libfoveal-client.so"
-readelf -d "$so" | grep -q 'SONAME.*libfoveal-client\.so\.[0-9]' || fail "$so has no SONAME"
+check_soname libfoveal-client
 python_dir=$(dirname "$(find "$prefix" -path '*-packages/foveal/__init__.py')")
 python_dir=$(dirname "$python_dir")
 cp -r "$src/tests/sdk/consumers" "$work/src"  # the consumers build outside the source tree
@@ -41,13 +31,7 @@ cmake -S "$work/src/cmake" -B "$work/cmake-build" -G Ninja -DCMAKE_PREFIX_PATH="
   > "$work/cmake.log" 2>&1 || { show "$work/cmake.log"; fail "the CMake consumer does not configure"; }
 cmake --build "$work/cmake-build" > "$work/cmake-build.log" 2>&1 || { show "$work/cmake-build.log"; fail "the CMake consumer does not build"; }
 
-step "a live foveald (replay, --no-render) with its own block and control socket"
-export FOVEAL_SHM_NAME=/foveal-sdk-test-$$
-export XDG_RUNTIME_DIR=$work/run XDG_CONFIG_HOME=$work/config
-mkdir -p "$XDG_RUNTIME_DIR" "$XDG_CONFIG_HOME"
-"$build/bin/foveald" --replay "$src/data/gaze/vive_pro_eye_TESTNA01.csv" --no-render --loop --end 12 --duration 90 -q \
-  --out "$work/out" > "$work/foveald.log" 2>&1 &
-foveald_pid=$!
+start_foveald 90
 
 # NAME BINARY SIGMA_D: the consumer reads a fovea and says "ready"; then sigma_d changes.
 run_consumer() {
@@ -67,7 +51,7 @@ run_consumer() {
 run_consumer c "$work/consumer_c" 2.5
 run_consumer cmake "$work/cmake-build/consumer_cpp" 2.25
 
-step "the installed Python module: live fovea and settings"
+step "the installed Python module: live fovea, settings and a marker"
 PYTHONPATH=$python_dir "$python" - "$prefix" <<'EOF' || fail "the installed Python module failed"
 import math, sys, foveal
 assert foveal.library_path().startswith(sys.argv[1]), foveal.library_path()  # the prefix's library, found by itself
@@ -78,6 +62,20 @@ for e in (0, 1):
     assert math.isfinite(f.x[e]) and 0 <= f.x[e] <= f.eye_width and 0 <= f.y[e] <= f.eye_height, f
 assert s.sigma_d == 2.25, s
 print(f"  python: frame {f.frame} left ({f.x[0]:.1f}, {f.y[0]:.1f}) sigma_d {s.sigma_d} generation {s.generation}")
+t_ns = foveal.mark("sdk: a marker from python")    # through libfoveal-client to the control socket
+assert t_ns > 0, t_ns
+for bad, code in (("two\nlines", foveal.INVALID_ARGUMENT), ("", foveal.INVALID_ARGUMENT)):
+    try:
+        foveal.mark(bad)
+        sys.exit(f"mark({bad!r}) was taken")
+    except foveal.ClientError as e:
+        assert e.code == code, e
+try:
+    foveal.mark("nobody", socket=sys.argv[1] + "/no.sock")
+    sys.exit("a mark to a missing socket was taken")
+except foveal.ClientError as e:
+    assert e.code == foveal.NO_WRITER and "no.sock" in str(e), e
+print(f"  python: marker at {t_ns} ns")
 EOF
 
 step "foveald stops: clients are told"
@@ -94,6 +92,7 @@ except foveal.ClientError as e:
     print(f"  python: {e}")
 t = foveal.read_trace(sys.argv[1])
 assert len(t) > 10 and (t["t_ns"][1:] > t["t_ns"][:-1]).all(), len(t)
-print(f"  python: trace {len(t)} samples")
+assert [m for m in t.markers if m[1] == "sdk: a marker from python"], t.markers
+print(f"  python: trace {len(t)} samples, markers {t.markers}")
 EOF
 echo "install_test: all passed"

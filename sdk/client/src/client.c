@@ -235,6 +235,8 @@ const char *foveal_error_message(int code) {
     case FOVEAL_ERR_NO_DATA: return "foveald has published no fovea yet";
     case FOVEAL_ERR_BUSY: return "every try overlapped a write; try again";
     case FOVEAL_ERR_SYSTEM: return "a system call failed";
+    case FOVEAL_ERR_REFUSED: return "foveald refused the request";
+    case FOVEAL_ERR_TIMEOUT: return "foveald did not answer in time";
     default: return "unknown error code";
   }
 }

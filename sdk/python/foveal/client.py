@@ -5,7 +5,8 @@ from dataclasses import dataclass
 from typing import Optional, Tuple
 
 # enum foveal_error_code
-INVALID_ARGUMENT, NO_WRITER, WRONG_VERSION, DEAD_WRITER, NOT_FOVEALDS, NO_DATA, BUSY, SYSTEM = range(1, 9)
+(INVALID_ARGUMENT, NO_WRITER, WRONG_VERSION, DEAD_WRITER, NOT_FOVEALDS, NO_DATA, BUSY, SYSTEM, REFUSED,
+ TIMEOUT) = range(1, 11)
 # enum foveal_fovea_state
 FIXATION, SACCADE, PURSUIT, BLINK, LOST = range(5)
 
@@ -97,6 +98,9 @@ def _library():
         lib.foveal_client_settings.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Settings)]
         lib.foveal_client_close.restype = None
         lib.foveal_client_close.argtypes = [ctypes.c_void_p]
+        lib.foveal_client_mark.restype = ctypes.c_int
+        lib.foveal_client_mark.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_int,
+                                           ctypes.POINTER(ctypes.c_int64), ctypes.POINTER(_Error)]
         lib.foveal_error_message.restype = ctypes.c_char_p
         lib.foveal_error_message.argtypes = [ctypes.c_int]
         _lib, _lib_path = lib, path
@@ -109,6 +113,22 @@ def library_path() -> str:
     """The libfoveal-client this module loaded (loading it if need be)."""
     _library()
     return _lib_path
+
+
+def mark(text: str, socket: Optional[str] = None, timeout_ms: int = 1000) -> int:
+    """Puts an event marker into foveald's trace (and a `foveal record --control` recording
+    in progress), as `foveal ctl mark TEXT`. socket: a control socket's path, or None for
+    the defaults. Returns the marker's CLOCK_MONOTONIC time in ns as foveald stamped it.
+    Raises ClientError: INVALID_ARGUMENT (empty, over 256 bytes, not one printable line),
+    NO_WRITER (foveald not running), NOT_FOVEALDS, REFUSED (foveald's reason), TIMEOUT."""
+    lib = _library()
+    err = _Error()
+    t_ns = ctypes.c_int64(0)
+    code = lib.foveal_client_mark(socket.encode() if socket is not None else None, text.encode(), timeout_ms,
+                                  ctypes.byref(t_ns), ctypes.byref(err))
+    if code != 0:
+        raise ClientError(code, err.message.decode(errors="replace"))
+    return t_ns.value
 
 
 class Client:

@@ -3,7 +3,8 @@
  * foveald publishes the latest per-eye fovea and the active profile's settings in a
  * shared-memory block (docs/fovea-shm.md). This library maps the block and reads it
  * with the block's seqlock protocol: a read never blocks foveald or the caller, takes
- * no lock, allocates nothing and makes no system call.
+ * no lock, allocates nothing and makes no system call. It also sends event markers to
+ * foveald's control socket (foveal_client_mark), the one call that talks to foveald.
  *
  * C11 and C++ (any standard) use the same header. Link with
  * `pkg-config --cflags --libs foveal-client` or, in CMake,
@@ -37,7 +38,9 @@ enum foveal_error_code {
   FOVEAL_ERR_NOT_FOVEALDS = 5,     /* the block is readable or writable by other users: not one foveald made */
   FOVEAL_ERR_NO_DATA = 6,          /* foveald runs but has published no fovea yet (waiting for its tracker) */
   FOVEAL_ERR_BUSY = 7,             /* every try overlapped a write (practically never): try again */
-  FOVEAL_ERR_SYSTEM = 8            /* an operating-system call failed; the message says which */
+  FOVEAL_ERR_SYSTEM = 8,           /* an operating-system call failed; the message says which */
+  FOVEAL_ERR_REFUSED = 9,          /* foveald answered a request with an error; the message is its reason */
+  FOVEAL_ERR_TIMEOUT = 10          /* foveald did not answer in time */
 };
 
 /* Fovea states (foveal_fovea.state). */
@@ -109,6 +112,28 @@ FOVEAL_CLIENT_API int foveal_client_settings(foveal_client *c, foveal_settings *
 /* Unmaps the block and frees the client. NULL is allowed (nothing happens).
  * Thread safety: no other call may use c at the same time or after. */
 FOVEAL_CLIENT_API void foveal_client_close(foveal_client *c);
+
+/* Puts a timestamped event marker ("trial 3 start") into foveald's trace, as
+ * `foveal ctl mark TEXT` does (docs/daemon.md, "Markers"): foveald stamps it on arrival,
+ * on the gaze samples' clock, and writes it as its own row before the next sample.
+ *
+ * socket_or_null: a control socket's path, or NULL for the defaults: foveald's
+ *   ($XDG_RUNTIME_DIR/foveal/control.sock, else /tmp/foveal-<uid>/control.sock) and, when
+ *   present beside it, a `foveal record --control` in progress (record.sock), which writes
+ *   the marker into its recording too. With NULL it succeeds when either takes it.
+ * text: 1 to 256 bytes of printable text, one line (no control characters).
+ * timeout_ms: how long to wait for each reply; 0 or less means 1000.
+ * t_ns_out: when not NULL, the marker's CLOCK_MONOTONIC time as foveald stamped it.
+ * err: filled on failure when not NULL; left alone on success.
+ * Returns FOVEAL_OK, or INVALID_ARGUMENT (text NULL, empty, too long or not one printable
+ *   line), NO_WRITER (nobody listens: is foveald running?), NOT_FOVEALDS (the socket is
+ *   served by another user), REFUSED (foveald said no, e.g. too many markers waiting for
+ *   the next sample), TIMEOUT, SYSTEM.
+ * Blocking: one connection and one round trip per socket, at most timeout_ms each; not
+ *   for a render loop's hot path. Needs no client (it talks to the control socket, not
+ *   the shared block). Thread safety: any thread, any number at once. */
+FOVEAL_CLIENT_API int foveal_client_mark(const char *socket_or_null, const char *text, int timeout_ms, int64_t *t_ns_out,
+                                         foveal_error *err);
 
 /* A static English message for an error code ("no foveald publishes there", ...);
  * never NULL. Thread safety: any thread. */
