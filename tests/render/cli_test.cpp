@@ -152,24 +152,6 @@ TEST(FovealdRender, HeadlessReplayRendersFramesAndASummary) {
   EXPECT_TRUE(image::load(d.path("out/frame_000003.png")));
 }
 
-TEST(BenchCli, FlickerOfRmfrIsLowerWithTheGazeFilter) {
-  test::TempDir d;
-  auto r = test::run(test::bin("foveal") + " bench --scene pattern:noise --methods rmfr --sigmas 2 --size 320x180 --frames 1 "
-                     "--flicker --flicker-frames 24 --grid-sigma 2.6 --no-png --out " + d.path("b"));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::string csv = test::read_file(d.path("b/flicker.csv"));
-  auto value = [&](const std::string& key) {
-    const auto at = csv.find(key);
-    EXPECT_NE(at, std::string::npos) << key;
-    return at == std::string::npos ? NAN : std::stod(csv.substr(csv.rfind(',', csv.find('\n', at)) + 1));
-  };
-  const double raw = value("rmfr,2.6,raw"), filtered = value("rmfr,2.6,filtered");
-  EXPECT_GT(raw, 0.0);
-  EXPECT_LT(filtered, raw);
-  EXPECT_EQ(value("full,1,raw"), 0.0);  // a static scene at full rate does not flicker
-  EXPECT_NE(test::read_file(d.path("b/bench.csv")).find("rmfr,2,"), std::string::npos);
-}
-
 TEST(FovealdSoak, FiveMinutesOfGazeAtSpeed100KeepMemoryAndDescriptorsFlat) {
   // The short version of the soak (docs/stability.md has the one-hour command).
   test::TempDir d;

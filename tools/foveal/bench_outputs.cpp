@@ -93,6 +93,7 @@ int write_outputs(const std::string& dir, const SweepRows& rows, nlohmann::json 
     auto autos = auto_f_results(rows);
     if (!autos) return fail(autos.error());
     summary["auto_f"] = std::move(*autos);
+    if (nlohmann::json flicker = rows.list("flicker"); !flicker.empty()) summary["flicker"] = std::move(flicker);  // bench_flicker.cpp
   }
   if (Status s = make_dir(dir); !s) return fail(s.error());
   if (Status s = write_tables(dir, rows); !s) return fail(s.error());

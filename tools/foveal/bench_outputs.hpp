@@ -16,7 +16,8 @@ namespace foveal::bench {
 nlohmann::json json_number(double v);
 
 /// What a sweep writes besides its tables, by kind (the table in bench_outputs.cpp):
-/// "bench" (bench.json with the list "rows" and the automatic-f results, bench_charts.py),
+/// "bench" (bench.json with the list "rows", the automatic-f results and, with --flicker,
+/// the list "flicker"; bench_charts.py),
 /// "gaze" (`--gaze`: gaze.json with the list "rows", gaze_charts.py).
 /// `summary`: the run's facts besides the rows (renderer, size, peak RSS, settings).
 /// Writes every table, then the JSON (summary + rows), then the charts unless `charts`

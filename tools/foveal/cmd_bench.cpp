@@ -14,14 +14,12 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bench_flicker.hpp"
 #include "bench_outputs.hpp"
 #include "bench_sweep.hpp"
 #include "bench_gaze.hpp"
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
-#include "foveal/core/data_paths.hpp"
-#include "foveal/core/gaze_log.hpp"
-#include "foveal/runtime/gaze_pipeline.hpp"
 #include "foveal/image/auto_f.hpp"
 #include "foveal/image/metrics.hpp"
 #include "foveal/render/egl_context.hpp"
@@ -51,6 +49,9 @@ struct Args {
   bool f_grid = false, rotation = false, stability = false, flicker = false, no_png = false, json = false;
   std::string flicker_log;  ///< empty: the bundled recording
   int flicker_frames = 48;
+  std::string camera_paths = "static", flicker_gaze = "raw,filtered", flicker_pipelines;  ///< bench_flicker.hpp
+  std::optional<double> camera_pivot, flicker_sigma_nd;
+  bool camera_fill = false;
   double grid_sigma = 2.0;
   std::string grid_values = "0.1:0.5:0.05";
   std::string shard;  ///< K/N; empty: the whole sweep
@@ -136,85 +137,6 @@ image::MetricsOptions metric_options(const render::Compositor& c, std::pair<doub
   return o;
 }
 
-// Temporal stability: a static scene, the fovea following a real recording sample by
-// sample (raw gaze, or through the gaze filter), one frame per sample. Flicker is the
-// mean absolute frame-to-frame change of R, G, B (8-bit units) over the periphery:
-// pixels more than 15° from both frames' foveae (docs/stability.md).
-Status flicker(const Args& a, render::Compositor& comp, Bench& bench, const std::vector<Method>& methods,
-              const std::string& spec, bench::SweepRows& rows) {
-  auto scene = render::load_scene(spec);
-  if (!scene) return scene.error();
-  auto samples = read_gaze_log(a.flicker_log.empty() ? data_path("data/gaze/vive_pro_eye_TESTNA01.csv") : a.flicker_log);
-  if (!samples) return samples.error();
-  const DisplayModel model = DisplayModel::vive_pro_eye();
-  // Fovea sequences in normalised coordinates: raw (each sample's own direction) and filtered.
-  std::vector<std::array<glm::dvec2, 2>> raw, filtered;
-  GazePipeline pipe(model, FilterConfig{});
-  std::array<glm::dvec2, 2> last_raw{glm::dvec2(0.5), glm::dvec2(0.5)};
-  const glm::dvec2 eye_size(model.eye_width, model.eye_height);
-  for (const GazeSample& g : *samples) {
-    const FoveaFrame f = pipe.update(g);
-    std::array<glm::dvec2, 2> r = last_raw, q{};
-    for (Eye e : kEyes) {
-      const std::size_t i = static_cast<std::size_t>(e);
-      if (g.eyes[i].has(kValidDirection)) {
-        const glm::vec2 px = model.direction_to_pixel(e, g.eyes[i].direction);
-        if (std::isfinite(px.x) && std::isfinite(px.y))
-          r[i] = glm::clamp(glm::dvec2(px) / eye_size, 0.0, 1.0);
-      }
-      q[i] = glm::dvec2(f.eyes[i].px) / eye_size;
-    }
-    last_raw = r;
-    raw.push_back(r);
-    filtered.push_back(q);
-  }
-  // A window a second in, after the filter has settled.
-  const std::size_t start = std::min<std::size_t>(120, raw.size() > 2 ? raw.size() - 2 : 0);
-  const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(a.flicker_frames), raw.size() - start);
-  if (n < 2) return bad_input("--flicker: the gaze log is too short");
-  const int eye_w = comp.width() / 2, eye_h = comp.height();
-  const double ppd = comp.plan(Eye::left).screen_w > 0 ? comp.plan(Eye::left).pixels_per_degree() : 13.15 * eye_w / 1440.0;
-  const double f_px = image::focal_length_px(ppd);
-  std::vector<Method> all = {Method::full};
-  all.insert(all.end(), methods.begin(), methods.end());
-  for (Method m : all)
-    for (const auto* seq : {&raw, &filtered}) {
-      if (!rows.take()) continue;
-      image::Image prev;
-      std::array<glm::dvec2, 2> prev_f{};
-      double change = 0, step = 0;
-      std::size_t count = 0;
-      for (std::size_t k = 0; k < n; ++k) {
-        const auto& fv = (*seq)[start + k];
-        render::FrameParams p = uniform_frame(m, a.grid_sigma, a.fx, a.fy, {0.5, 0.5});
-        for (std::size_t i = 0; i < 2; ++i) p.eyes[i].fovea_x = fv[i].x, p.eyes[i].fovea_y = fv[i].y;
-        p.pipeline = a.pipeline_kind;
-        auto r = comp.render(*scene, p);
-        if (!r) return r.error();
-        image::Image img = comp.read_image();
-        if (k > 0) {
-          for (std::size_t i = 0; i < 2; ++i) step += glm::length((fv[i] - prev_f[i]) * glm::dvec2(eye_w, eye_h)) / 2;
-          for (int y = 0; y < eye_h; y += 2)
-            for (int x = 0; x < 2 * eye_w; x += 2) {
-              const std::size_t e = x < eye_w ? 0 : 1;
-              const double px = (x % eye_w) + 0.5 - eye_w / 2.0, py = y + 0.5 - eye_h / 2.0;
-              auto ecc = [&](glm::dvec2 g) { return image::eccentricity_deg(px, py, g.x * eye_w - eye_w / 2.0, g.y * eye_h - eye_h / 2.0, f_px); };
-              if (ecc(fv[e]) < 15 || ecc(prev_f[e]) < 15) continue;
-              for (int c = 0; c < 3; ++c) change += std::abs(int(img.at(x, y)[c]) - int(prev.at(x, y)[c]));
-              count += 3;
-            }
-        }
-        prev = std::move(img);
-        prev_f = fv;
-      }
-      bench.tick();
-      rows.add_line("flicker.csv", std::filesystem::path(spec).stem().string() + "," + render::method_name(m) + "," +
-                                       num(m == Method::full ? 1.0 : a.grid_sigma) + "," + (seq == &raw ? "raw" : "filtered") + "," +
-                                       std::to_string(n) + "," + num(step / double(n - 1)) + "," + num(count ? change / double(count) : 0.0));
-    }
-  return {};
-}
-
 // `sweep`: the options that define the grid, which every shard of one sweep shares.
 int run(const Args& a, const std::string& sweep) {
   auto fail = [](const Error& e) { return cli::report(e); };
@@ -246,6 +168,21 @@ int run(const Args& a, const std::string& sweep) {
   auto shard = bench::parse_shard(a.shard.empty() ? "1/1" : a.shard);
   if (!shard) return fail(shard.error());
   const std::vector<std::string> scenes = a.scenes.empty() ? std::vector<std::string>{default_scene()} : a.scenes;
+  FlickerOptions fo;
+  if (a.flicker) {
+    auto cameras = parse_camera_paths(a.camera_paths);
+    if (!cameras) return fail(cameras.error());
+    auto gazes = parse_flicker_gazes(a.flicker_gaze);
+    if (!gazes) return fail(gazes.error());
+    auto pipelines = parse_flicker_pipelines(a.flicker_pipelines, a.pipeline_kind);
+    if (!pipelines) return fail(pipelines.error());
+    if (a.flicker_sigma_nd && !(*a.flicker_sigma_nd >= 1 && std::isfinite(*a.flicker_sigma_nd)))
+      return fail(bad_input("--flicker-sigma-nd: the level must be a number >= 1, got " + num(*a.flicker_sigma_nd)));
+    if (a.camera_pivot && !(*a.camera_pivot > 0 && std::isfinite(*a.camera_pivot)))
+      return fail(bad_input("--camera-pivot: expected a distance in metres > 0, got " + num(*a.camera_pivot)));
+    fo = {.log = a.flicker_log, .frames = a.flicker_frames, .sigma = a.grid_sigma, .fx = a.fx, .fy = a.fy, .sigma_nd = a.flicker_sigma_nd.value_or(0),
+          .fovea = *fovea, .cameras = *cameras, .pivot_m = a.camera_pivot.value_or(0), .fill = a.camera_fill, .gazes = *gazes, .pipelines = *pipelines};
+  }
   if (!a.gaze.logs.empty()) {
     if (a.f_grid || a.rotation || a.stability || a.flicker)
       return fail(bad_input("--gaze runs on its own: drop --f-grid, --rotation, --stability and --flicker"));
@@ -265,7 +202,7 @@ int run(const Args& a, const std::string& sweep) {
 
   const std::uint64_t per_scene = 1 + methods.size() * sigmas->size() + (a.f_grid ? grid->size() * grid->size() + 1 : 0);
   const std::uint64_t total = per_scene * scenes.size() + (a.rotation ? 19 * (1 + methods.size()) : 0) +
-                              (a.stability ? 1 + 22 * methods.size() : 0) + (a.flicker ? 2 * (1 + methods.size()) : 0);
+                              (a.stability ? 1 + 22 * methods.size() : 0) + (a.flicker ? flicker_points(fo, methods.size()) * scenes.size() : 0);
   cli::Progress progress("bench", total / static_cast<std::uint64_t>(shard->n), !a.json);
   Bench bench(a, *comp, progress);
 
@@ -277,7 +214,7 @@ int run(const Args& a, const std::string& sweep) {
   if (a.f_grid) rows.table("fgrid.csv", "scene,sigma,fx,fy,fpsnr_db,psnr_db,ssim");
   if (a.rotation) rows.table("rotation.csv", "angle_deg,method,sigma,fpsnr_db,psnr_db,ssim");
   if (a.stability) rows.table("stability.csv", "scene,path,t,fovea_x,fovea_y,method,sigma,patch_psnr_db,fpsnr_db");
-  if (a.flicker) rows.table("flicker.csv", "scene,method,sigma,gaze,frames,fovea_step_px,periphery_change");
+  if (a.flicker) rows.table("flicker.csv", kFlickerColumns);
   const double full_samples = static_cast<double>(co.width) * co.height;
   for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index) {
     const std::string& spec = scenes[scene_index];
@@ -415,7 +352,8 @@ int run(const Args& a, const std::string& sweep) {
       }
   }
   if (a.flicker)
-    if (Status s = flicker(a, *comp, bench, methods, scenes.front(), rows); !s) return fail(s.error());
+    for (const std::string& spec : scenes)
+      if (Status s = run_flicker(fo, *comp, methods, spec, rows, [&] { bench.tick(); }); !s) return fail(s.error());
   progress.finish();
 
   rusage ru{};
@@ -463,9 +401,23 @@ void add_bench(CLI::App& app, int& exit_code) {
   sub->add_option("--grid-values", a->grid_values, "f values of the grid")->capture_default_str();
   sub->add_option("--grid-sigma", a->grid_sigma, "Level of the grid and rotation experiments")->capture_default_str();
   sub->add_flag("--rotation", a->rotation, "Also: rotated stripes 0-180 degrees, FPSNR per method");
-  sub->add_flag("--flicker", a->flicker, "Also: periphery flicker under real gaze jitter, raw and filtered gaze, per method");
-  sub->add_option("--flicker-log", a->flicker_log, "Gaze log for --flicker (default: the bundled recording)");
-  sub->add_option("--flicker-frames", a->flicker_frames, "Frames per flicker run")->capture_default_str()->check(CLI::Range(2, 10000));
+  CLI::Option* flicker = sub->add_flag("--flicker", a->flicker,
+                "Also, on every scene: periphery flicker against the full reference, the fovea on real gaze (raw, filtered) or fixed, "
+                "the camera still or moving, per method and pipeline (docs/stability.md)");
+  for (CLI::Option* o : {
+      sub->add_option("--flicker-log", a->flicker_log, "Gaze log for --flicker (default: the bundled recording)"),
+      sub->add_option("--flicker-frames", a->flicker_frames, "Frames per flicker run (one per gaze sample)")->capture_default_str()->check(CLI::Range(2, 10000)),
+      sub->add_option("--flicker-sigma-nd", a->flicker_sigma_nd,
+                      "EFR for --flicker: the left (non-dominant) eye's level; the right eye's is --grid-sigma (default: the same)"),
+      sub->add_option("--flicker-gaze", a->flicker_gaze, "Comma list: raw, filtered (the gaze filter's), fixed (at --fovea)")->capture_default_str(),
+      sub->add_option("--flicker-pipelines", a->flicker_pipelines, "Comma list of pipelines for --flicker (default: --pipeline); the reference is always full through gbuffer"),
+      sub->add_option("--camera-path", a->camera_paths,
+                      "Comma list: static, orbit[:DEG_PER_S] (about a pivot ahead, +-20 deg, default 30 deg/s), dolly[:M_PER_S] (towards the "
+                      "pivot and back, half its distance, default a quarter of it per second), recorded (the log's head pose)")
+          ->capture_default_str(),
+      sub->add_option("--camera-pivot", a->camera_pivot, "Pivot distance ahead of the head, metres (default: from the scene's bounds)"),
+      sub->add_flag("--camera-fill", a->camera_fill, "Start the camera where the scene's bounding sphere fills the view (object scenes)")})
+    o->needs(flicker);
   sub->add_flag("--stability", a->stability, "Also: fovea from the centre to a corner and to a border, patch PSNR and FPSNR per method");
   add_gaze_bench_options(*sub, a->gaze);
   sub->add_option("--shard", a->shard, "Run only the K-th of N disjoint parts of the sweep (K/N); merge with `bench merge`");

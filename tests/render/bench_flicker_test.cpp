@@ -1,0 +1,134 @@
+// foveal bench --flicker from the command line (real EGL rendering): the gaze filter
+// lowers RMFR's flicker under gaze jitter; a moving camera changes the reference's frames
+// and both pipelines get their figures against it; bad input (docs/stability.md).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.hpp"
+
+using namespace foveal;
+
+namespace {
+
+using Row = std::map<std::string, std::string>;
+
+std::vector<Row> read_csv(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  std::vector<std::string> header;
+  std::vector<Row> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::istringstream l(line);
+    for (std::string c; std::getline(l, c, ',');) cells.push_back(c);
+    if (line.back() == ',') cells.emplace_back();
+    if (header.empty()) {
+      header = cells;
+      continue;
+    }
+    Row r;
+    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) r[header[i]] = cells[i];
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+// The row of pipeline × camera × method × gaze (an empty row and a failure when missing).
+const Row& find(const std::vector<Row>& rows, const std::string& pipeline, const std::string& camera, const std::string& method,
+                const std::string& gaze) {
+  static const Row none;
+  for (const Row& r : rows)
+    if (r.at("pipeline") == pipeline && r.at("camera") == camera && r.at("method") == method && r.at("gaze") == gaze) return r;
+  ADD_FAILURE() << "no row " << pipeline << "/" << camera << "/" << method << "/" << gaze;
+  return none;
+}
+
+double value(const Row& r, const std::string& key) { return r.count(key) && !r.at(key).empty() ? std::stod(r.at(key)) : NAN; }
+
+TEST(BenchFlicker, RmfrFlickersLessWithTheGazeFilter) {
+  test::TempDir d;
+  auto r = test::run(test::bin("foveal") + " bench --scene pattern:noise --methods rmfr --sigmas 2 --size 320x180 --frames 1 "
+                     "--flicker --flicker-frames 24 --grid-sigma 2.6 --no-png --out " + d.path("b"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = read_csv(test::read_file(d.path("b/flicker.csv")));
+  ASSERT_EQ(rows.size(), 4u);  // full and rmfr × raw and filtered; the still camera and the G-buffer pipeline by default
+  const double raw = value(find(rows, "gbuffer", "static", "rmfr", "raw"), "flicker");
+  const double filtered = value(find(rows, "gbuffer", "static", "rmfr", "filtered"), "flicker");
+  EXPECT_GT(raw, 0.0);
+  EXPECT_LT(filtered, raw);
+  EXPECT_EQ(value(find(rows, "gbuffer", "static", "full", "raw"), "flicker"), 0.0);  // a static scene at full rate does not flicker
+  for (const Row& row : rows) {
+    // A still camera: the reference never changes, so flicker is the frames' own change.
+    EXPECT_EQ(value(row, "reference_change"), 0.0);
+    EXPECT_EQ(row.at("flicker"), row.at("periphery_change"));
+  }
+  EXPECT_NE(test::read_file(d.path("b/bench.csv")).find("rmfr,2,"), std::string::npos);
+}
+
+TEST(BenchFlicker, AMovingCameraChangesTheFramesAndBothPipelinesAreScored) {
+  test::TempDir d;
+  const std::string scene = test::source_path("data/scenes/WaterBottle/WaterBottle.gltf");
+  auto r = test::run(test::bin("foveal") + " bench --scene " + scene + " --methods rmfr --sigmas 2 --size 192x108 --frames 1 "
+                     "--warmup 0 --flicker --flicker-frames 4 --grid-sigma 2 --flicker-sigma-nd 3 --camera-path static,orbit:600 "
+                     "--camera-fill --flicker-gaze fixed --flicker-pipelines gbuffer,visibility --no-png --json --out " + d.path("b"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = read_csv(test::read_file(d.path("b/flicker.csv")));
+  EXPECT_EQ(rows.size(), 8u);  // 2 cameras × 2 pipelines × (full, rmfr) × fixed gaze
+  for (const char* pipeline : {"gbuffer", "visibility"})
+    for (const char* method : {"full", "rmfr"}) {
+      // Still camera and fixed fovea: nothing moves, nothing changes.
+      const Row& still = find(rows, pipeline, "static", method, "fixed");
+      EXPECT_EQ(value(still, "periphery_change"), 0.0) << pipeline << " " << method;
+      EXPECT_EQ(value(still, "flicker"), 0.0) << pipeline << " " << method;
+      // The orbit moves the reference and the frames; each pipeline gets its figure.
+      const Row& orbit = find(rows, pipeline, "orbit:600", method, "fixed");
+      EXPECT_GT(value(orbit, "reference_change"), 0.5) << pipeline << " " << method;
+      EXPECT_GT(value(orbit, "periphery_change"), 0.5) << pipeline << " " << method;
+      EXPECT_EQ(value(orbit, "sigma_nd"), std::string(method) == "full" ? 1.0 : 3.0);
+      const double flicker = value(orbit, "flicker");
+      EXPECT_TRUE(std::isfinite(flicker) && flicker >= 0) << pipeline << " " << method;
+      // Only RMFR has a prefiltered reference (image-space RMFR of the reference).
+      const double pre = value(orbit, "prefiltered_flicker");
+      if (std::string(method) == "rmfr") EXPECT_TRUE(std::isfinite(pre) && pre > 0) << pipeline;
+      else EXPECT_TRUE(std::isnan(pre)) << pipeline;
+    }
+  // The reference is full through the G-buffer pipeline: its own row has no flicker; the
+  // foveated frames, which differ from it, do.
+  EXPECT_EQ(value(find(rows, "gbuffer", "orbit:600", "full", "fixed"), "flicker"), 0.0);
+  EXPECT_GT(value(find(rows, "gbuffer", "orbit:600", "rmfr", "fixed"), "flicker"), 0.0);
+  EXPECT_GT(value(find(rows, "visibility", "orbit:600", "rmfr", "fixed"), "flicker"), 0.0);
+  // --json lists the same rows.
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["flicker"].size(), 8u);
+  EXPECT_EQ(j["flicker"][0]["camera"], "static");
+  EXPECT_TRUE(j["flicker"][0]["prefiltered_flicker"].is_null());  // full
+}
+
+TEST(BenchFlicker, BadInputExitsTwoNamingTheOptionAndWritesNothing) {
+  test::TempDir d;
+  const std::string base = test::bin("foveal") + " bench --scene pattern:noise --methods rmfr --sigmas 2 --size 64x36 --frames 1 ";
+  auto expect_bad = [&](const std::string& args, const std::string& message) {
+    auto r = test::run(base + args + " --no-png --out " + d.path("b"));
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(d.path("b/flicker.csv"))) << args;
+  };
+  expect_bad("--flicker --camera-path spin", "--camera-path: 'spin'");
+  expect_bad("--flicker --camera-path orbit:-2", "--camera-path: 'orbit:-2': the speed '-2'");
+  expect_bad("--flicker --flicker-gaze raw,sideways", "--flicker-gaze: 'sideways'");
+  expect_bad("--flicker --flicker-pipelines gbuffer,gbuffer", "--flicker-pipelines: 'gbuffer' is listed twice");
+  expect_bad("--flicker --camera-pivot 0", "--camera-pivot");
+  expect_bad("--flicker --flicker-sigma-nd 0.5", "--flicker-sigma-nd");
+  expect_bad("--camera-path orbit", "--camera-path requires --flicker");
+  // A log without head poses cannot drive the recorded camera.
+  ASSERT_EQ(test::run(test::bin("foveal") + " synth --seed 3 --duration 3 --out " + d.path("g.csv")).exit_code, 0);
+  expect_bad("--flicker --flicker-frames 3 --camera-path recorded --flicker-log " + d.path("g.csv"), d.path("g.csv") + " has no head pose");
+}
+
+}  // namespace

@@ -1,0 +1,56 @@
+#pragma once
+// foveal bench --flicker: temporal stability of each method and pipeline in the
+// periphery, with the fovea following a real recording (or fixed) and the camera still or
+// moving along a path (camera_path.hpp). Flicker is the frame-to-frame change that the
+// full-resolution reference, rendered along the same path, does not have
+// (docs/stability.md, "Temporal stability").
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bench_sweep.hpp"
+#include "camera_path.hpp"
+#include "foveal/core/error.hpp"
+#include "foveal/render/compositor.hpp"
+
+namespace foveal::cmd {
+
+/// Where the fovea is in a flicker run: each sample's raw gaze, the gaze filter's output,
+/// or fixed at --fovea.
+enum class FlickerGaze { raw, filtered, fixed };
+const char* flicker_gaze_name(FlickerGaze g);
+
+struct FlickerOptions {
+  std::string log;  ///< gaze log; empty: the bundled recording
+  int frames = 48;
+  double sigma = 2.0, fx = 0.3, fy = 0.3;  ///< sigma: the dominant (right) eye's
+  double sigma_nd = 0;  ///< the other eye's (EFR); 0: sigma
+  std::pair<double, double> fovea{0.5, 0.5};  ///< FlickerGaze::fixed's
+  std::vector<CameraPath> cameras{CameraPath{}};
+  double pivot_m = 0;  ///< > 0: the orbit's and dolly's pivot distance; 0: default_pivot_m
+  bool fill = false;   ///< start where the scene's bounding sphere fills the view
+  std::vector<FlickerGaze> gazes{FlickerGaze::raw, FlickerGaze::filtered};
+  std::vector<render::Pipeline> pipelines{render::Pipeline::gbuffer};
+};
+
+/// The parsed form of the comma lists `--camera-path`, `--flicker-gaze` and
+/// `--flicker-pipelines` (empty: `fallback`); errors name the option.
+Result<std::vector<CameraPath>> parse_camera_paths(const std::string& list);
+Result<std::vector<FlickerGaze>> parse_flicker_gazes(const std::string& list);
+Result<std::vector<render::Pipeline>> parse_flicker_pipelines(const std::string& list, render::Pipeline fallback);
+
+/// Points of the sweep one scene's flicker runs take: camera × pipeline × method (full
+/// first) × gaze.
+std::size_t flicker_points(const FlickerOptions& o, std::size_t methods_without_full);
+
+/// Renders every point on the scene `spec` and adds its rows (flicker.csv and the list
+/// "flicker") through `rows`; `tick` after each point.
+Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std::vector<render::Method>& methods_without_full,
+                   const std::string& spec, bench::SweepRows& rows, const std::function<void()>& tick);
+
+/// flicker.csv's header.
+extern const char* const kFlickerColumns;
+
+}  // namespace foveal::cmd
