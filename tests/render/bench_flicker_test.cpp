@@ -103,11 +103,31 @@ TEST(BenchFlicker, AMovingCameraChangesTheFramesAndBothPipelinesAreScored) {
   EXPECT_EQ(value(find(rows, "gbuffer", "orbit:600", "full", "fixed"), "flicker"), 0.0);
   EXPECT_GT(value(find(rows, "gbuffer", "orbit:600", "rmfr", "fixed"), "flicker"), 0.0);
   EXPECT_GT(value(find(rows, "visibility", "orbit:600", "rmfr", "fixed"), "flicker"), 0.0);
+  for (const Row& row : rows) EXPECT_EQ(row.at("reference"), "gbuffer");  // --flicker-reference shared, the default
   // --json lists the same rows.
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["flicker"].size(), 8u);
   EXPECT_EQ(j["flicker"][0]["camera"], "static");
   EXPECT_TRUE(j["flicker"][0]["prefiltered_flicker"].is_null());  // full
+}
+
+TEST(BenchFlicker, OwnReferenceScoresEachPipelineAgainstItsOwnFullFrames) {
+  test::TempDir d;
+  const std::string scene = test::source_path("data/scenes/WaterBottle/WaterBottle.gltf");
+  auto r = test::run(test::bin("foveal") + " bench --scene " + scene + " --methods rmfr --sigmas 2 --size 192x108 --frames 1 "
+                     "--warmup 0 --flicker --flicker-frames 4 --grid-sigma 2 --camera-path orbit:600 --camera-fill "
+                     "--flicker-gaze fixed --flicker-pipelines gbuffer,visibility --flicker-reference own --no-png --out " + d.path("b"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = read_csv(test::read_file(d.path("b/flicker.csv")));
+  ASSERT_EQ(rows.size(), 4u);
+  for (const char* pipeline : {"gbuffer", "visibility"}) {
+    // Each pipeline's full frames are its reference: their row has no flicker at all.
+    const Row& full = find(rows, pipeline, "orbit:600", "full", "fixed");
+    EXPECT_EQ(full.at("reference"), pipeline);
+    EXPECT_EQ(value(full, "flicker"), 0.0) << pipeline;
+    EXPECT_EQ(value(full, "periphery_error"), 0.0) << pipeline;
+    EXPECT_GT(value(find(rows, pipeline, "orbit:600", "rmfr", "fixed"), "flicker"), 0.0) << pipeline;
+  }
 }
 
 TEST(BenchFlicker, BadInputExitsTwoNamingTheOptionAndWritesNothing) {
@@ -125,6 +145,7 @@ TEST(BenchFlicker, BadInputExitsTwoNamingTheOptionAndWritesNothing) {
   expect_bad("--flicker --flicker-pipelines gbuffer,gbuffer", "--flicker-pipelines: 'gbuffer' is listed twice");
   expect_bad("--flicker --camera-pivot 0", "--camera-pivot");
   expect_bad("--flicker --flicker-sigma-nd 0.5", "--flicker-sigma-nd");
+  expect_bad("--flicker --flicker-reference mine", "--flicker-reference");
   expect_bad("--camera-path orbit", "--camera-path requires --flicker");
   // A log without head poses cannot drive the recorded camera.
   ASSERT_EQ(test::run(test::bin("foveal") + " synth --seed 3 --duration 3 --out " + d.path("g.csv")).exit_code, 0);

@@ -9,7 +9,7 @@ atomically."""
 import csv, io, json, os, sys
 
 KEYS = {"bench.csv": ("scene", "method", "sigma"), "rotation.csv": ("angle_deg", "method", "sigma"),
-        "stability.csv": ("scene", "path", "t", "method", "sigma"), "flicker.csv": ("scene", "pipeline", "camera", "method", "sigma", "gaze")}
+        "stability.csv": ("scene", "path", "t", "method", "sigma"), "flicker.csv": ("scene", "pipeline", "camera", "method", "sigma", "gaze", "reference")}
 
 
 def write_atomically(path, text):
@@ -19,8 +19,9 @@ def write_atomically(path, text):
 
 
 def key(row, cols):
-    # flicker.csv from before the moving camera has no pipeline or camera column.
-    defaults = {"pipeline": "gbuffer", "camera": "static"}
+    # flicker.csv from before the moving camera has no pipeline or camera column, and
+    # from before --flicker-reference no reference column.
+    defaults = {"pipeline": "gbuffer", "camera": "static", "reference": "gbuffer"}
     return tuple(str(float(row[c])) if c in ("sigma", "t") else str(row.get(c, defaults.get(c))) for c in cols)
 
 

@@ -1,6 +1,7 @@
 #include "bench_flicker.hpp"
 
 #include <algorithm>
+#include <map>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -27,7 +28,7 @@ using render::Pipeline;
 
 const char* const kFlickerColumns =
     "scene,pipeline,camera,method,sigma,sigma_nd,gaze,frames,fovea_step_px,reference_change,periphery_error,periphery_change,flicker,"
-    "prefiltered_flicker";
+    "prefiltered_flicker,reference";
 
 const char* flicker_gaze_name(FlickerGaze g) {
   switch (g) {
@@ -44,8 +45,9 @@ namespace {
 constexpr double kPeripheryDeg = 15.0;
 /// The window starts this many samples in (1 s at 120 Hz), after the filter has settled.
 constexpr std::size_t kStartSample = 120;
-/// The reference is the full method through the G-buffer pipeline (the project's reference).
-constexpr Pipeline kReferencePipeline = Pipeline::gbuffer;
+/// The shared reference is the full method through the G-buffer pipeline (the project's
+/// reference); with FlickerOptions::own_reference each pipeline's own full frames are.
+constexpr Pipeline kSharedReference = Pipeline::gbuffer;
 
 std::string num(double v) {
   std::ostringstream s;
@@ -264,12 +266,15 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
   };
   const bool has_rmfr = std::find(methods.begin(), methods.end(), Method::rmfr) != methods.end();
 
+  struct References {
+    std::vector<Samples> frames;              // per frame; one for a still camera (the same every frame)
+    std::vector<std::vector<Samples>> ideal;  // per gaze, per frame: RMFR's prefiltered reference
+  };
   for (const CameraPath& given : o.cameras) {
     std::vector<Pose> heads;
-    std::vector<Samples> reference;  // per frame; one for a still camera (the same every frame)
-    std::vector<std::vector<Samples>> ideal(o.gazes.size());  // per gaze, per frame: RMFR's prefiltered reference
+    std::map<Pipeline, References> references;  // by the pipeline that rendered them
     CameraPath path = given;
-    // The path's poses and the references along it, once per path, when a point needs them.
+    // The path's poses, once per path, when a point needs them.
     auto prepare = [&]() -> Status {
       if (!heads.empty()) return {};
       if (Status s = load(); !s) return s;
@@ -282,26 +287,32 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
       auto h = path_poses(path, *window, pivot_m, start_m, o.log);
       if (!h) return h.error();
       heads = std::move(*h);
+      return {};
+    };
+    // The references along the path through `rp`, once per path and pipeline.
+    auto references_of = [&](Pipeline rp) -> Result<const References*> {
+      if (auto it = references.find(rp); it != references.end()) return &it->second;
+      References out;
+      out.ideal.resize(o.gazes.size());
       const bool still = std::all_of(heads.begin(), heads.end(), [&](const Pose& p) { return p == heads.front(); });
       std::vector<std::vector<Foveae>> foveae;
       for (FlickerGaze gaze : o.gazes) foveae.push_back(foveae_of(gaze));
       image::Image img;
       for (std::size_t k = 0; k < heads.size(); ++k) {
         if (k == 0 || !still) {
-          auto r = render_image(frame(Method::full, kReferencePipeline, window->raw[k], heads[k]));
+          auto r = render_image(frame(Method::full, rp, window->raw[k], heads[k]));
           if (!r) return r.error();
           img = std::move(*r);
-          reference.push_back(sample(img));
+          out.frames.push_back(sample(img));
         }
         for (std::size_t gi = 0; has_rmfr && gi < o.gazes.size(); ++gi) {
-          auto p = prefiltered(img, frame(Method::rmfr, kReferencePipeline, foveae[gi][k], heads[k]));
+          auto p = prefiltered(img, frame(Method::rmfr, rp, foveae[gi][k], heads[k]));
           if (!p) return p.error();
-          ideal[gi].push_back(std::move(*p));
+          out.ideal[gi].push_back(std::move(*p));
         }
       }
-      return {};
+      return &references.emplace(rp, std::move(out)).first->second;
     };
-    auto ref = [&](std::size_t k) -> const Samples& { return reference[std::min(k, reference.size() - 1)]; };
 
     for (Pipeline pipeline : o.pipelines)
       for (Method m : methods)
@@ -309,14 +320,19 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
           const FlickerGaze gaze = o.gazes[gi];
           if (!rows.take()) continue;
           if (Status s = prepare(); !s) return s;
+          const Pipeline rp = o.own_reference ? pipeline : kSharedReference;
+          auto refs = references_of(rp);
+          if (!refs) return refs.error();
+          const References& refset = **refs;
+          auto ref = [&](std::size_t k) -> const Samples& { return refset.frames[std::min(k, refset.frames.size() - 1)]; };
           const std::size_t n = heads.size();
           const std::vector<Foveae> foveae = foveae_of(gaze);
           static const Samples none;
-          auto ideal_at = [&](std::size_t k) -> const Samples& { return m == Method::rmfr ? ideal[gi][k] : none; };
+          auto ideal_at = [&](std::size_t k) -> const Samples& { return m == Method::rmfr ? refset.ideal[gi][k] : none; };
           const double ppd = comp.plan(Eye::left).screen_w > 0 ? comp.plan(Eye::left).pixels_per_degree() : 13.15 * eye_w / 1440.0;
           const double f_px = image::focal_length_px(ppd);
           // The reference's own frames stand for full through its pipeline (it renders them).
-          const bool is_reference = m == Method::full && pipeline == kReferencePipeline;
+          const bool is_reference = m == Method::full && pipeline == rp;
           Sums sums;
           Samples prev;
           for (std::size_t k = 0; k < n; ++k) {
@@ -339,13 +355,15 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
                                            "," + num(sigma) + "," + num(sigma_nd) + "," + flicker_gaze_name(gaze) + "," + std::to_string(n) + "," + num(step) +
                                            "," + num(sums.reference_change / values) + "," + num(sums.error / values) + "," +
                                            num(sums.change / values) + "," + num(sums.flicker / values) + "," +
-                                           (m == Method::rmfr ? num(sums.prefiltered_flicker / values) : std::string()));
+                                           (m == Method::rmfr ? num(sums.prefiltered_flicker / values) : std::string()) + "," +
+                                           render::pipeline_name(rp));
           rows.add_item("flicker", {{"scene", scene_name}, {"pipeline", render::pipeline_name(pipeline)}, {"camera", path.text()},
                                     {"method", render::method_name(m)}, {"sigma", sigma}, {"sigma_nd", sigma_nd}, {"gaze", flicker_gaze_name(gaze)},
                                     {"frames", n}, {"fovea_step_px", step}, {"reference_change", sums.reference_change / values},
                                     {"periphery_error", sums.error / values}, {"periphery_change", sums.change / values},
                                     {"flicker", sums.flicker / values},
-                                    {"prefiltered_flicker", m == Method::rmfr ? nlohmann::json(sums.prefiltered_flicker / values) : nlohmann::json()}});
+                                    {"prefiltered_flicker", m == Method::rmfr ? nlohmann::json(sums.prefiltered_flicker / values) : nlohmann::json()},
+                                    {"reference", render::pipeline_name(rp)}});
         }
   }
   return {};

@@ -33,6 +33,9 @@ struct FlickerOptions {
   bool fill = false;   ///< start where the scene's bounding sphere fills the view
   std::vector<FlickerGaze> gazes{FlickerGaze::raw, FlickerGaze::filtered};
   std::vector<render::Pipeline> pipelines{render::Pipeline::gbuffer};
+  /// false: every pipeline is scored against full through the G-buffer pipeline; true:
+  /// against full through itself (only what foveation adds, not the pipelines' difference).
+  bool own_reference = false;
 };
 
 /// The parsed form of the comma lists `--camera-path`, `--flicker-gaze` and

@@ -50,6 +50,7 @@ struct Args {
   std::string flicker_log;  ///< empty: the bundled recording
   int flicker_frames = 48;
   std::string camera_paths = "static", flicker_gaze = "raw,filtered", flicker_pipelines;  ///< bench_flicker.hpp
+  std::string flicker_reference = "shared";
   std::optional<double> camera_pivot, flicker_sigma_nd;
   bool camera_fill = false;
   double grid_sigma = 2.0;
@@ -181,7 +182,8 @@ int run(const Args& a, const std::string& sweep) {
     if (a.camera_pivot && !(*a.camera_pivot > 0 && std::isfinite(*a.camera_pivot)))
       return fail(bad_input("--camera-pivot: expected a distance in metres > 0, got " + num(*a.camera_pivot)));
     fo = {.log = a.flicker_log, .frames = a.flicker_frames, .sigma = a.grid_sigma, .fx = a.fx, .fy = a.fy, .sigma_nd = a.flicker_sigma_nd.value_or(0),
-          .fovea = *fovea, .cameras = *cameras, .pivot_m = a.camera_pivot.value_or(0), .fill = a.camera_fill, .gazes = *gazes, .pipelines = *pipelines};
+          .fovea = *fovea, .cameras = *cameras, .pivot_m = a.camera_pivot.value_or(0), .fill = a.camera_fill, .gazes = *gazes, .pipelines = *pipelines,
+          .own_reference = a.flicker_reference == "own"};
   }
   if (!a.gaze.logs.empty()) {
     if (a.f_grid || a.rotation || a.stability || a.flicker)
@@ -410,7 +412,11 @@ void add_bench(CLI::App& app, int& exit_code) {
       sub->add_option("--flicker-sigma-nd", a->flicker_sigma_nd,
                       "EFR for --flicker: the left (non-dominant) eye's level; the right eye's is --grid-sigma (default: the same)"),
       sub->add_option("--flicker-gaze", a->flicker_gaze, "Comma list: raw, filtered (the gaze filter's), fixed (at --fovea)")->capture_default_str(),
-      sub->add_option("--flicker-pipelines", a->flicker_pipelines, "Comma list of pipelines for --flicker (default: --pipeline); the reference is always full through gbuffer"),
+      sub->add_option("--flicker-pipelines", a->flicker_pipelines, "Comma list of pipelines for --flicker (default: --pipeline)"),
+      sub->add_option("--flicker-reference", a->flicker_reference,
+                      "shared: every pipeline against full through gbuffer; own: each against full through itself (what foveation adds)")
+          ->check(CLI::IsMember({"shared", "own"}))
+          ->capture_default_str(),
       sub->add_option("--camera-path", a->camera_paths,
                       "Comma list: static, orbit[:DEG_PER_S] (about a pivot ahead, +-20 deg, default 30 deg/s), dolly[:M_PER_S] (towards the "
                       "pivot and back, half its distance, default a quarter of it per second), recorded (the log's head pose)")
