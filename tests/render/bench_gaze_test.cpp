@@ -10,33 +10,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "csv_rows.hpp"
 #include "test_support.hpp"
 
 using namespace foveal;
 
 namespace {
 
-using Row = std::map<std::string, std::string>;
-
-std::vector<Row> read_csv(const std::string& text) {
-  std::istringstream in(text);
-  std::string line;
-  std::vector<std::string> header;
-  std::vector<Row> rows;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::istringstream l(line);
-    for (std::string c; std::getline(l, c, ',');) cells.push_back(c);
-    if (header.empty()) {
-      header = cells;
-      continue;
-    }
-    Row r;
-    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) r[header[i]] = cells[i];
-    rows.push_back(r);
-  }
-  return rows;
-}
+using Row = test::CsvRow;
+const auto read_csv = test::read_csv_rows;
 
 const Row& find(const std::vector<Row>& rows, const std::string& method, const std::string& gaze) {
   static const Row none;
