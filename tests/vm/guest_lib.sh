@@ -16,6 +16,18 @@ guest_boot() {
   done < /modules/order
 }
 
+# After guest_boot, for the guests that run foveald against gadgets: configfs for the
+# gadgets, /dev/shm for the fovea stream (shm_open), foveal's data and a private
+# config and runtime directory (the control socket's must not be open to others), /tmp
+# as the working directory.
+foveald_guest_env() {
+  mount -t configfs none /sys/kernel/config
+  mkdir -p /dev/shm && mount -t tmpfs shm /dev/shm
+  export FOVEAL_DATA_DIR=/foveal XDG_CONFIG_HOME=/tmp/config XDG_RUNTIME_DIR=/tmp/run HOME=/tmp
+  mkdir -p "$XDG_CONFIG_HOME" "$XDG_RUNTIME_DIR"
+  cd /tmp
+}
+
 # wait_until TENTHS COMMAND...: runs COMMAND every 0.1 s until it succeeds, at most
 # TENTHS times.
 wait_until() {

@@ -10,11 +10,7 @@
 # libusb / hidraw directly (vm_hmd_probe.cpp): hmd_psvr2_usb, hmd_vive_hid.
 . /vm/guest_lib.sh
 guest_boot
-mount -t configfs none /sys/kernel/config
-mkdir -p /dev/shm && mount -t tmpfs shm /dev/shm  # the fovea stream (shm_open)
-export FOVEAL_DATA_DIR=/foveal XDG_CONFIG_HOME=/tmp/config XDG_RUNTIME_DIR=/tmp/run HOME=/tmp
-mkdir -p "$XDG_CONFIG_HOME" "$XDG_RUNTIME_DIR"
-cd /tmp
+foveald_guest_env
 # Small frames, ten a second: under emulation the renderer must leave CPU to the devices.
 RENDER="--source synthetic --size 64x36 --scene pattern:checker --fps 10 -q"
 

@@ -7,11 +7,7 @@
 # live_psvr2, live_psvr2_replug.
 . /vm/guest_lib.sh
 guest_boot
-mount -t configfs none /sys/kernel/config
-mkdir -p /dev/shm && mount -t tmpfs shm /dev/shm  # the fovea stream (shm_open)
-export FOVEAL_DATA_DIR=/foveal XDG_CONFIG_HOME=/tmp/config XDG_RUNTIME_DIR=/tmp/run HOME=/tmp
-mkdir -p "$XDG_CONFIG_HOME" "$XDG_RUNTIME_DIR"
-cd /tmp
+foveald_guest_env
 # Small frames, ten a second: under emulation the renderer must leave CPU to the gaze side.
 RENDER="--size 64x36 --scene pattern:checker --fps 10 -q"
 

@@ -21,9 +21,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "foveal/runtime/control_server.hpp"
 #include "psvr2_pattern.hpp"
 #include "vive_pattern.hpp"
+#include "vm_foveald.hpp"
 #include "vm_guest.hpp"
 #include "vm_hmd_check.hpp"
 #include "vm_live_files.hpp"
@@ -74,26 +74,9 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
   auto present = [&] {
     return vive ? usb_device_present(kViveVendor, kViveProduct) : usb_device_present(kPsvr2Vendor, kPsvr2Product);
   };
-  const std::string sock = out + "-run/control.sock";
-  foveald.insert(foveald.end(), {"--out", out, "--control", sock});
-  std::string cmdline;
-  for (const std::string& a : foveald) cmdline += a + " ";
-  std::printf("hmd: %s\n", cmdline.c_str());
-  std::fflush(stdout);
-  int wstatus = 0;
-  bool gone = false;
-  json status;
-  auto ask = [&] {
-    auto r = control_request(sock, {{"cmd", "status"}}, 2000);
-    if (r) status = *r;
-    return static_cast<bool>(r);
-  };
-  int pid = -1;
-  auto alive = [&] {
-    if (!gone) gone = pid < 0 || exited(pid, wstatus);
-    return !gone;
-  };
-  auto head_state = [&] { return ask() ? str_at(status, "/head/state") : std::string("?"); };
+  FovealdRun fd(std::move(foveald), out, "hmd");
+  const json& status = fd.status();
+  auto head_state = [&] { return fd.ask() ? str_at(status, "/head/state") : std::string("?"); };
   auto poses = [&] { return u64_at(status, "/head/poses"); };
   auto frames = [&] { return u64_at(status, "/render/frames"); };
 
@@ -108,10 +91,9 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
     else if (!wait_for(present, 10 * kNsPerSec) || !wait_for(hidraw_present, 10 * kNsPerSec)) problem = "the headset did not appear";
   }
   const TimeNs t_spawn = monotonic_now_ns();
-  if (problem.empty()) pid = spawn_logged(foveald, out + ".log");
-  if (problem.empty() && pid < 0) problem = "cannot start " + foveald[0];
+  if (problem.empty() && !fd.start()) problem = "cannot start " + fd.program();
   // 1. The PS VR2 is not there yet: the head waits for it.
-  if (problem.empty() && (!wait_for([&] { return !alive() || ask(); }, 120 * kNsPerSec, kAskEveryNs) || !alive()))
+  if (problem.empty() && (!wait_for([&] { return !fd.alive() || fd.ask(); }, 120 * kNsPerSec, kAskEveryNs) || !fd.alive()))
     problem = "foveald's control socket never answered";
   if (problem.empty()) {
     state_before = head_state();
@@ -126,14 +108,14 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
   // core): the checked window needs frames for 4 s after they start, not just 6 s of clock.
   TimeNs t_frames = 0;
   if (problem.empty() && !wait_for([&] {
-        if (!alive()) return true;
-        if (!ask() || poses() < 100 || frames() < 3) return false;
+        if (!fd.alive()) return true;
+        if (!fd.ask() || poses() < 100 || frames() < 3) return false;
         const TimeNs now = monotonic_now_ns();
         if (t_frames == 0) t_frames = now;
         return now > t_plug + kSettleNs + 6 * kNsPerSec && now > t_frames + 4 * kNsPerSec;
       }, 180 * kNsPerSec, kAskEveryNs))
     problem = "no poses and frames within 180 s of the plug-in: " + status.dump().substr(0, 400);
-  if (problem.empty() && !alive()) problem = "foveald exited";
+  if (problem.empty() && !fd.alive()) problem = "foveald exited";
   if (problem.empty()) {
     std::printf("hmd: tracking: %s\n", at(status, "/head").dump().c_str());
     std::fflush(stdout);
@@ -141,7 +123,7 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
   }
   // 3. Unplugged for about a second: the head holds its last pose and reconnects.
   if (problem.empty()) {
-    if (ask()) poses_at_unplug = poses();
+    if (fd.ask()) poses_at_unplug = poses();
     t_unplug = monotonic_now_ns();
     if (!write_udc(udc_file, "")) problem = "cannot unbind";
     else if (!wait_for([&] { return !present(); }, 5 * kNsPerSec)) problem = "the headset did not go away";
@@ -156,25 +138,21 @@ int run_hmd(const std::string& kind, const std::string& udc_file, const std::str
   }
   if (problem.empty()) {
     const std::uint64_t before = poses();
-    if (!wait_for([&] { return ask() && poses() > before + 10; }, 30 * kNsPerSec, kAskEveryNs))
+    if (!wait_for([&] { return fd.ask() && poses() > before + 10; }, 30 * kNsPerSec, kAskEveryNs))
       problem = "no poses within 30 s of the replug";
     t_resumed = monotonic_now_ns();
     const std::uint64_t frames_then = frames();
     wait_for([&] {
-      return !alive() || (monotonic_now_ns() > t_back + kSettleNs + 6 * kNsPerSec && ask() && frames() >= frames_then + 5);
+      return !fd.alive() || (monotonic_now_ns() > t_back + kSettleNs + 6 * kNsPerSec && fd.ask() && frames() >= frames_then + 5);
     }, 120 * kNsPerSec, kAskEveryNs);
   }
   // 4. SIGTERM, then the outputs.
-  if (pid < 0) return fail(problem);
-  if (alive()) ::kill(pid, SIGTERM);
-  const TimeNs t_term = monotonic_now_ns();
-  if (!wait_for([&] { return !alive(); }, 10 * kNsPerSec)) {
-    ::kill(pid, SIGKILL);
-    ::waitpid(pid, &wstatus, 0);
-    if (problem.empty()) problem = "foveald did not end within 10 s of SIGTERM";
-  }
-  const int rc = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
-  std::printf("hmd: foveald exit %d, %.0f ms after SIGTERM; its log:\n%s\n", rc, ms(monotonic_now_ns() - t_term),
+  if (!fd.started()) return fail(problem);
+  const FovealdRun::Stopped stopped = fd.stop();
+  if (problem.empty()) problem = stopped.problem;
+  const int rc = stopped.rc;
+  const TimeNs t_term = stopped.t_term;
+  std::printf("hmd: foveald exit %d, %.0f ms after SIGTERM; its log:\n%s\n", rc, stopped.term_ms,
               file_text(out + ".log").c_str());
   const json summary = read_json(out + "/summary.json");
   const json head = at(summary, "/head");

@@ -12,8 +12,6 @@
 //                     return, and frames rendered from samples after it
 // Times: CLOCK_MONOTONIC everywhere. trace.csv counts from its first sample; the fovea
 // shared memory's publish counter ties one of its rows to an absolute time.
-#include <signal.h>
-#include <sys/wait.h>
 
 #include <cmath>
 #include <fstream>
@@ -22,8 +20,8 @@
 #include <nlohmann/json.hpp>
 
 #include "foveal/core/display_model.hpp"
-#include "foveal/runtime/control_server.hpp"
 #include "foveal/runtime/fovea_shm.hpp"
+#include "vm_foveald.hpp"
 #include "vm_guest.hpp"
 #include "vm_live_files.hpp"
 #include "vm_live_follow.hpp"
@@ -51,29 +49,11 @@ int run_live(const std::string& kind, const std::string& udc_file, const std::st
   };
   auto dev = live_device(kind);
   if (!dev) return fail(dev.error().message);
-  // In a directory of its own: foveald refuses a socket directory others may enter (/tmp).
-  const std::string sock = out + "-run/control.sock";
-  foveald.insert(foveald.end(), {"--out", out, "--control", sock});
-  std::string cmdline;
-  for (const std::string& a : foveald) cmdline += a + " ";
-  std::printf("live: %s\n", cmdline.c_str());
-  std::fflush(stdout);
+  FovealdRun fd(std::move(foveald), out, "live");
   const TimeNs t_spawn = monotonic_now_ns();
-  const pid_t pid = spawn_logged(foveald, out + ".log");
-  if (pid < 0) return fail("cannot start " + foveald[0]);
-  int wstatus = 0;
-  bool gone = false;
-  json status;
-  auto ask = [&] {
-    auto r = control_request(sock, {{"cmd", "status"}}, 2000);
-    if (r) status = *r;
-    return static_cast<bool>(r);
-  };
-  auto state = [&] { return ask() ? str_at(status, "/source/state") : std::string("?"); };
-  auto alive = [&] {
-    if (!gone) gone = exited(pid, wstatus);
-    return !gone;
-  };
+  if (!fd.start()) return fail("cannot start " + fd.program());
+  const json& status = fd.status();
+  auto state = [&] { return fd.ask() ? str_at(status, "/source/state") : std::string("?"); };
 
   // 1. Started before the device is there: waiting for it.
   std::string problem;
@@ -81,10 +61,10 @@ int run_live(const std::string& kind, const std::string& udc_file, const std::st
   bool saw_reconnecting = false;
   std::string state_before, waiting_for;
   FoveaShmPayload anchor{};
-  if (!wait_for([&] { return !alive() || ask(); }, 120 * kNsPerSec, kAskEveryNs) || !alive()) problem = "foveald's control socket never answered";
+  if (!wait_for([&] { return !fd.alive() || fd.ask(); }, 120 * kNsPerSec, kAskEveryNs) || !fd.alive()) problem = "foveald's control socket never answered";
   if (problem.empty()) {
     // The first open is under way when the socket opens; its failure says why it waits.
-    wait_for([&] { return !ask() || !str_at(status, "/source/waiting_for").empty(); }, 20 * kNsPerSec, kAskEveryNs);
+    wait_for([&] { return !fd.ask() || !str_at(status, "/source/waiting_for").empty(); }, 20 * kNsPerSec, kAskEveryNs);
     state_before = str_at(status, "/source/state");
     waiting_for = str_at(status, "/source/waiting_for");
     std::printf("live: control after %.1f s: source %s (%s)\n", ms(monotonic_now_ns() - t_spawn) / 1e3,
@@ -94,10 +74,10 @@ int run_live(const std::string& kind, const std::string& udc_file, const std::st
   }
   if (problem.empty() &&
       !wait_for([&] {
-        return !alive() || (ask() && u64_at(status, "/samples") >= 240 && u64_at(status, "/render/frames") >= 3);
+        return !fd.alive() || (fd.ask() && u64_at(status, "/samples") >= 240 && u64_at(status, "/render/frames") >= 3);
       }, 120 * kNsPerSec, kAskEveryNs))
     problem = "no 240 samples and 3 frames within 120 s of the plug-in: " + status.dump().substr(0, 300);
-  if (problem.empty() && !alive()) problem = "foveald exited";
+  if (problem.empty() && !fd.alive()) problem = "foveald exited";
   if (problem.empty()) {
     t_first_frames = monotonic_now_ns();
     std::printf("live: streaming: %s\n", at(status, "/source").dump().c_str());
@@ -127,22 +107,17 @@ int run_live(const std::string& kind, const std::string& udc_file, const std::st
       problem = "no fovea within 10 s of the replug";
     t_seen = monotonic_now_ns();
     // Then a while longer: frames rendered from samples after the replug.
-    const auto frames_then = ask() ? u64_at(status, "/render/frames") : 0;
+    const auto frames_then = fd.ask() ? u64_at(status, "/render/frames") : 0;
     wait_for([&] {
-      return !alive() || (monotonic_now_ns() > t_back + 2 * kNsPerSec && ask() &&
+      return !fd.alive() || (monotonic_now_ns() > t_back + 2 * kNsPerSec && fd.ask() &&
                           u64_at(status, "/render/frames") >= frames_then + 3);
     }, 60 * kNsPerSec, kAskEveryNs);
   }
   // 4. SIGTERM, then the outputs.
-  if (alive()) ::kill(pid, SIGTERM);
-  const TimeNs t_term = monotonic_now_ns();
-  if (!wait_for([&] { return !alive(); }, 10 * kNsPerSec)) {
-    ::kill(pid, SIGKILL);
-    ::waitpid(pid, &wstatus, 0);
-    if (problem.empty()) problem = "foveald did not end within 10 s of SIGTERM";
-  }
-  const double term_ms = ms(monotonic_now_ns() - t_term);
-  const int rc = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
+  const FovealdRun::Stopped stopped = fd.stop();
+  if (problem.empty()) problem = stopped.problem;
+  const double term_ms = stopped.term_ms;
+  const int rc = stopped.rc;
   std::printf("live: foveald exit %d, %.0f ms after SIGTERM; its log:\n", rc, term_ms);
   std::fflush(stdout);
   if (std::ifstream lf(out + ".log"); lf) std::printf("%s\n", std::string(std::istreambuf_iterator<char>(lf), {}).c_str());
