@@ -1,11 +1,11 @@
 #include "bench_flicker.hpp"
 
 #include <algorithm>
-#include <map>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -20,6 +20,7 @@
 #include "foveal/render/scene.hpp"
 #include "foveal/render/stereo_camera.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
+#include "bench_outputs.hpp"
 
 namespace foveal::cmd {
 
@@ -49,12 +50,7 @@ constexpr std::size_t kStartSample = 120;
 /// reference); with FlickerOptions::own_reference each pipeline's own full frames are.
 constexpr Pipeline kSharedReference = Pipeline::gbuffer;
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+constexpr auto num = bench::csv_number;
 
 template <class T, class Parse>
 Result<std::vector<T>> parse_list(const std::string& list, const std::string& option, Parse parse) {

@@ -8,7 +8,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -30,15 +29,8 @@ namespace {
 
 using render::Method;
 
-std::string fmt(double v) {
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
-nlohmann::json jnum(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(fmt(v)); }
+constexpr auto fmt = bench::csv_number;
+constexpr auto jnum = bench::json_number;
 
 /// Linear interpolation between order statistics (numpy's default), q in [0, 1].
 double quantile(std::vector<double> v, double q) {

@@ -12,7 +12,10 @@
 
 namespace foveal::bench {
 
-/// A figure as bench.json holds it: the number, or "inf" (a PSNR of identical images).
+/// A figure as the CSV tables hold it: 6 significant digits; inf, -inf, nan as words.
+std::string csv_number(double v);
+/// A figure as bench.json holds it: the number, or csv_number's word when it is not
+/// finite (JSON has no infinity: "inf" is the PSNR of identical images).
 nlohmann::json json_number(double v);
 
 /// What a sweep writes besides its tables, by kind (the table in bench_outputs.cpp):

@@ -59,13 +59,7 @@ struct Args {
   GazeBenchOptions gaze;  ///< --gaze runs (bench_gaze.cpp)
 };
 
-std::string num(double v) {
-  if (std::isinf(v)) return "inf";
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+constexpr auto num = bench::csv_number;
 
 Result<std::vector<double>> parse_range(const std::string& s, const std::string& what) {
   std::vector<double> out;
