@@ -31,7 +31,12 @@ mat2 filter_footprint(mat2 texel) {
 // axes from the singular values of [dx dy] in texels; up to MAX_ANISOTROPY trilinear taps
 // spread over the major axis's diameter, Gaussian-weighted (exp(-2 r²), r = 1 at the
 // rim), each at the level of detail of the minor axis (raised where the anisotropy
-// exceeds the cap, as hardware does).
+// exceeds the cap, as hardware does). Never finer than the minor axis: the specification's
+// log2(major / taps), with taps rounded up, falls up to a level below it for a nearly round
+// footprint, whose two taps then read too fine a level to cover its width, and that aliasing
+// crawls as the view moves. Full rate through this pipeline against the G-buffer
+// pipeline's, Dungeon at 1440×800: 41.9 dB FPSNR with the specification's level, 43.9 dB
+// with the minor axis's (the closest of 0.8 to 1.7 times it).
 vec4 texture_anisotropic(sampler2D tex, vec2 uv, vec2 dx, vec2 dy) {
   vec2 size = vec2(textureSize(tex, 0));
   vec2 a = dx * size, b = dy * size;
@@ -42,7 +47,7 @@ vec4 texture_anisotropic(sampler2D tex, vec2 uv, vec2 dx, vec2 dy) {
   float major = sqrt(half_trace + root), minor = sqrt(max(half_trace - root, 0.0));
   if (!(major > 0.0) || isinf(major)) return textureLod(tex, uv, 0.0);  // degenerate or NaN footprint
   int taps = int(clamp(ceil(major / max(minor, 1e-6)), 1.0, float(MAX_ANISOTROPY)));
-  float lod = clamp(log2(major / float(taps)), -16.0, 16.0);
+  float lod = clamp(log2(max(major / float(taps), minor)), -16.0, 16.0);
   if (taps == 1) return textureLod(tex, uv, lod);
   // The major axis: the eigenvector of M for its larger eigenvalue, in texture coordinates.
   vec2 axis = abs(m01) > 1e-12 * (m00 + m11) ? vec2(m01, half_trace + root - m00) : (m00 >= m11 ? vec2(1.0, 0.0) : vec2(0.0, 1.0));

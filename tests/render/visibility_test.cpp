@@ -175,7 +175,7 @@ TEST(Visibility, SigmaOneEqualsFull) {
   expect_pipelines_agree("pattern:noise@20", 60.0);
   expect_pipelines_agree(quad_model(d, "plain", kPlain), 60.0);
   expect_pipelines_agree(test::source_path("data/scenes/WaterBottle/WaterBottle.gltf"), 57.0);
-  expect_pipelines_agree(test::source_path("data/scenes/Dungeon/dungeon_simplified.gltf"), 37.0);
+  expect_pipelines_agree(test::source_path("data/scenes/Dungeon/dungeon_simplified.gltf"), 40.5);  // 41.1 dB; 39.9 before the minor-axis level (common/anisotropic_filter.glsl)
 }
 
 // Each kind of material renders alike in both pipelines, and each feature makes the
