@@ -32,6 +32,15 @@ const Row& find(const std::vector<Row>& rows, const std::string& pipeline, const
 
 double value(const Row& r, const std::string& key) { return r.count(key) && !r.at(key).empty() ? std::stod(r.at(key)) : NAN; }
 
+// foveal bench --flicker of RMFR on WaterBottle framed to fill the view, 4 frames at
+// 192×108, the fovea fixed, through both pipelines, into d/b; `options` adds the rest.
+test::RunResult run_moving_camera(const test::TempDir& d, const std::string& options) {
+  const std::string scene = test::source_path("data/scenes/WaterBottle/WaterBottle.gltf");
+  return test::run(test::bin("foveal") + " bench --scene " + scene + " --methods rmfr --sigmas 2 --size 192x108 --frames 1 --warmup 0 "
+                   "--flicker --flicker-frames 4 --grid-sigma 2 --camera-fill --flicker-gaze fixed --flicker-pipelines gbuffer,visibility "
+                   "--no-png " + options + " --out " + d.path("b"));
+}
+
 TEST(BenchFlicker, RmfrFlickersLessWithTheGazeFilter) {
   test::TempDir d;
   auto r = test::run(test::bin("foveal") + " bench --scene pattern:noise --methods rmfr --sigmas 2 --size 320x180 --frames 1 "
@@ -54,10 +63,7 @@ TEST(BenchFlicker, RmfrFlickersLessWithTheGazeFilter) {
 
 TEST(BenchFlicker, AMovingCameraChangesTheFramesAndBothPipelinesAreScored) {
   test::TempDir d;
-  const std::string scene = test::source_path("data/scenes/WaterBottle/WaterBottle.gltf");
-  auto r = test::run(test::bin("foveal") + " bench --scene " + scene + " --methods rmfr --sigmas 2 --size 192x108 --frames 1 "
-                     "--warmup 0 --flicker --flicker-frames 4 --grid-sigma 2 --flicker-sigma-nd 3 --camera-path static,orbit:600 "
-                     "--camera-fill --flicker-gaze fixed --flicker-pipelines gbuffer,visibility --no-png --json --out " + d.path("b"));
+  auto r = run_moving_camera(d, "--flicker-sigma-nd 3 --camera-path static,orbit:600 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto rows = read_csv(test::read_file(d.path("b/flicker.csv")));
   EXPECT_EQ(rows.size(), 8u);  // 2 cameras × 2 pipelines × (full, rmfr) × fixed gaze
@@ -94,10 +100,7 @@ TEST(BenchFlicker, AMovingCameraChangesTheFramesAndBothPipelinesAreScored) {
 
 TEST(BenchFlicker, OwnReferenceScoresEachPipelineAgainstItsOwnFullFrames) {
   test::TempDir d;
-  const std::string scene = test::source_path("data/scenes/WaterBottle/WaterBottle.gltf");
-  auto r = test::run(test::bin("foveal") + " bench --scene " + scene + " --methods rmfr --sigmas 2 --size 192x108 --frames 1 "
-                     "--warmup 0 --flicker --flicker-frames 4 --grid-sigma 2 --camera-path orbit:600 --camera-fill "
-                     "--flicker-gaze fixed --flicker-pipelines gbuffer,visibility --flicker-reference own --no-png --out " + d.path("b"));
+  auto r = run_moving_camera(d, "--camera-path orbit:600 --flicker-reference own");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto rows = read_csv(test::read_file(d.path("b/flicker.csv")));
   ASSERT_EQ(rows.size(), 4u);
