@@ -1,5 +1,7 @@
 #include "render_targets.hpp"
 
+#include <vector>
+
 namespace foveal::render::detail {
 
 namespace {
@@ -105,8 +107,12 @@ MaterialTiles MaterialTiles::create(int width, int height, int tile, std::size_t
   t.across = (width + tile - 1) / tile;
   t.down = (height + tile - 1) / tile;
   t.slots = slots;
+  std::vector<GLuint> empty(4 * slots, 0);
+  for (std::size_t k = 0; k < slots; ++k) empty[4 * k] = 6;  // six vertices: one quad per instance
+  t.empty = gl::Buffer::create();
+  glNamedBufferStorage(t.empty.id(), static_cast<GLsizeiptr>(slots * 16), empty.data(), 0);
   t.commands = gl::Buffer::create();
-  glNamedBufferStorage(t.commands.id(), static_cast<GLsizeiptr>(slots * 16), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  glNamedBufferStorage(t.commands.id(), static_cast<GLsizeiptr>(slots * 16), nullptr, 0);
   t.lists = gl::Buffer::create();
   glNamedBufferStorage(t.lists.id(), static_cast<GLsizeiptr>(slots * t.count() * 4), nullptr, 0);
   return t;

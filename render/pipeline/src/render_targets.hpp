@@ -58,15 +58,16 @@ struct VisibilityTarget {
 
 /// Per material slot, the tiles of a buffer that hold the material and the indirect draw
 /// of them (layout in shaders/common/material_tiles.glsl): 16 bytes of command and room
-/// for every tile, per slot.
+/// for every tile, per slot; `empty` holds the commands before any tile is counted (a
+/// quad per instance, no instances), copied over `commands` at each frame's start.
 struct MaterialTiles {
-  gl::Buffer commands, lists;
+  gl::Buffer commands, empty, lists;
   int across = 0, down = 0;
   std::size_t slots = 0;
 
   static MaterialTiles create(int width, int height, int tile, std::size_t slots);
   std::size_t count() const { return static_cast<std::size_t>(across) * static_cast<std::size_t>(down); }
-  std::size_t bytes() const { return slots * (16 + count() * 4); }
+  std::size_t bytes() const { return slots * (32 + count() * 4); }
 };
 
 /// What the visibility pipeline's material pass writes: a SurfaceTargets (depth as a

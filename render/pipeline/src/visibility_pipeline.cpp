@@ -163,12 +163,7 @@ void VisibilityPipeline::material_pass(const Scene& scene, const EyeView& view, 
   const std::size_t slots = std::min(scene.materials.size() + 1, kMaterialSlots);
   MaterialTiles& tiles = dst.tiles;
   if (tiles.slots < slots) tiles = MaterialTiles::create(dst.width(), dst.height(), kMaterialTile, slots);
-  const std::vector<GLuint> empty_draws = [&] {
-    std::vector<GLuint> cmds(4 * slots, 0);
-    for (std::size_t k = 0; k < slots; ++k) cmds[4 * k] = 6;  // one quad per instance, no instances
-    return cmds;
-  }();
-  glNamedBufferSubData(tiles.commands.id(), 0, static_cast<GLsizeiptr>(empty_draws.size() * sizeof(GLuint)), empty_draws.data());
+  glCopyNamedBufferSubData(tiles.empty.id(), tiles.commands.id(), 0, 0, static_cast<GLsizeiptr>(slots * 16));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, tiles.commands.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, tiles.lists.id());
   glBindTextureUnit(7, dst.material_depth.id());
