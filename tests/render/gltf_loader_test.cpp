@@ -200,6 +200,11 @@ TEST(GltfLoader, ImageDimensionsAreCheckedBeforeDecoding) {
   render::GltfLimits gl;
   gl.max_texture_size = 8192;  // as the compositor passes its GL_MAX_TEXTURE_SIZE
   expect_refused(load_json(with_image(test::png_header(8193, 1)), gl), "8193×1 is larger than the texture size limit 8192");
+  // A chunk longer than the bytes there are (stb_image would size its buffer from it
+  // first: 2 GiB for this one; fuzz_gltf, tests/fuzz/regressions/gltf/).
+  std::string idat = test::png_header(4, 4);
+  idat.insert(33, std::string{0x40, 0, 0, 0} + "IDAT");
+  expect_refused(load_json(with_image(idat)), "images[0] (claims): PNG chunk at byte 33 claims 1073741824 bytes, past the end of the image (53 bytes)");
   EXPECT_LT(peak_rss_kb() - before, 100 * 1024);
   expect_refused(load_json(with_image("not a png")), "images[0] (claims): not an image stb_image can decode");
   // An image in a buffer view that runs past its buffer (tinygltf 2.7 reads it unchecked).

@@ -92,6 +92,17 @@ Status decode_image(tinygltf::Image& image, int index, const unsigned char* byte
     };
     const std::uint64_t pw = be32(bytes + 16), ph = be32(bytes + 20);
     if (pw > static_cast<std::uint64_t>(max_side) || ph > static_cast<std::uint64_t>(max_side)) return too_large(pw, ph);
+    // Every chunk must fit in the bytes there are: stb_image sizes its buffer from a
+    // chunk's length before reading it, so one claiming 2 GiB in a short file would
+    // allocate 2 GiB first (found by fuzz_gltf).
+    for (std::size_t at = 8; at + 12 <= size;) {
+      const std::uint64_t length = be32(bytes + at);
+      if (length > size - at - 12)
+        return bad_input(what + ": PNG chunk at byte " + std::to_string(at) + " claims " + std::to_string(length) + " bytes, past the end of the image (" +
+                         std::to_string(size) + " bytes)");
+      if (std::memcmp(bytes + at + 4, "IEND", 4) == 0) break;
+      at += 12 + static_cast<std::size_t>(length);
+    }
   }
   int w = 0, h = 0, comp = 0;
   if (!stbi_info_from_memory(bytes, n, &w, &h, &comp))
