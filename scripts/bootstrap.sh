@@ -18,6 +18,11 @@ packages=(
   xvfb xauth xdotool  # the GLFW window paths, tested on a virtual X server
   clang libclang-rt-14-dev  # libFuzzer targets (scripts/test.sh)
   slurm-wlm munge  # bench sweeps on Slurm: the one-node cluster test (tests/cluster)
+  # The OpenXR test runtime: Monado's build deps (scripts/build_monado.sh), then the loader
+  libvulkan-dev glslang-tools mesa-vulkan-drivers libx11-xcb-dev libxcb-randr0-dev
+  libxrandr-dev libudev-dev libcjson-dev libbsd-dev libsystemd-dev libdbus-1-dev
+  libegl1-mesa-dev libwayland-dev wayland-protocols libeigen3-dev xz-utils
+  libopenxr-dev libopenxr-loader1 openxr-layer-corevalidation libopenxr-utils
 )
 
 missing=()
@@ -33,5 +38,15 @@ if ((${#missing[@]})); then
   $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@"
+# The OpenXR tests' runtime (Monado), built once into a cache; exit 3: no snapshot here.
+openxr=()
+if manifest=$(scripts/build_monado.sh); then
+  openxr=("-DFOVEAL_TEST_OPENXR_RUNTIME=${manifest##*$'\n'}")
+else
+  rc=$?
+  ((rc == 3)) || exit "$rc"
+  echo "bootstrap: no Monado snapshot: the openxr tests will be reported as not run"
+fi
+
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${openxr[@]}" "$@"
 cmake --build build -j "$(nproc)"

@@ -62,8 +62,8 @@ TEST(FoveaShm, SettingsAndLivenessReachReaders) {
   std::memcpy(&size, raw + FOVEAL_SHM_SIZE_OFFSET, 4);
   std::memcpy(&pid, raw + FOVEAL_SHM_WRITER_PID_OFFSET, 4);
   std::memcpy(&state, raw + FOVEAL_SHM_WRITER_STATE_OFFSET, 4);
-  EXPECT_EQ(version, 2u);
-  EXPECT_EQ(size, 152u);
+  EXPECT_EQ(version, 3u);
+  EXPECT_EQ(size, 200u);
   EXPECT_EQ(pid, static_cast<std::uint32_t>(::getpid()));
   EXPECT_EQ(state, FOVEAL_SHM_WRITER_LIVE);
 }

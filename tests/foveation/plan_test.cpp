@@ -141,5 +141,5 @@ TEST(RmfrGlsl, SourceIsSelfContainedAndFilesAreFound) {
   EXPECT_FALSE(rmfr::glsl_file("foveal/rmfr_mapping.glsl").empty());
   EXPECT_TRUE(rmfr::glsl_file("common/mapping.glsl").empty());
   EXPECT_TRUE(std::filesystem::exists(rmfr::glsl_directory() + "/foveal/rmfr.glsl")) << rmfr::glsl_directory();
-  EXPECT_STREQ(rmfr::version(), "0.2.0");
+  EXPECT_STREQ(rmfr::version(), "0.3.0");
 }

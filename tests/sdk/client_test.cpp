@@ -213,7 +213,7 @@ TEST(FovealClient, ALaterVersionWithMoreSectionsStillReads) {
     RawBlock raw(name, 256);
     ASSERT_NE(raw.p, nullptr);
     raw.put<std::uint32_t>(FOVEAL_SHM_MAGIC_OFFSET, FOVEAL_SHM_MAGIC);
-    raw.put<std::uint32_t>(FOVEAL_SHM_VERSION_OFFSET, 3);
+    raw.put<std::uint32_t>(FOVEAL_SHM_VERSION_OFFSET, 4);
     raw.put<std::uint32_t>(FOVEAL_SHM_SIZE_OFFSET, 256);
     raw.put<std::int64_t>(FOVEAL_SHM_HEARTBEAT_OFFSET, monotonic_now_ns());
     raw.put<std::uint32_t>(FOVEAL_SHM_WRITER_STATE_OFFSET, FOVEAL_SHM_WRITER_LIVE);
@@ -311,6 +311,64 @@ TEST(FovealClient, ReadersOnManyThreadsSeeOnlyWholeValues) {
   w.join();
   EXPECT_EQ(torn.load(), 0);
   EXPECT_GT(reads.load(), 0);
+}
+
+}  // namespace
+}  // namespace foveal
+
+namespace foveal {
+namespace {
+
+TEST(FovealClient, TheViewTurnsFoveaPixelsBackIntoTheDirectionsFovealdMapped) {
+  const std::string name = unique_name();
+  auto writer = FoveaShm::create(name);
+  ASSERT_TRUE(writer) << writer.error().message;
+  Opened o(name.c_str());
+  ASSERT_NE(o.c, nullptr) << o.err.message;
+  foveal_view v{};
+  EXPECT_EQ(foveal_client_view(o.c, &v), FOVEAL_ERR_NO_DATA);  // not published yet
+  DisplayModel m = DisplayModel::vive_pro_eye();
+  m.frustum[0] = {-1.3f, 1.1f, -1.4f, 1.2f};  // asymmetric, different per eye
+  m.ipd_mm = 61.5f;
+  writer->publish_view(m);
+  const glm::vec3 left_dir = glm::normalize(glm::vec3{0.2f, -0.1f, -1.0f}), right_dir = glm::normalize(glm::vec3{-0.3f, 0.25f, -1.0f});
+  const glm::vec2 lp = m.direction_to_pixel(Eye::left, left_dir), rp = m.direction_to_pixel(Eye::right, right_dir);
+  writer->publish(frame(lp.x, lp.y, rp.x, rp.y), m.eye_width, m.eye_height);
+  ASSERT_EQ(foveal_client_view(o.c, &v), FOVEAL_OK);
+  EXPECT_FLOAT_EQ(v.tan_left[0], -1.3f);
+  EXPECT_FLOAT_EQ(v.tan_top[1], m.frustum[1].tan_top);
+  EXPECT_FLOAT_EQ(v.ipd_m, 0.0615f);
+  foveal_fovea f{};
+  ASSERT_EQ(foveal_client_read(o.c, &f), FOVEAL_OK);
+  float d[3];
+  ASSERT_EQ(foveal_view_direction(&v, &f, 0, d), FOVEAL_OK);
+  EXPECT_NEAR(glm::dot(glm::vec3(d[0], d[1], d[2]), left_dir), 1.0f, 1e-6f);
+  ASSERT_EQ(foveal_view_direction(&v, &f, 1, d), FOVEAL_OK);
+  EXPECT_NEAR(glm::dot(glm::vec3(d[0], d[1], d[2]), right_dir), 1.0f, 1e-6f);
+  EXPECT_EQ(foveal_view_direction(&v, &f, 2, d), FOVEAL_ERR_INVALID_ARGUMENT);
+  f.x[0] = std::nanf("");
+  EXPECT_EQ(foveal_view_direction(&v, &f, 0, d), FOVEAL_ERR_INVALID_ARGUMENT);
+}
+
+TEST(FovealClient, AVersionTwoBlockReadsButHasNoView) {
+  const std::string name = unique_name();
+  {
+    RawBlock raw(name, FOVEAL_SHM_V2_SIZE);  // what a foveald before the view made
+    ASSERT_NE(raw.p, nullptr);
+    raw.put<std::uint32_t>(FOVEAL_SHM_MAGIC_OFFSET, FOVEAL_SHM_MAGIC);
+    raw.put<std::uint32_t>(FOVEAL_SHM_VERSION_OFFSET, 2);
+    raw.put<std::uint32_t>(FOVEAL_SHM_SIZE_OFFSET, FOVEAL_SHM_V2_SIZE);
+    raw.put<std::int64_t>(FOVEAL_SHM_HEARTBEAT_OFFSET, monotonic_now_ns());
+    raw.put<std::uint32_t>(FOVEAL_SHM_WRITER_STATE_OFFSET, FOVEAL_SHM_WRITER_LIVE);
+    raw.put<std::uint64_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, frame), 3);
+  }
+  Opened o(name.c_str());
+  ASSERT_NE(o.c, nullptr) << o.err.message;
+  foveal_fovea f{};
+  EXPECT_EQ(foveal_client_read(o.c, &f), FOVEAL_OK);
+  foveal_view v{};
+  EXPECT_EQ(foveal_client_view(o.c, &v), FOVEAL_ERR_WRONG_VERSION);
+  ::shm_unlink(name.c_str());
 }
 
 }  // namespace

@@ -27,5 +27,6 @@ void add_devices(CLI::App& app, int& exit_code);
 void add_record(CLI::App& app, int& exit_code);
 void add_study(CLI::App& app, int& exit_code);
 void add_study_run(CLI::App& study, int& exit_code);  // `study run`, called by add_study
+void add_openxr(CLI::App& app, int& exit_code);  // with FOVEAL_HAVE_OPENXR
 
 }  // namespace foveal::cmd

@@ -30,6 +30,9 @@ int main(int argc, char** argv) {
 #ifdef FOVEAL_HAVE_HID
   foveal::cmd::add_hid(app, exit_code);
 #endif
+#ifdef FOVEAL_HAVE_OPENXR
+  foveal::cmd::add_openxr(app, exit_code);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

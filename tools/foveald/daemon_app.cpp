@@ -155,6 +155,7 @@ Status DaemonApp::setup() {
       RenderSettings rs;
       (void)settings_.load(rs);
       shm_->publish_settings(shm_settings(rs));  // those of the startup profile, before any fovea
+      shm_->publish_view(model_);                // fixed from here on: the source is set up
     } else {
       log::warn(s.error().message + "; the fovea stream is off");
     }

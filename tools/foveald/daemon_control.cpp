@@ -198,6 +198,9 @@ nlohmann::json DaemonApp::summary_json() const {
   j.erase("ok");
   j["display_model"] = model_.name;
   j["trace"] = o_.out + "/trace.csv";
+  // trace.csv counts from its first row: this is that row's CLOCK_MONOTONIC time, the clock
+  // of the shared block and of OpenXR apps' converted times (docs/openxr.md).
+  if (auto t0 = trace_->t0_ns()) j["trace_t0_ns"] = *t0;
   j["peak_rss_mb"] = peak_rss_mb();
   // The driver's own counters; the gaze thread has stopped, so reading them is safe.
   if (loop_ && loop_->finished() && source_.counters) j["source"]["counters"] = source_.counters();

@@ -84,7 +84,7 @@ Result<FoveaShm> FoveaShm::create(const std::string& name) {
   auto* b = static_cast<FoveaShmBlock*>(p);
   std::atomic_ref<std::uint32_t>(b->magic).store(0, std::memory_order_relaxed);
   b = new (p) FoveaShmBlock{0, FoveaShmBlock::kVersion, static_cast<std::uint32_t>(sizeof(FoveaShmBlock)), 0, {}, {},
-                            monotonic_now_ns(), static_cast<std::uint32_t>(::getpid()), FOVEAL_SHM_WRITER_LIVE};
+                            monotonic_now_ns(), static_cast<std::uint32_t>(::getpid()), FOVEAL_SHM_WRITER_LIVE, {}};
   std::atomic_ref<std::uint32_t>(b->magic).store(FoveaShmBlock::kMagic, std::memory_order_release);
   s.block_ = b;
   return s;
@@ -107,11 +107,11 @@ Result<FoveaShm> FoveaShm::open(const std::string& name) {
   // The header first, read rather than mapped: a short or older block is named, not mapped past its end.
   std::uint32_t header[3] = {};
   const bool whole_header = ::pread(fd, header, sizeof header, 0) == static_cast<ssize_t>(sizeof header);
-  // Later versions only append (fovea_shm_layout.h): any version from 2 on reads.
+  // Later versions only append (fovea_shm_layout.h): any version from this one on reads.
   std::string wrong;
   if (!whole_header || header[0] != FoveaShmBlock::kMagic) wrong = "not a fovea block (no FOVA magic)";
   else if (header[1] < FoveaShmBlock::kVersion)
-    wrong = "a version-" + std::to_string(header[1]) + " block (a foveald without settings in the block); this reader needs version " +
+    wrong = "a version-" + std::to_string(header[1]) + " block (an older foveald); this reader needs version " +
             std::to_string(FoveaShmBlock::kVersion) + " or later";
   else if (header[2] < sizeof(FoveaShmBlock) || header[2] > static_cast<std::uint64_t>(st.st_size))
     wrong = "its size field (" + std::to_string(header[2]) + " bytes) does not fit a version-" + std::to_string(header[1]) + " block";
@@ -145,6 +145,20 @@ FoveaShm::~FoveaShm() {
 }
 
 void FoveaShm::heartbeat() { block_->heartbeat_ns.store(monotonic_now_ns(), std::memory_order_release); }
+
+void FoveaShm::publish_view(const DisplayModel& m) {
+  FoveaShmView v{};
+  for (int e = 0; e < 2; ++e) {
+    const EyeFrustum& f = m.frustum[static_cast<std::size_t>(e)];
+    v.tan_left[e] = f.tan_left;
+    v.tan_right[e] = f.tan_right;
+    v.tan_bottom[e] = f.tan_bottom;
+    v.tan_top[e] = f.tan_top;
+  }
+  v.ipd_m = m.ipd_mm / 1000.0f;
+  v.published = 1;
+  block_->view.store(v);
+}
 
 void FoveaShm::publish(const FoveaFrame& f, int eye_width, int eye_height) {
   FoveaShmPayload p{};

@@ -7,6 +7,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,8 +23,13 @@
  * at foveald's rates a read succeeds on its first try. */
 enum { kTries = 64 };
 
+/* The oldest block this library reads: version 2 brought the settings; version 3's view
+ * is read where the block has it (foveal_client_view). */
+enum { kOldestVersion = 2 };
+
 struct foveal_client {
-  const unsigned char *block; /* FOVEAL_SHM_V2_SIZE bytes, mapped read-only */
+  const unsigned char *block; /* `size` bytes, mapped read-only */
+  size_t size;                /* FOVEAL_SHM_V2_SIZE, or FOVEAL_SHM_V3_SIZE when the block has the view */
 };
 
 static uint32_t load_u32(const unsigned char *block, size_t offset, int order) {
@@ -94,8 +100,9 @@ static int valid_name(const char *name) {
   return name[0] == '/' && len >= 2 && len <= 255 && strchr(name + 1, '/') == NULL;
 }
 
-/* Checks who made the block and its header; 0, or an error code with err filled. */
-static int check_block(int fd, const char *name, foveal_error *err) {
+/* Checks who made the block and its header; 0, or an error code with err filled.
+ * *map_size: how much of it this library reads (the view from version 3 on). */
+static int check_block(int fd, const char *name, size_t *map_size, foveal_error *err) {
   struct stat st;
   if (fstat(fd, &st) != 0) return set_error(err, FOVEAL_ERR_SYSTEM, name, "fstat: %s", strerror(errno));
   if (!S_ISREG(st.st_mode))
@@ -114,15 +121,16 @@ static int check_block(int fd, const char *name, foveal_error *err) {
   if (header[0] != FOVEAL_SHM_MAGIC)
     return set_error(err, FOVEAL_ERR_WRONG_VERSION, name, "not a fovea block (magic 0x%08x, expected 0x%08x)",
                 (unsigned)header[0], FOVEAL_SHM_MAGIC);
-  if (header[1] < FOVEAL_SHM_VERSION)
+  if (header[1] < kOldestVersion)
     return set_error(err, FOVEAL_ERR_WRONG_VERSION, name,
                 "a version-%u block, from a foveald without settings in the block; this library reads version %u "
                 "and later: update foveald",
-                (unsigned)header[1], FOVEAL_SHM_VERSION);
+                (unsigned)header[1], kOldestVersion);
   if (header[2] < FOVEAL_SHM_V2_SIZE || (off_t)header[2] > st.st_size)
     return set_error(err, FOVEAL_ERR_WRONG_VERSION, name,
                 "its header says %u bytes, but a version-%u block has at least %d and the object holds %lld",
                 (unsigned)header[2], (unsigned)header[1], (int)FOVEAL_SHM_V2_SIZE, (long long)st.st_size);
+  *map_size = header[1] >= 3 && header[2] >= FOVEAL_SHM_V3_SIZE ? FOVEAL_SHM_V3_SIZE : FOVEAL_SHM_V2_SIZE;
   return 0;
 }
 
@@ -143,11 +151,12 @@ foveal_client *foveal_client_open(const char *shm_name_or_null, foveal_error *er
     if (errno == EACCES) return fail(err, FOVEAL_ERR_NOT_FOVEALDS, name, "permission denied: another user's block");
     return fail(err, FOVEAL_ERR_SYSTEM, name, "shm_open: %s", strerror(errno));
   }
-  if (check_block(fd, name, err) != 0) {
+  size_t size = 0;
+  if (check_block(fd, name, &size, err) != 0) {
     close(fd);
     return NULL;
   }
-  void *p = mmap(NULL, FOVEAL_SHM_V2_SIZE, PROT_READ, MAP_SHARED, fd, 0);
+  void *p = mmap(NULL, size, PROT_READ, MAP_SHARED, fd, 0);
   const int map_errno = errno;
   close(fd);
   if (p == MAP_FAILED) return fail(err, FOVEAL_ERR_SYSTEM, name, "mmap: %s", strerror(map_errno));
@@ -157,11 +166,11 @@ foveal_client *foveal_client_open(const char *shm_name_or_null, foveal_error *er
   const int problem = writer_problem(block, &silent);
   const unsigned pid = (unsigned)load_u32(block, FOVEAL_SHM_WRITER_PID_OFFSET, __ATOMIC_RELAXED);
   if (problem == FOVEAL_ERR_NO_WRITER) {
-    munmap(p, FOVEAL_SHM_V2_SIZE);
+    munmap(p, size);
     return fail(err, problem, name, "the foveald that published here (pid %u) has stopped", pid);
   }
   if (problem == FOVEAL_ERR_DEAD_WRITER) {
-    munmap(p, FOVEAL_SHM_V2_SIZE);
+    munmap(p, size);
     return fail(err, problem, name,
                 "the foveald that published here (pid %u) gave no sign of life for %.1f s: it died or hangs; "
                 "start foveald again (it takes the block over)",
@@ -169,10 +178,11 @@ foveal_client *foveal_client_open(const char *shm_name_or_null, foveal_error *er
   }
   foveal_client *c = (foveal_client *)calloc(1, sizeof *c);
   if (!c) {
-    munmap(p, FOVEAL_SHM_V2_SIZE);
+    munmap(p, size);
     return fail(err, FOVEAL_ERR_SYSTEM, name, "out of memory");
   }
   c->block = block;
+  c->size = size;
   return c;
 }
 
@@ -218,9 +228,44 @@ int foveal_client_settings(foveal_client *c, foveal_settings *out) {
   return FOVEAL_OK;
 }
 
+int foveal_client_view(foveal_client *c, foveal_view *out) {
+  if (!c || !out) return FOVEAL_ERR_INVALID_ARGUMENT;
+  if (c->size < FOVEAL_SHM_V3_SIZE) return FOVEAL_ERR_WRONG_VERSION;
+  const int problem = writer_problem(c->block, NULL);
+  if (problem) return problem;
+  uint64_t words[FOVEAL_SHM_VIEW_WORDS];
+  if (!seqlock_read(c->block, FOVEAL_SHM_VIEW_SEQ_OFFSET, FOVEAL_SHM_VIEW_WORDS_OFFSET, words, FOVEAL_SHM_VIEW_WORDS))
+    return FOVEAL_ERR_BUSY;
+  foveal_shm_view v;
+  memcpy(&v, words, sizeof v);
+  if (!v.published) return FOVEAL_ERR_NO_DATA;
+  for (int e = 0; e < 2; ++e) {
+    out->tan_left[e] = v.tan_left[e];
+    out->tan_right[e] = v.tan_right[e];
+    out->tan_bottom[e] = v.tan_bottom[e];
+    out->tan_top[e] = v.tan_top[e];
+  }
+  out->ipd_m = v.ipd_m;
+  return FOVEAL_OK;
+}
+
+int foveal_view_direction(const foveal_view *v, const foveal_fovea *f, int eye, float dir[3]) {
+  if (!v || !f || !dir || eye < 0 || eye > 1 || f->eye_width == 0 || f->eye_height == 0)
+    return FOVEAL_ERR_INVALID_ARGUMENT;
+  /* The inverse of the projection foveald maps directions through (DisplayModel::pixel_to_direction). */
+  const float tx = v->tan_left[eye] + f->x[eye] / (float)f->eye_width * (v->tan_right[eye] - v->tan_left[eye]);
+  const float ty = v->tan_top[eye] - f->y[eye] / (float)f->eye_height * (v->tan_top[eye] - v->tan_bottom[eye]);
+  const float inv = 1.0f / sqrtf(tx * tx + ty * ty + 1.0f);
+  if (!(inv > 0.0f)) return FOVEAL_ERR_INVALID_ARGUMENT; /* NaN or infinite pixels */
+  dir[0] = tx * inv;
+  dir[1] = ty * inv;
+  dir[2] = -inv;
+  return FOVEAL_OK;
+}
+
 void foveal_client_close(foveal_client *c) {
   if (!c) return;
-  munmap((void *)c->block, FOVEAL_SHM_V2_SIZE);
+  munmap((void *)c->block, c->size);
   free(c);
 }
 

@@ -71,6 +71,15 @@ typedef struct {
   uint64_t generation;
 } foveal_settings;
 
+/* What the fovea's pixels mean (block version 3, foveald 0.3 and later): each eye's
+ * projection as the tangents of its frustum's half-angles, and the IPD. Fixed for as
+ * long as one foveald runs. */
+typedef struct {
+  float tan_left[2], tan_right[2]; /* per eye; left and bottom are negative */
+  float tan_bottom[2], tan_top[2];
+  float ipd_m;                     /* interpupillary distance, metres */
+} foveal_view;
+
 /* An error as a value: the code and a message naming the block and what is wrong. */
 typedef struct {
   int code;
@@ -108,6 +117,20 @@ FOVEAL_CLIENT_API int foveal_client_read(foveal_client *c, foveal_fovea *out);
  * Returns and thread safety as foveal_client_read (NO_DATA does not occur: foveald
  *   publishes its settings before the first fovea). */
 FOVEAL_CLIENT_API int foveal_client_settings(foveal_client *c, foveal_settings *out);
+
+/* Copies the display geometry foveald maps gaze with into *out.
+ *
+ * Returns FOVEAL_OK, or INVALID_ARGUMENT, WRONG_VERSION (an older foveald's block,
+ *   without the view), NO_WRITER, DEAD_WRITER, NO_DATA (not yet published), BUSY.
+ * Wait-free, no lock, allocation or system call. Thread safety as foveal_client_read. */
+FOVEAL_CLIENT_API int foveal_client_view(foveal_client *c, foveal_view *out);
+
+/* Turns eye `eye`'s fovea pixel (0 left, 1 right) back into a unit gaze direction in
+ * that eye's frame (x right, y up, -z forward: the OpenXR convention), through view v.
+ *
+ * Returns FOVEAL_OK, or INVALID_ARGUMENT (a null pointer, eye not 0 or 1, a zero
+ *   viewport, or a non-finite pixel). Pure arithmetic; any thread. */
+FOVEAL_CLIENT_API int foveal_view_direction(const foveal_view *v, const foveal_fovea *f, int eye, float dir[3]);
 
 /* Unmaps the block and frees the client. NULL is allowed (nothing happens).
  * Thread safety: no other call may use c at the same time or after. */

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "foveal/core/display_model.hpp"
 #include "foveal/core/error.hpp"
 #include "foveal/runtime/fovea.hpp"
 #include "foveal/runtime/fovea_shm_layout.h"
@@ -17,6 +18,7 @@ namespace foveal {
 /// C layout that foveal-client reads too (fovea_shm_layout.h).
 using FoveaShmPayload = foveal_shm_fovea;
 using FoveaShmSettings = foveal_shm_settings;
+using FoveaShmView = foveal_shm_view;
 
 /// The whole block: a header readers check, the fovea seqlock (the gaze thread writes
 /// it), the settings seqlock and the writer's liveness (the control thread writes them).
@@ -32,13 +34,15 @@ struct FoveaShmBlock {
   std::atomic<std::int64_t> heartbeat_ns;  ///< CLOCK_MONOTONIC, refreshed every FOVEAL_SHM_HEARTBEAT_NS
   std::atomic<std::uint32_t> writer_pid;
   std::atomic<std::uint32_t> writer_state;  ///< FOVEAL_SHM_WRITER_LIVE, then _STOPPED
+  SeqLock<FoveaShmView> view;  ///< version 3: the display model's frustums and IPD
 };
 static_assert(offsetof(FoveaShmBlock, latest) == FOVEAL_SHM_FOVEA_SEQ_OFFSET);
 static_assert(offsetof(FoveaShmBlock, settings) == FOVEAL_SHM_SETTINGS_SEQ_OFFSET);
 static_assert(offsetof(FoveaShmBlock, heartbeat_ns) == FOVEAL_SHM_HEARTBEAT_OFFSET);
 static_assert(offsetof(FoveaShmBlock, writer_pid) == FOVEAL_SHM_WRITER_PID_OFFSET);
 static_assert(offsetof(FoveaShmBlock, writer_state) == FOVEAL_SHM_WRITER_STATE_OFFSET);
-static_assert(sizeof(FoveaShmBlock) == FOVEAL_SHM_V2_SIZE);
+static_assert(offsetof(FoveaShmBlock, view) == FOVEAL_SHM_VIEW_SEQ_OFFSET);
+static_assert(sizeof(FoveaShmBlock) == FOVEAL_SHM_V3_SIZE);
 
 /// Default name: $FOVEAL_SHM_NAME when set, else "/foveal-fovea-<uid>" (a file in /dev/shm).
 std::string default_fovea_shm_name();
@@ -61,12 +65,15 @@ class FoveaShm {
   /// publish_settings() and heartbeat() from one thread (the control thread).
   void publish(const FoveaFrame& f, int eye_width, int eye_height);
   void publish_settings(const FoveaShmSettings& s) { block_->settings.store(s); }
+  /// What the pixels mean (version 3); once, before the first publish().
+  void publish_view(const DisplayModel& m);
   /// Tells readers the writer is alive; call at least every FOVEAL_SHM_HEARTBEAT_NS.
   void heartbeat();
 
   /// Reader side; false if no complete value could be read.
   bool read(FoveaShmPayload& out) const { return block_->latest.load(out); }
   bool read_settings(FoveaShmSettings& out) const { return block_->settings.load(out); }
+  bool read_view(FoveaShmView& out) const { return block_->view.load(out); }
 
  private:
   FoveaShm() = default;

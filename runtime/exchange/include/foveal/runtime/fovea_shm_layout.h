@@ -11,7 +11,7 @@
 #include <stdint.h>
 
 #define FOVEAL_SHM_MAGIC 0x41564F46u /* "FOVA" little-endian */
-#define FOVEAL_SHM_VERSION 2u        /* 1: fovea only; 2: + settings, writer liveness */
+#define FOVEAL_SHM_VERSION 3u        /* 1: fovea only; 2: + settings, writer liveness; 3: + view */
 
 /* The fovea section's payload (unchanged since version 1). */
 typedef struct foveal_shm_fovea {
@@ -32,6 +32,16 @@ typedef struct foveal_shm_settings {
   uint32_t reserved;
   uint64_t generation;      /* increments with every change; 0: nothing published yet */
 } foveal_shm_settings;
+
+/* The view section's payload (version 3): what the fovea's pixels mean, so that a reader
+ * can turn them back into gaze directions (docs/display-model.md). Written once, before
+ * the first fovea; the display model is fixed while foveald runs. */
+typedef struct foveal_shm_view {
+  float tan_left[2], tan_right[2]; /* per eye: the frustum's half-angle tangents (left, bottom < 0) */
+  float tan_bottom[2], tan_top[2];
+  float ipd_m;                     /* interpupillary distance, metres */
+  uint32_t published;              /* 1 once written; 0: not yet */
+} foveal_shm_view;
 
 /* Writer states (the word at FOVEAL_SHM_WRITER_STATE_OFFSET). */
 #define FOVEAL_SHM_WRITER_LIVE 1u
@@ -57,10 +67,15 @@ enum {
   FOVEAL_SHM_HEARTBEAT_OFFSET = 136,     /* i64: CLOCK_MONOTONIC of the writer's last sign of life */
   FOVEAL_SHM_WRITER_PID_OFFSET = 144,    /* u32: the writer's process id (for messages) */
   FOVEAL_SHM_WRITER_STATE_OFFSET = 148,  /* u32: FOVEAL_SHM_WRITER_* */
-  FOVEAL_SHM_V2_SIZE = 152
+  FOVEAL_SHM_V2_SIZE = 152,
+  /* version 3 */
+  FOVEAL_SHM_VIEW_SEQ_OFFSET = 152,   /* u32 */
+  FOVEAL_SHM_VIEW_WORDS_OFFSET = 160, /* foveal_shm_view as 5 u64 */
+  FOVEAL_SHM_V3_SIZE = 200
 };
 
 #define FOVEAL_SHM_FOVEA_WORDS ((sizeof(foveal_shm_fovea) + 7) / 8)
 #define FOVEAL_SHM_SETTINGS_WORDS ((sizeof(foveal_shm_settings) + 7) / 8)
+#define FOVEAL_SHM_VIEW_WORDS ((sizeof(foveal_shm_view) + 7) / 8)
 
 #endif

@@ -51,6 +51,9 @@ class FoveaTrace {
   }
   Status commit() { return file_->commit(); }
 
+  /// The CLOCK_MONOTONIC time the trace's times count from; none before the first row.
+  std::optional<TimeNs> t0_ns() const { return have_t0_ ? std::optional<TimeNs>(t0_) : std::nullopt; }
+
  private:
   explicit FoveaTrace(AtomicFile f) : file_(std::move(f)) {}
   std::optional<AtomicFile> file_;

@@ -1,0 +1,319 @@
+// foveal's OpenXR layer against a real runtime: Monado (headless, simulated HMD) through
+// the Khronos loader with the core validation layer, an app that reads gaze as any app
+// does (examples/openxr_gaze), and foveald serving recorded or synthetic gaze.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "openxr_harness.hpp"
+
+namespace foveal {
+namespace {
+
+using test::OpenXRRig;
+using nlohmann::json;
+
+constexpr const char* kLayerShare = FOVEAL_TEST_LAYER_SHARE;  // the build tree's manifests
+
+class OpenXRLayer : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (std::string(FOVEAL_TEST_OPENXR_RUNTIME).empty())
+      GTEST_SKIP() << "no OpenXR runtime: scripts/build_monado.sh builds Monado from ../shared/vendor/monado";
+  }
+  /// Waits until foveald publishes its block (the app could start earlier: it waits too).
+  void wait_for_block() const {
+    for (int i = 0; i < 500 && !std::filesystem::exists("/dev/shm" + rig_.shm()); ++i)
+      sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
+    ASSERT_TRUE(std::filesystem::exists("/dev/shm" + rig_.shm())) << rig_.err("foveald");
+  }
+  std::vector<json> gaze_lines(const std::string& name = "app") const {
+    std::vector<json> g;
+    for (const json& l : rig_.lines(name))
+      if (l.is_object() && l.value("event", "") == "gaze") g.push_back(l);
+    return g;
+  }
+  json system_line(const std::string& name = "app") const {
+    for (const json& l : rig_.lines(name))
+      if (l.is_object() && l.value("event", "") == "system") return l;
+    return json::object();
+  }
+
+  OpenXRRig rig_;
+};
+
+/// The combined direction the layer gives for a trace row: the tracked eyes' mean.
+glm::vec3 combined(const test::TraceRow& r) {
+  glm::vec3 s{0};
+  for (int e = 0; e < 2; ++e)
+    if (r.tracked[e]) s += r.dir[e];
+  return glm::normalize(s);
+}
+
+/// The app's gaze against foveald's trace: directions, sample times, and inactive
+/// exactly where both eyes are in a blink (away from the edges of one).
+struct Agreement {
+  int active = 0, matched = 0, inactive_in_blink = 0, blink_lines = 0, active_after_blink = 0;
+  double worst_deg = 0, worst_time_ms = 0;
+};
+
+Agreement compare_with_trace(const std::vector<json>& lines, const std::vector<test::TraceRow>& rows, bool per_eye) {
+  Agreement a;
+  bool seen_blink = false;
+  for (const json& l : lines) {
+    const long i = test::row_at(rows, l["t_ns"].get<TimeNs>());
+    if (i < 1 || i + 1 >= static_cast<long>(rows.size())) continue;
+    auto both_out = [&](long k) { return !rows[k].tracked[0] && !rows[k].tracked[1]; };
+    const bool blink = both_out(i) && both_out(i - 1) && both_out(i + 1);
+    const bool clear = !both_out(i) && !both_out(i - 1) && !both_out(i + 1);
+    if (blink) {
+      ++a.blink_lines;
+      a.inactive_in_blink += !l["active"].get<bool>();
+      seen_blink = true;
+    }
+    if (!l["active"].get<bool>() || !clear) continue;
+    ++a.active;
+    a.active_after_blink += seen_blink;
+    // The sample the layer located: the row with its time.
+    const TimeNs s = l["sample_t_ns"].get<TimeNs>();
+    auto nearest = std::min_element(rows.begin(), rows.end(), [s](const auto& x, const auto& y) {
+      return std::llabs(x.t_ns - s) < std::llabs(y.t_ns - s);
+    });
+    a.worst_time_ms = std::max(a.worst_time_ms, static_cast<double>(std::llabs(nearest->t_ns - s)) / 1e6);
+    if (std::llabs(nearest->t_ns - s) > 2 * kNsPerMs) continue;
+    double err = test::angle_deg(test::vec(l["head_direction"]), combined(*nearest));
+    if (per_eye) {
+      // The per-eye call read its own sample: the row of its time.
+      const TimeNs se = l["eyes_t_ns"].get<TimeNs>();
+      const test::TraceRow* row = nullptr;
+      for (const auto& r : rows)
+        if (std::llabs(r.t_ns - se) <= 2 * kNsPerMs) row = &r;
+      if (!row) err = 180;
+      for (int e = 0; row && e < 2; ++e) {
+        const json& eye = l["eyes"][e];
+        if (eye["valid"].get<bool>() != row->tracked[e]) err = 180;
+        if (row->tracked[e]) {
+          err = std::max(err, test::angle_deg(test::vec(eye["direction"]), row->dir[e]));
+          if (std::abs(eye["confidence"].get<double>() - row->confidence[e]) > 0.006) err = 180;
+          if (std::abs(eye["position"][0].get<double>() - (e == 0 ? -0.0315 : 0.0315)) > 1e-4) err = 180;
+        }
+      }
+    }
+    a.worst_deg = std::max(a.worst_deg, err);
+    ++a.matched;
+  }
+  return a;
+}
+
+TEST_F(OpenXRLayer, RecordedGazeReachesTheAppAsFovealdTracedIt) {
+  // (b) the bundled Vive recording; (c) per eye through XR_FB_eye_tracking_social.
+  auto fd = rig_.foveald({"--no-render", "--duration", "9", "--out", rig_.path("fd")}, "foveald");
+  wait_for_block();
+  auto app = rig_.app({"--duration", "6", "--per-eye"}, rig_.app_env(kLayerShare));
+  ASSERT_EQ(app->wait(30000), 0) << rig_.err();
+  ASSERT_EQ(fd->wait(20000), 0) << rig_.err("foveald");
+  const json sys = system_line();
+  EXPECT_EQ(sys.value("supportsEyeGazeInteraction", -1), 1) << sys.dump();
+  EXPECT_EQ(sys.value("supportsEyeTracking", -1), 1) << sys.dump();
+  const auto lines = gaze_lines();
+  const auto rows = test::read_trace(rig_.path("fd"), DisplayModel::vive_pro_eye());
+  ASSERT_GT(rows.size(), 500u);
+  const Agreement a = compare_with_trace(lines, rows, /*per_eye=*/true);
+  std::printf("recorded: %d active lines, worst %.4f deg from the trace, worst sample time %.3f ms, %d/%d blink lines inactive\n",
+              a.active, a.worst_deg, a.worst_time_ms, a.inactive_in_blink, a.blink_lines);
+  EXPECT_GT(a.active, 300) << "of " << lines.size() << " lines; " << rig_.err();
+  EXPECT_EQ(a.matched, a.active) << "samples more than 2 ms from any trace row (worst " << a.worst_time_ms << " ms)";
+  EXPECT_LT(a.worst_deg, 0.01) << "degrees between the app's gaze and foveald's trace";
+  EXPECT_EQ(a.inactive_in_blink, a.blink_lines);
+  // The app's last reading comes after xrRequestExitSession (STOPPING): no focus, no gaze.
+  int unfocused = 0;
+  for (const json& l : lines)
+    if (l["state"] != "FOCUSED") {
+      ++unfocused;
+      EXPECT_FALSE(l["active"].get<bool>()) << l.dump();
+      EXPECT_FALSE(l["eyes"][0]["valid"].get<bool>()) << l.dump();
+    }
+  EXPECT_EQ(unfocused, 1);
+  // Only foveal's one line of state: the validation layer found no misuse.
+  EXPECT_EQ(rig_.err().find("VALIDATION"), std::string::npos) << rig_.err();
+}
+
+TEST_F(OpenXRLayer, SyntheticScanpathWithinHalfADegreeOfTheTruthAndInactiveThroughBlinks) {
+  // (a) a scanpath with known truth, replayed through foveald's gaze pipeline.
+  const test::RunResult synth = test::run(test::bin("foveal") + " synth --seed 11 --duration 14 --noise 0.2 --blink-rate 1.5 -o " +
+                                          rig_.path("synth.csv") + " --truth " + rig_.path("truth.csv"));
+  ASSERT_EQ(synth.exit_code, 0) << synth.err;
+  auto fd = rig_.foveald({"--source", "replay:" + rig_.path("synth.csv"), "--no-render", "--out", rig_.path("fd")}, "foveald");
+  wait_for_block();
+  auto app = rig_.app({"--duration", "10"}, rig_.app_env(kLayerShare));
+  ASSERT_EQ(app->wait(30000), 0) << rig_.err();
+  ASSERT_EQ(fd->wait(30000), 0) << rig_.err("foveald");
+  const auto lines = gaze_lines();
+  const auto rows = test::read_trace(rig_.path("fd"), DisplayModel::vive_pro_eye());
+  const Agreement a = compare_with_trace(lines, rows, false);
+  std::printf("synthetic: %d active lines (%d after a blink), worst %.4f deg from the trace, %d/%d blink lines inactive\n",
+              a.active, a.active_after_blink, a.worst_deg, a.inactive_in_blink, a.blink_lines);
+  EXPECT_GT(a.blink_lines, 5) << "the run saw no blink: pick another seed";
+  EXPECT_EQ(a.inactive_in_blink, a.blink_lines) << "active during a blink";
+  EXPECT_GT(a.active_after_blink, 50) << "not active again after a blink";
+  EXPECT_EQ(a.matched, a.active) << "worst sample time " << a.worst_time_ms << " ms";
+
+  // Against the truth: settled fixations (50 ms in, the filter's stated settling time,
+  // docs/filtering.md), where the pipeline's lag is within a sample.
+  const auto summary = json::parse(test::read_file(rig_.path("fd/summary.json")));
+  const TimeNs t0 = summary["trace_t0_ns"].get<TimeNs>();
+  struct Truth {
+    TimeNs t;
+    std::string event;
+    int index;
+    glm::vec3 dir;
+  };
+  std::vector<Truth> truth;
+  for (const auto& r : test::read_csv_rows(test::read_file(rig_.path("truth.csv")))) {
+    const glm::vec3 l{std::stof(r.at("left_dir_x")), std::stof(r.at("left_dir_y")), std::stof(r.at("left_dir_z"))};
+    const glm::vec3 rr{std::stof(r.at("right_dir_x")), std::stof(r.at("right_dir_y")), std::stof(r.at("right_dir_z"))};
+    truth.push_back({t0 + std::stoll(r.at("t_ns")), r.at("event"), std::stoi(r.at("event_index")), glm::normalize(l + rr)});
+  }
+  auto truth_at = [&](TimeNs t) -> const Truth* {
+    const Truth* best = nullptr;
+    for (const Truth& x : truth)
+      if (std::llabs(x.t - t) <= 2 * kNsPerMs) best = &x;
+    return best;
+  };
+  int settled = 0, within = 0;
+  double worst = 0;
+  for (const json& l : lines) {
+    if (!l["active"].get<bool>()) continue;
+    const TimeNs s = l["sample_t_ns"].get<TimeNs>();
+    const Truth* now = truth_at(s);
+    const Truth* before = truth_at(s - 50 * kNsPerMs);
+    if (!now || !before || now->event != "fixation" || before->event != "fixation" || before->index != now->index) continue;
+    const double e = test::angle_deg(test::vec(l["head_direction"]), now->dir);
+    ++settled;
+    within += e <= 0.5;
+    worst = std::max(worst, e);
+  }
+  std::printf("synthetic: %d settled fixation samples, %d within 0.5 deg of the truth, worst %.3f deg\n", settled, within,
+              worst);
+  ASSERT_GT(settled, 200);
+  EXPECT_EQ(within, settled) << "settled fixation samples within 0.5 deg of the truth; worst " << worst << " deg";
+}
+
+TEST_F(OpenXRLayer, WithoutFovealdTheAppRunsAndTheGazeIsInactive) {
+  // (d) no foveald at all: the extension is still there, the gaze inactive, one line said.
+  auto app = rig_.app({"--duration", "2", "--per-eye"}, rig_.app_env(kLayerShare));
+  ASSERT_EQ(app->wait(30000), 0) << rig_.err();
+  EXPECT_EQ(system_line().value("supportsEyeGazeInteraction", -1), 1);
+  const auto lines = gaze_lines();
+  ASSERT_GT(lines.size(), 50u) << rig_.err();
+  for (const json& l : lines) {
+    EXPECT_FALSE(l["active"].get<bool>());
+    EXPECT_EQ(l["flags"].get<int>(), 0);
+    EXPECT_FALSE(l["eyes"][0]["valid"].get<bool>());
+  }
+  const std::string err = rig_.err();
+  const auto first = err.find("foveal-openxr: no gaze from foveald yet");
+  EXPECT_NE(first, std::string::npos) << err;
+  EXPECT_EQ(err.find("foveal-openxr: no gaze from foveald yet", first + 1), std::string::npos) << "said more than once";
+}
+
+TEST_F(OpenXRLayer, FovealdKilledAndRestartedMidSession) {
+  // (d) the app keeps running: active, inactive once foveald is gone, active again.
+  auto app = rig_.app({"--duration", "11"}, rig_.app_env(kLayerShare));
+  sleep_until_ns(monotonic_now_ns() + 1000 * kNsPerMs);
+  auto fd = rig_.foveald({"--no-render", "--out", rig_.path("fd1")}, "foveald");
+  sleep_until_ns(monotonic_now_ns() + 3000 * kNsPerMs);
+  fd->signal(SIGKILL);
+  const TimeNs killed = monotonic_now_ns();
+  ASSERT_EQ(fd->wait(5000), 128 + SIGKILL);
+  sleep_until_ns(monotonic_now_ns() + 3000 * kNsPerMs);
+  const TimeNs restarted = monotonic_now_ns();
+  auto fd2 = rig_.foveald({"--no-render", "--out", rig_.path("fd2")}, "foveald2");
+  ASSERT_EQ(app->wait(30000), 0) << "the app did not survive: " << rig_.err();
+  int before = 0, gone = 0, gone_active = 0, back = 0;
+  for (const json& l : gaze_lines()) {
+    const TimeNs t = l["t_ns"].get<TimeNs>();
+    const bool active = l["active"].get<bool>();
+    if (t < killed) before += active;
+    if (t > killed + 500 * kNsPerMs && t < restarted) gone++, gone_active += active;
+    if (t > restarted + 1500 * kNsPerMs) back += active;
+  }
+  EXPECT_GT(before, 50) << rig_.err();
+  EXPECT_GT(gone, 100);
+  EXPECT_EQ(gone_active, 0) << "active without foveald";
+  EXPECT_GT(back, 50) << "not active again after foveald came back: " << rig_.err();
+  EXPECT_NE(rig_.err().find("foveald stopped"), std::string::npos) << rig_.err();
+}
+
+TEST_F(OpenXRLayer, InstalledPrefixIsFoundByTheLoaderAndOffTurnsItOff) {
+  // (e) cmake --install into a prefix; the app sees only that prefix's manifest.
+  const std::string prefix = rig_.path("prefix");
+  for (const char* component : {"sdk", "openxr"}) {
+    const test::RunResult r = test::run(std::string(FOVEAL_CMAKE_COMMAND) + " --install " FOVEAL_BUILD_DIR " --component " +
+                                        component + " --prefix " + prefix);
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  }
+  const std::string manifest = prefix + "/share/openxr/1/api_layers/implicit.d/XrApiLayer_foveal_gaze.json";
+  ASSERT_TRUE(std::filesystem::exists(manifest));
+  const json m = json::parse(test::read_file(manifest));
+  EXPECT_EQ(m["api_layer"]["disable_environment"], "FOVEAL_OPENXR_DISABLE");
+  EXPECT_EQ(m["api_layer"]["library_path"].get<std::string>().rfind("../", 0), 0u) << "relative to the manifest";
+
+  auto fd = rig_.foveald({"--no-render", "--duration", "8", "--out", rig_.path("fd")}, "foveald");
+  wait_for_block();
+  auto app = rig_.app({"--duration", "1.5"}, rig_.app_env(prefix + "/share"), "installed");
+  ASSERT_EQ(app->wait(30000), 0) << rig_.err("installed");
+  const json sys = system_line("installed");
+  const auto layers = sys.value("api_layers", json::array());
+  EXPECT_NE(std::find(layers.begin(), layers.end(), "XR_APILAYER_FOVEAL_gaze"), layers.end()) << sys.dump();
+  EXPECT_EQ(sys.value("supportsEyeGazeInteraction", -1), 1) << sys.dump();
+  int active = 0;
+  for (const json& l : gaze_lines("installed")) active += l["active"].get<bool>();
+  EXPECT_GT(active, 20) << rig_.err("installed");
+
+  // The manifest's off switch: the runtime's own answer (Monado's simulated HMD: none).
+  auto off = rig_.app({"--duration", "0.5"}, rig_.app_env(prefix + "/share", {"FOVEAL_OPENXR_DISABLE=1"}), "off");
+  ASSERT_EQ(off->wait(30000), 0) << rig_.err("off");
+  const json sys_off = system_line("off");
+  const auto layers_off = sys_off.value("api_layers", json::array());
+  EXPECT_EQ(std::find(layers_off.begin(), layers_off.end(), "XR_APILAYER_FOVEAL_gaze"), layers_off.end());
+  EXPECT_EQ(sys_off.value("supportsEyeGazeInteraction", -1), 0) << sys_off.dump();
+}
+
+TEST_F(OpenXRLayer, RuntimeModePassesEverythingThrough) {
+  // FOVEAL_OPENXR_GAZE=runtime: the runtime answers, as it does without the layer.
+  auto app = rig_.app({"--duration", "0.5"}, rig_.app_env(kLayerShare, {"FOVEAL_OPENXR_GAZE=runtime"}));
+  ASSERT_EQ(app->wait(30000), 0) << rig_.err();
+  EXPECT_EQ(system_line().value("supportsEyeGazeInteraction", -1), 0);
+}
+
+TEST_F(OpenXRLayer, StatusCommandNamesTheLayerTheRuntimeAndFoveald) {
+  // `foveal openxr --json`, from the environment an app would start in.
+  auto fd = rig_.foveald({"--no-render", "--duration", "8", "--out", rig_.path("fd")}, "foveald");
+  wait_for_block();
+  auto status = [&](const std::vector<std::string>& extra, const std::string& name) {
+    test::Child c({test::bin("foveal"), "openxr", "--json"}, rig_.app_env(kLayerShare, extra), rig_.path(name + ".out"),
+                  rig_.path(name + ".err"));
+    EXPECT_EQ(c.wait(30000), 0) << rig_.err(name);
+    return json::parse(test::read_file(rig_.path(name + ".out")), nullptr, false);
+  };
+  const json on = status({}, "status");
+  ASSERT_TRUE(on.is_object()) << rig_.err("status");
+  EXPECT_TRUE(on["layer"]["enabled"].get<bool>()) << on.dump(2);
+  EXPECT_EQ(on["layer"]["manifests"][0]["kind"], "implicit");
+  EXPECT_TRUE(on["layer"]["manifests"][0]["library_exists"].get<bool>());
+  EXPECT_EQ(on["runtime"]["manifest"], FOVEAL_TEST_OPENXR_RUNTIME);
+  EXPECT_EQ(on["runtime"]["chosen_by"], "XR_RUNTIME_JSON");
+  EXPECT_TRUE(on["runtime"]["probed"].get<bool>()) << on.dump(2);
+  EXPECT_TRUE(on["runtime"]["lists_eye_gaze_interaction"].get<bool>());
+  EXPECT_FALSE(on["runtime"]["own_eye_gaze"].get<bool>());  // Monado's simulated HMD has none
+  EXPECT_TRUE(on["foveald"]["serving"].get<bool>()) << on.dump(2);
+  EXPECT_EQ(on["verdict"], "apps get foveald's gaze");
+  const json off = status({"FOVEAL_OPENXR_DISABLE=1"}, "status_off");
+  EXPECT_FALSE(off["layer"]["enabled"].get<bool>()) << off.dump(2);
+  EXPECT_NE(off["layer"]["why"].get<std::string>().find("FOVEAL_OPENXR_DISABLE"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace foveal

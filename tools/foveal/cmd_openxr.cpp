@@ -1,0 +1,90 @@
+// foveal openxr: whether OpenXR applications get foveald's gaze, and if not, why
+// (docs/openxr.md). It reads the loader's files and the environment as an app started
+// from this shell would, asks the runtime for its own eye gaze, and asks foveald.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+
+#include "commands.hpp"
+#include "foveal/openxr/status.hpp"
+#include "foveal/tools/cli.hpp"
+
+namespace foveal::cmd {
+
+namespace {
+
+nlohmann::json to_json(const openxr::OpenXRStatus& s) {
+  nlohmann::json layers = nlohmann::json::array();
+  for (const auto& l : s.layers)
+    layers.push_back({{"manifest", l.path},
+                      {"kind", l.implicit ? "implicit" : "explicit"},
+                      {"library", l.library},
+                      {"library_exists", l.library_exists},
+                      {"disable_environment", l.disable_environment},
+                      {"enable_environment", l.enable_environment}});
+  const auto& g = s.runtime_gaze;
+  return {{"layer", {{"manifests", layers}, {"enabled", s.enabled}, {"why", s.enabled_reason}, {"gaze_mode", s.gaze_mode}}},
+          {"runtime",
+           {{"manifest", s.runtime.manifest},
+            {"chosen_by", s.runtime.chosen_by},
+            {"library", s.runtime.library},
+            {"library_exists", s.runtime.library_exists},
+            {"probed", g.probed},
+            {"message", g.message},
+            {"name", g.runtime_name},
+            {"system", g.system_name},
+            {"lists_eye_gaze_interaction", g.lists_eye_gaze_interaction},
+            {"own_eye_gaze", g.supports_eye_gaze_interaction}}},
+          {"foveald", {{"serving", s.foveald_serving}, {"message", s.foveald_message}}}};
+}
+
+/// Who answers an app's eye gaze, in one sentence.
+std::string verdict(const openxr::OpenXRStatus& s) {
+  if (!s.enabled) return "apps get no gaze from foveal: the layer is not on";
+  if (s.gaze_mode == "runtime") return "FOVEAL_OPENXR_GAZE=runtime: the layer passes everything to the runtime";
+  if (s.runtime_gaze.supports_eye_gaze_interaction && s.gaze_mode != "foveal")
+    return "the runtime's own eye tracker answers (FOVEAL_OPENXR_GAZE=foveal would serve foveald's)";
+  return s.foveald_serving ? "apps get foveald's gaze" : "apps see eye gaze listed but inactive until foveald serves";
+}
+
+}  // namespace
+
+void add_openxr(CLI::App& app, int& exit_code) {
+  struct Args {
+    bool json = false, no_probe = false;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* sub = app.add_subcommand("openxr", "Whether OpenXR applications get foveald's gaze through foveal's layer");
+  sub->add_flag("--no-probe", a->no_probe, "Do not load the runtime to ask for its own eye gaze");
+  sub->add_flag("--json", a->json, "Print the status as JSON");
+  sub->callback([a, &exit_code] {
+    const openxr::OpenXRStatus s = openxr::openxr_status(!a->no_probe);
+    exit_code = cli::kExitOk;
+    if (a->json) {
+      nlohmann::json j = to_json(s);
+      j["verdict"] = verdict(s);
+      cli::print_json(j);
+      return;
+    }
+    std::printf("layer:   %s (%s)\n", s.enabled ? "on" : "off", s.enabled_reason.c_str());
+    for (const auto& l : s.layers)
+      std::printf("         %s %s -> %s%s\n", l.implicit ? "implicit" : "explicit", l.path.c_str(), l.library.c_str(),
+                  l.library_exists ? "" : " (missing)");
+    std::printf("         FOVEAL_OPENXR_GAZE=%s\n", s.gaze_mode.c_str());
+    if (s.runtime.manifest.empty()) std::printf("runtime: none found (XR_RUNTIME_JSON unset, no active_runtime.json)\n");
+    else
+      std::printf("runtime: %s, chosen by %s%s\n", s.runtime.manifest.c_str(), s.runtime.chosen_by.c_str(),
+                  s.runtime.library_exists ? "" : " (its library is missing)");
+    const auto& g = s.runtime_gaze;
+    if (g.probed)
+      std::printf("         %s, %s: own eye gaze %s\n", g.runtime_name.c_str(), g.system_name.c_str(),
+                  g.supports_eye_gaze_interaction ? "yes" : g.lists_eye_gaze_interaction ? "no (listed, no eye tracker)" : "no");
+    else if (!a->no_probe)
+      std::printf("         not probed: %s\n", g.message.c_str());
+    std::printf("foveald: %s\n", s.foveald_serving ? s.foveald_message.c_str() : ("not serving: " + s.foveald_message).c_str());
+    std::printf("=> %s\n", verdict(s).c_str());
+  });
+}
+
+}  // namespace foveal::cmd
