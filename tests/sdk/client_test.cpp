@@ -218,6 +218,8 @@ TEST(FovealClient, ALaterVersionWithMoreSectionsStillReads) {
     raw.put<std::int64_t>(FOVEAL_SHM_HEARTBEAT_OFFSET, monotonic_now_ns());
     raw.put<std::uint32_t>(FOVEAL_SHM_WRITER_STATE_OFFSET, FOVEAL_SHM_WRITER_LIVE);
     raw.put<std::uint64_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, frame), 5);
+    raw.put<std::uint32_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, eye_width), 1440);
+    raw.put<std::uint32_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, eye_height), 1600);
     raw.put<float>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, x), 12.5f);
   }
   Opened o(name.c_str());
@@ -275,11 +277,12 @@ TEST(FovealClient, ReadersOnManyThreadsSeeOnlyWholeValues) {
   std::atomic<bool> stop{false}, published{false};
   std::thread w([&] {
     for (int i = 1; !stop.load(); ++i) {
-      const float v = static_cast<float>(i % 100000);
+      // Values inside the ranges foveald writes (a 65536-pixel viewport, sigmas in [1, 16], exact in binary).
+      const float v = static_cast<float>(i % 60000);
       FoveaFrame f = frame(v, v + 1, v + 2, v + 3);
       f.t_ns = i;
-      writer->publish(f, 1440, 1600);
-      writer->publish_settings({1.0 + i % 1000, 2.0 + i % 1000, 0.3, 0.3, 1, 0, static_cast<std::uint64_t>(i)});
+      writer->publish(f, 65536, 65536);
+      writer->publish_settings({1.0 + i % 1000 / 128.0, 2.0 + i % 1000 / 128.0, 0.3, 0.3, 1, 0, static_cast<std::uint64_t>(i)});
       writer->heartbeat();
       published = true;
       // Flat out, but with a gap now and then: a writer that never pauses can leave a
@@ -301,7 +304,7 @@ TEST(FovealClient, ReadersOnManyThreadsSeeOnlyWholeValues) {
         if (rc == FOVEAL_OK) {
           reads.fetch_add(1);
           const float v = f.x[0];
-          if (f.y[0] != v + 1 || f.x[1] != v + 2 || f.y[1] != v + 3 || static_cast<float>(f.t_ns % 100000) != v) torn.fetch_add(1);
+          if (f.y[0] != v + 1 || f.x[1] != v + 2 || f.y[1] != v + 3 || static_cast<float>(f.t_ns % 60000) != v) torn.fetch_add(1);
         }
         if (foveal_client_settings(o.c, &s) == FOVEAL_OK && s.sigma_nd != s.sigma_d + 1) torn.fetch_add(1);
       }
@@ -361,6 +364,8 @@ TEST(FovealClient, AVersionTwoBlockReadsButHasNoView) {
     raw.put<std::int64_t>(FOVEAL_SHM_HEARTBEAT_OFFSET, monotonic_now_ns());
     raw.put<std::uint32_t>(FOVEAL_SHM_WRITER_STATE_OFFSET, FOVEAL_SHM_WRITER_LIVE);
     raw.put<std::uint64_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, frame), 3);
+    raw.put<std::uint32_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, eye_width), 1440);
+    raw.put<std::uint32_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, eye_height), 1600);
   }
   Opened o(name.c_str());
   ASSERT_NE(o.c, nullptr) << o.err.message;

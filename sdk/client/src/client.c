@@ -1,14 +1,18 @@
 /* foveal-client: maps foveald's fovea block and reads it with the seqlock protocol of
  * docs/fovea-shm.md. Self-contained C11: it shares only the block's layout header with
  * foveald, so it links into any program without foveal's static libraries. */
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700 /* POSIX 2008 with SA_NODEFER and SA_ONSTACK */
 
 #include "foveal/client.h"
 
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
+#include <pthread.h>
+#include <setjmp.h>
+#include <signal.h>
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,7 +34,98 @@ enum { kOldestVersion = 2 };
 struct foveal_client {
   const unsigned char *block; /* `size` bytes, mapped read-only */
   size_t size;                /* FOVEAL_SHM_V2_SIZE, or FOVEAL_SHM_V3_SIZE when the block has the view */
+  int cut_short;              /* set (atomically) once a read found the block truncated under the mapping */
 };
+
+/* Limits of what foveald writes (runtime/profile Profile::validate, DisplayModel): a value
+ * outside them did not come from foveald, so a read says BAD_DATA instead of passing it on. */
+#define kMaxEyePixels 65536u /* the display model allows 16384; generous on purpose */
+#define kMinSigma 1.0
+#define kMaxSigma 16.0
+#define kMaxF 100.0
+#define kMaxIpdM 0.2f
+
+/* A block truncated while mapped (ftruncate by its owner, or a foveald of another build
+ * taking it over) turns every load from the lost page into SIGBUS. Checking the size with
+ * fstat before each read would cost a system call and still leave a window between the
+ * check and the loads, so instead reads run under a guard: a SIGBUS handler that, for a
+ * fault inside the block this thread is reading, jumps back out of the read (siglongjmp to
+ * a thread-local buffer) and the read returns BAD_DATA. Any other SIGBUS goes on to the
+ * handler that was there before, or to the default action, as if this library were absent.
+ * initial-exec TLS: the handler may run in any thread and must not allocate a TLS block. */
+struct read_guard {
+  sigjmp_buf *jump; /* non-NULL while this thread reads [lo, hi) */
+  const unsigned char *lo, *hi;
+};
+static _Thread_local struct read_guard tls_guard __attribute__((tls_model("initial-exec")));
+static struct sigaction previous_sigbus; /* what the program had before: chained to */
+static pthread_mutex_t sigbus_lock = PTHREAD_MUTEX_INITIALIZER;
+
+static void on_sigbus(int sig, siginfo_t *info, void *context) {
+  const struct read_guard *g = &tls_guard;
+  if (g->jump && info && (const unsigned char *)info->si_addr >= g->lo && (const unsigned char *)info->si_addr < g->hi)
+    siglongjmp(*g->jump, 1);
+  const struct sigaction *prev = &previous_sigbus;
+  if ((prev->sa_flags & SA_SIGINFO) && prev->sa_sigaction) {
+    prev->sa_sigaction(sig, info, context);
+    return;
+  }
+  if (prev->sa_handler == SIG_IGN && info && info->si_code <= 0) return; /* sent by kill, and ignored */
+  if (prev->sa_handler != SIG_DFL && prev->sa_handler != SIG_IGN) {
+    prev->sa_handler(sig);
+    return;
+  }
+  /* The default action (a fault cannot be ignored): die of SIGBUS as without this library. */
+  struct sigaction dfl;
+  memset(&dfl, 0, sizeof dfl);
+  dfl.sa_handler = SIG_DFL;
+  sigemptyset(&dfl.sa_mask);
+  sigaction(SIGBUS, &dfl, NULL);
+  raise(SIGBUS);
+}
+
+/* Installs on_sigbus unless it is the handler now (called by every open, so a program
+ * that replaced it gets it back, chained in front of its own). 0, or errno. */
+static int install_sigbus_guard(void) {
+  pthread_mutex_lock(&sigbus_lock);
+  struct sigaction now;
+  int rc = sigaction(SIGBUS, NULL, &now) == 0 ? 0 : errno;
+  if (rc == 0 && !((now.sa_flags & SA_SIGINFO) && now.sa_sigaction == on_sigbus)) {
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_sigaction = on_sigbus;
+    /* NODEFER: siglongjmp leaves the handler without restoring the signal mask (sigsetjmp
+     * with savemask 0 keeps reads free of system calls), so SIGBUS must not be blocked in it. */
+    sa.sa_flags = SA_SIGINFO | SA_NODEFER | SA_ONSTACK;
+    sigemptyset(&sa.sa_mask);
+    previous_sigbus = now;
+    if (sigaction(SIGBUS, &sa, NULL) != 0) rc = errno;
+  }
+  pthread_mutex_unlock(&sigbus_lock);
+  return rc;
+}
+
+/* Runs op on c's block under the guard: op's result, or FOVEAL_ERR_BAD_DATA (and the
+ * client marked cut short) when the block was truncated under it. */
+typedef int (*block_op)(const unsigned char *block, size_t size, void *arg);
+static int guarded(foveal_client *c, block_op op, void *arg) {
+  if (__atomic_load_n(&c->cut_short, __ATOMIC_RELAXED)) return FOVEAL_ERR_BAD_DATA;
+  sigjmp_buf jump;
+  struct read_guard *g = &tls_guard;
+  if (sigsetjmp(jump, 0)) {
+    g->jump = NULL;
+    __atomic_store_n(&c->cut_short, 1, __ATOMIC_RELAXED);
+    return FOVEAL_ERR_BAD_DATA;
+  }
+  g->lo = c->block;
+  g->hi = c->block + c->size;
+  g->jump = &jump;
+  __atomic_signal_fence(__ATOMIC_SEQ_CST); /* the guard is set before the first load from the block */
+  const int rc = op(c->block, c->size, arg);
+  __atomic_signal_fence(__ATOMIC_SEQ_CST);
+  g->jump = NULL;
+  return rc;
+}
 
 static uint32_t load_u32(const unsigned char *block, size_t offset, int order) {
   return __atomic_load_n((const uint32_t *)(const void *)(block + offset), order);
@@ -59,13 +154,32 @@ static int64_t monotonic_ns(void) {
   return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
 }
 
-/* NO_WRITER once foveald has stopped, DEAD_WRITER when its heartbeat is stale, else 0. */
-static int writer_problem(const unsigned char *block, int64_t *silent_ns) {
-  if (load_u32(block, FOVEAL_SHM_WRITER_STATE_OFFSET, __ATOMIC_ACQUIRE) == FOVEAL_SHM_WRITER_STOPPED)
-    return FOVEAL_ERR_NO_WRITER;
-  const int64_t silent = monotonic_ns() - (int64_t)load_u64(block, FOVEAL_SHM_HEARTBEAT_OFFSET, __ATOMIC_ACQUIRE);
-  if (silent_ns) *silent_ns = silent;
-  return silent > FOVEAL_SHM_DEAD_AFTER_NS ? FOVEAL_ERR_DEAD_WRITER : 0;
+/* What the writer's words say, for open's messages. */
+typedef struct {
+  uint32_t state;
+  int64_t heartbeat_ns, now_ns;
+} writer_words;
+
+/* NO_WRITER once foveald has stopped, DEAD_WRITER when its heartbeat is stale, BAD_DATA
+ * for a state or heartbeat foveald never writes, else 0. No arithmetic here can overflow:
+ * both clocks are checked to be >= 0 before they are subtracted. */
+static int writer_problem(const unsigned char *block, writer_words *w) {
+  w->state = load_u32(block, FOVEAL_SHM_WRITER_STATE_OFFSET, __ATOMIC_ACQUIRE);
+  if (w->state == FOVEAL_SHM_WRITER_STOPPED) return FOVEAL_ERR_NO_WRITER;
+  if (w->state != FOVEAL_SHM_WRITER_LIVE) return FOVEAL_ERR_BAD_DATA;
+  w->heartbeat_ns = (int64_t)load_u64(block, FOVEAL_SHM_HEARTBEAT_OFFSET, __ATOMIC_ACQUIRE);
+  w->now_ns = monotonic_ns();
+  /* CLOCK_MONOTONIC is never negative; a heartbeat ahead of this reader's clock by more
+   * than the dead interval is no clock reading (the writer refreshes it just before or
+   * after this reader looked, never seconds ahead). */
+  if (w->heartbeat_ns < 0 || w->now_ns < 0) return FOVEAL_ERR_BAD_DATA;
+  if (w->heartbeat_ns - w->now_ns > FOVEAL_SHM_DEAD_AFTER_NS) return FOVEAL_ERR_BAD_DATA;
+  return w->now_ns - w->heartbeat_ns > FOVEAL_SHM_DEAD_AFTER_NS ? FOVEAL_ERR_DEAD_WRITER : 0;
+}
+
+static int writer_op(const unsigned char *block, size_t size, void *arg) {
+  (void)size;
+  return writer_problem(block, (writer_words *)arg);
 }
 
 static void describe(foveal_error *err, int code, const char *name, const char *fmt, va_list ap) {
@@ -156,45 +270,85 @@ foveal_client *foveal_client_open(const char *shm_name_or_null, foveal_error *er
     close(fd);
     return NULL;
   }
+  const int guard_errno = install_sigbus_guard();
+  if (guard_errno != 0) {
+    close(fd);
+    return fail(err, FOVEAL_ERR_SYSTEM, name, "sigaction(SIGBUS): %s", strerror(guard_errno));
+  }
   void *p = mmap(NULL, size, PROT_READ, MAP_SHARED, fd, 0);
   const int map_errno = errno;
   close(fd);
   if (p == MAP_FAILED) return fail(err, FOVEAL_ERR_SYSTEM, name, "mmap: %s", strerror(map_errno));
-  const unsigned char *block = (const unsigned char *)p;
 
-  int64_t silent = 0;
-  const int problem = writer_problem(block, &silent);
-  const unsigned pid = (unsigned)load_u32(block, FOVEAL_SHM_WRITER_PID_OFFSET, __ATOMIC_RELAXED);
-  if (problem == FOVEAL_ERR_NO_WRITER) {
-    munmap(p, size);
+  foveal_client probe = {(const unsigned char *)p, size, 0};
+  writer_words w = {0, 0, 0};
+  const int problem = guarded(&probe, writer_op, &w);
+  const unsigned pid = probe.cut_short ? 0u : (unsigned)load_u32(probe.block, FOVEAL_SHM_WRITER_PID_OFFSET, __ATOMIC_RELAXED);
+  if (problem) munmap(p, size);
+  if (problem == FOVEAL_ERR_NO_WRITER)
     return fail(err, problem, name, "the foveald that published here (pid %u) has stopped", pid);
-  }
-  if (problem == FOVEAL_ERR_DEAD_WRITER) {
-    munmap(p, size);
+  if (problem == FOVEAL_ERR_DEAD_WRITER)
     return fail(err, problem, name,
                 "the foveald that published here (pid %u) gave no sign of life for %.1f s: it died or hangs; "
                 "start foveald again (it takes the block over)",
-                pid, (double)silent / 1e9);
-  }
+                pid, (double)(w.now_ns - w.heartbeat_ns) / 1e9);
+  if (problem == FOVEAL_ERR_BAD_DATA && probe.cut_short)
+    return fail(err, problem, name, "the block was cut short while it was being read; try again");
+  if (problem == FOVEAL_ERR_BAD_DATA && w.state != FOVEAL_SHM_WRITER_LIVE)
+    return fail(err, problem, name, "writer state %u is none that foveald writes (1 live, 2 stopped)", (unsigned)w.state);
+  if (problem == FOVEAL_ERR_BAD_DATA)
+    return fail(err, problem, name, "heartbeat %lld ns is no CLOCK_MONOTONIC time of a live writer (now %lld ns)",
+                (long long)w.heartbeat_ns, (long long)w.now_ns);
   foveal_client *c = (foveal_client *)calloc(1, sizeof *c);
   if (!c) {
     munmap(p, size);
     return fail(err, FOVEAL_ERR_SYSTEM, name, "out of memory");
   }
-  c->block = block;
+  c->block = probe.block;
   c->size = size;
   return c;
 }
 
+/* One read of a seqlock section, with the writer's liveness, under the guard. */
+typedef struct {
+  size_t seq_offset, words_offset, n;
+  uint64_t *words;
+  uint64_t fovea_frame; /* the fovea's frame counter, read after the section */
+} section_read;
+
+static int section_op(const unsigned char *block, size_t size, void *arg) {
+  (void)size;
+  section_read *r = (section_read *)arg;
+  writer_words w;
+  const int problem = writer_problem(block, &w);
+  if (problem) return problem;
+  if (!seqlock_read(block, r->seq_offset, r->words_offset, r->words, r->n)) return FOVEAL_ERR_BUSY;
+  r->fovea_frame = load_u64(block, FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, frame), __ATOMIC_ACQUIRE);
+  return 0;
+}
+
+static int in_range(float v, float lo, float hi) { return v >= lo && v <= hi; } /* false for NaN */
+
+/* Whether a published fovea is one foveald could have written: a viewport, finite pixels
+ * inside it (foveald clamps onto the viewport), confidences in [0, 1], known states. */
+static int fovea_is_plausible(const foveal_shm_fovea *f) {
+  if (f->eye_width == 0 || f->eye_height == 0 || f->eye_width > kMaxEyePixels || f->eye_height > kMaxEyePixels) return 0;
+  for (int e = 0; e < 2; ++e)
+    if (!in_range(f->x[e], 0.0f, (float)f->eye_width) || !in_range(f->y[e], 0.0f, (float)f->eye_height) ||
+        !in_range(f->confidence[e], 0.0f, 1.0f) || f->state[e] > FOVEAL_STATE_LOST)
+      return 0;
+  return 1;
+}
+
 int foveal_client_read(foveal_client *c, foveal_fovea *out) {
   if (!c || !out) return FOVEAL_ERR_INVALID_ARGUMENT;
-  const int problem = writer_problem(c->block, NULL);
-  if (problem) return problem;
   uint64_t words[FOVEAL_SHM_FOVEA_WORDS];
-  if (!seqlock_read(c->block, FOVEAL_SHM_FOVEA_SEQ_OFFSET, FOVEAL_SHM_FOVEA_WORDS_OFFSET, words, FOVEAL_SHM_FOVEA_WORDS))
-    return FOVEAL_ERR_BUSY;
+  section_read r = {FOVEAL_SHM_FOVEA_SEQ_OFFSET, FOVEAL_SHM_FOVEA_WORDS_OFFSET, FOVEAL_SHM_FOVEA_WORDS, words, 0};
+  const int rc = guarded(c, section_op, &r);
+  if (rc) return rc;
   foveal_shm_fovea f;
   memcpy(&f, words, sizeof f);
+  if (f.frame != 0 && !fovea_is_plausible(&f)) return FOVEAL_ERR_BAD_DATA;
   out->t_ns = f.t_ns;
   out->eye_width = f.eye_width;
   out->eye_height = f.eye_height;
@@ -210,15 +364,20 @@ int foveal_client_read(foveal_client *c, foveal_fovea *out) {
 
 int foveal_client_settings(foveal_client *c, foveal_settings *out) {
   if (!c || !out) return FOVEAL_ERR_INVALID_ARGUMENT;
-  const int problem = writer_problem(c->block, NULL);
-  if (problem) return problem;
   uint64_t words[FOVEAL_SHM_SETTINGS_WORDS];
-  if (!seqlock_read(c->block, FOVEAL_SHM_SETTINGS_SEQ_OFFSET, FOVEAL_SHM_SETTINGS_WORDS_OFFSET, words,
-                    FOVEAL_SHM_SETTINGS_WORDS))
-    return FOVEAL_ERR_BUSY;
+  section_read r = {FOVEAL_SHM_SETTINGS_SEQ_OFFSET, FOVEAL_SHM_SETTINGS_WORDS_OFFSET, FOVEAL_SHM_SETTINGS_WORDS, words, 0};
+  const int rc = guarded(c, section_op, &r);
+  if (rc) return rc;
   foveal_shm_settings s;
   memcpy(&s, words, sizeof s);
-  if (s.generation == 0) return FOVEAL_ERR_NO_DATA;
+  /* foveald publishes its settings before its first fovea: generation 0 is a foveald
+   * still starting, unless a fovea is already out. */
+  if (s.generation == 0) return r.fovea_frame == 0 ? FOVEAL_ERR_NO_DATA : FOVEAL_ERR_BAD_DATA;
+  const int f_ok = (s.f_x < 0.0 || (s.f_x > 0.0 && s.f_x <= kMaxF)) && (s.f_y < 0.0 || (s.f_y > 0.0 && s.f_y <= kMaxF)) &&
+                   isfinite(s.f_x) && isfinite(s.f_y);
+  if (!(s.sigma_d >= kMinSigma && s.sigma_d <= kMaxSigma && s.sigma_nd >= s.sigma_d && s.sigma_nd <= kMaxSigma) ||
+      !f_ok || s.dominant_eye > 1)
+    return FOVEAL_ERR_BAD_DATA;
   out->sigma_d = s.sigma_d;
   out->sigma_nd = s.sigma_nd;
   out->f_x = s.f_x;
@@ -231,14 +390,19 @@ int foveal_client_settings(foveal_client *c, foveal_settings *out) {
 int foveal_client_view(foveal_client *c, foveal_view *out) {
   if (!c || !out) return FOVEAL_ERR_INVALID_ARGUMENT;
   if (c->size < FOVEAL_SHM_V3_SIZE) return FOVEAL_ERR_WRONG_VERSION;
-  const int problem = writer_problem(c->block, NULL);
-  if (problem) return problem;
   uint64_t words[FOVEAL_SHM_VIEW_WORDS];
-  if (!seqlock_read(c->block, FOVEAL_SHM_VIEW_SEQ_OFFSET, FOVEAL_SHM_VIEW_WORDS_OFFSET, words, FOVEAL_SHM_VIEW_WORDS))
-    return FOVEAL_ERR_BUSY;
+  section_read r = {FOVEAL_SHM_VIEW_SEQ_OFFSET, FOVEAL_SHM_VIEW_WORDS_OFFSET, FOVEAL_SHM_VIEW_WORDS, words, 0};
+  const int rc = guarded(c, section_op, &r);
+  if (rc) return rc;
   foveal_shm_view v;
   memcpy(&v, words, sizeof v);
-  if (!v.published) return FOVEAL_ERR_NO_DATA;
+  if (v.published == 0) return FOVEAL_ERR_NO_DATA;
+  if (v.published != 1) return FOVEAL_ERR_BAD_DATA;
+  for (int e = 0; e < 2; ++e) /* finite, and each frustum the right way round (the comparisons fail for NaN) */
+    if (!isfinite(v.tan_left[e]) || !isfinite(v.tan_right[e]) || !isfinite(v.tan_bottom[e]) || !isfinite(v.tan_top[e]) ||
+        !(v.tan_left[e] < v.tan_right[e]) || !(v.tan_bottom[e] < v.tan_top[e]))
+      return FOVEAL_ERR_BAD_DATA;
+  if (!(v.ipd_m > 0.0f && v.ipd_m <= kMaxIpdM)) return FOVEAL_ERR_BAD_DATA;
   for (int e = 0; e < 2; ++e) {
     out->tan_left[e] = v.tan_left[e];
     out->tan_right[e] = v.tan_right[e];
@@ -282,6 +446,8 @@ const char *foveal_error_message(int code) {
     case FOVEAL_ERR_SYSTEM: return "a system call failed";
     case FOVEAL_ERR_REFUSED: return "foveald refused the request";
     case FOVEAL_ERR_TIMEOUT: return "foveald did not answer in time";
+    case FOVEAL_ERR_BAD_DATA:
+      return "the block holds values foveald never writes, or was cut short under the mapping: open a new client";
     default: return "unknown error code";
   }
 }

@@ -40,7 +40,9 @@ enum foveal_error_code {
   FOVEAL_ERR_BUSY = 7,             /* every try overlapped a write (practically never): try again */
   FOVEAL_ERR_SYSTEM = 8,           /* an operating-system call failed; the message says which */
   FOVEAL_ERR_REFUSED = 9,          /* foveald answered a request with an error; the message is its reason */
-  FOVEAL_ERR_TIMEOUT = 10          /* foveald did not answer in time */
+  FOVEAL_ERR_TIMEOUT = 10,         /* foveald did not answer in time */
+  FOVEAL_ERR_BAD_DATA = 11         /* the block holds values foveald never writes (NaN, unknown state, a heartbeat
+                                      no clock gives...), or was cut short under the mapping: open a new client */
 };
 
 /* Fovea states (foveal_fovea.state). */
@@ -96,7 +98,8 @@ typedef struct foveal_client foveal_client;
  * err: filled on failure when not NULL (code and message); left alone on success.
  * Returns the client, or NULL on failure with err->code one of INVALID_ARGUMENT,
  *   NO_WRITER (no block: is foveald running?; or foveald stopped), WRONG_VERSION,
- *   NOT_FOVEALDS, DEAD_WRITER, SYSTEM.
+ *   NOT_FOVEALDS, DEAD_WRITER, BAD_DATA (a writer state or heartbeat foveald never
+ *   writes), SYSTEM.
  * Thread safety: may be called from any thread. Allocates the client; the only call
  *   that does. A client stays bound to the block it mapped: after foveald restarts,
  *   reads return NO_WRITER (or DEAD_WRITER) and the program opens a new client. */
@@ -106,22 +109,35 @@ FOVEAL_CLIENT_API foveal_client *foveal_client_open(const char *shm_name_or_null
  *
  * Returns FOVEAL_OK, or INVALID_ARGUMENT (c or out NULL), NO_WRITER (foveald stopped),
  *   DEAD_WRITER, NO_DATA (nothing published yet; *out then holds zeros and the viewport
- *   size), BUSY. On an error other than NO_DATA, *out is unchanged.
+ *   size), BUSY, BAD_DATA (a value foveald never writes: a non-finite or off-viewport
+ *   pixel, a confidence outside [0, 1], an unknown state or writer state, a zero
+ *   viewport, a heartbeat no clock gives; or the block was truncated while mapped). On an
+ *   error other than NO_DATA, *out is unchanged.
  * Wait-free for the writer; no lock, allocation or system call (the clock is read
  *   through the vDSO). Thread safety: any number of threads may read one client at once.
- *   foveal_error_message(code) gives the code's message. */
+ *   foveal_error_message(code) gives the code's message.
+ * A block truncated under the mapping would raise SIGBUS on the read: foveal_client_open
+ *   installs a SIGBUS handler (process-wide, once; again if the program replaced it) that
+ *   turns a fault inside a read of this library into BAD_DATA and passes every other
+ *   SIGBUS to the handler the program had before (or the default action: the process
+ *   dies as it would have). A program that installs its own SIGBUS handler after opening
+ *   a client should chain to the one it replaces, as this library does. */
 FOVEAL_CLIENT_API int foveal_client_read(foveal_client *c, foveal_fovea *out);
 
 /* Copies the active settings into *out.
  *
- * Returns and thread safety as foveal_client_read (NO_DATA does not occur: foveald
- *   publishes its settings before the first fovea). */
+ * Returns and thread safety as foveal_client_read. NO_DATA only while foveald starts
+ *   (it publishes its settings before its first fovea; generation 0 after a fovea is
+ *   BAD_DATA, as are sigmas outside [1, 16] or sigma_nd < sigma_d, f neither negative
+ *   (automatic) nor in (0, 100], a dominant eye not 0 or 1). */
 FOVEAL_CLIENT_API int foveal_client_settings(foveal_client *c, foveal_settings *out);
 
 /* Copies the display geometry foveald maps gaze with into *out.
  *
  * Returns FOVEAL_OK, or INVALID_ARGUMENT, WRONG_VERSION (an older foveald's block,
- *   without the view), NO_WRITER, DEAD_WRITER, NO_DATA (not yet published), BUSY.
+ *   without the view), NO_WRITER, DEAD_WRITER, NO_DATA (not yet published), BUSY,
+ *   BAD_DATA (a non-finite tangent, left >= right or bottom >= top, an IPD outside
+ *   (0, 0.2] m, a published flag not 0 or 1).
  * Wait-free, no lock, allocation or system call. Thread safety as foveal_client_read. */
 FOVEAL_CLIENT_API int foveal_client_view(foveal_client *c, foveal_view *out);
 
