@@ -4,6 +4,7 @@
 #include <sys/socket.h>
 #include <sys/un.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -31,6 +32,7 @@
 #endif
 #include "foveal/runtime/control_server.hpp"
 #include "foveal/runtime/profile.hpp"
+#include "bench_shard_file.hpp"
 #include "fuzz_file.hpp"
 
 namespace foveal::fuzz {
@@ -261,5 +263,24 @@ inline int gltf(const std::uint8_t* data, std::size_t size) {
   return 0;
 }
 #endif
+
+// foveal bench merge's shard.json reader (tools/foveal/bench_shard_file.hpp): a clean
+// error or a shard naming only its kind's tables, whose merge (alone) writes nothing else;
+// never a crash or an allocation sized by a field (N of 2e9 shards, say).
+inline int shard(const std::uint8_t* data, std::size_t size) {
+  MemFile f(data, size);
+  auto s = foveal::bench::read_shard_file(f.path());
+  if (!s) {
+    if (s.error().message.size() > 1000) std::abort();  // messages quote input shortly
+    return 0;
+  }
+  const foveal::bench::Kind* kind = foveal::bench::find_kind(s->kind);
+  if (!kind) std::abort();
+  for (const std::string& t : s->rows.tables())
+    if (std::find(kind->tables.begin(), kind->tables.end(), t) == kind->tables.end()) std::abort();
+  if (auto m = foveal::bench::SweepRows::merge({s->rows}, {s->path}); m)
+    for (const std::string& t : m->tables()) (void)m->csv(t);
+  return 0;
+}
 
 }  // namespace foveal::fuzz

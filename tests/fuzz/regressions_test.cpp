@@ -37,6 +37,7 @@ TEST(FuzzRegressions, Import) { replay("import", fuzz::import); }
 TEST(FuzzRegressions, Profile) { replay("profile", fuzz::profile); }
 TEST(FuzzRegressions, Control) { replay("control", fuzz::control); }
 TEST(FuzzRegressions, Display) { replay("display", fuzz::display); }
+TEST(FuzzRegressions, Shard) { replay("shard", fuzz::shard); }
 #ifdef FOVEAL_HAVE_GLTF
 TEST(FuzzRegressions, Gltf) { replay("gltf", fuzz::gltf); }
 #endif

@@ -10,10 +10,9 @@ import math
 import os
 import sys
 
-import matplotlib
+import chart_files
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+plt = chart_files.pyplot()
 
 COLORS = {"full": "black", "rmfr": "tab:red", "kfr": "tab:blue", "hyperbolic": "tab:green", "linear": "tab:orange",
           "uniform": "tab:gray", "fixed": "tab:purple"}
@@ -61,7 +60,7 @@ def pareto(rows, out, x_key="gpu_ms", x_label="GPU frame time (ms, median)", tit
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    chart_files.save_figure(fig, out, dpi=110)
 
 
 def fgrid(rows, autos, out):
@@ -89,7 +88,7 @@ def fgrid(rows, autos, out):
         ax.set_ylabel("f_y (fraction of H)")
         ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    chart_files.save_figure(fig, out, dpi=110)
 
 
 def rotation(rows, out):
@@ -104,7 +103,7 @@ def rotation(rows, out):
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    chart_files.save_figure(fig, out, dpi=110)
 
 
 def stability(rows, out):
@@ -128,7 +127,7 @@ def stability(rows, out):
             ax.legend(fontsize=7)
     fig.suptitle(f"Stability: quality against fovea position (pattern:checker, σ = {rows[0]['sigma']})")
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    chart_files.save_figure(fig, out, dpi=110)
 
 
 def flicker(rows, out):
@@ -165,7 +164,7 @@ def flicker(rows, out):
         ax.grid(alpha=0.3, axis="y")
     fig.suptitle("Flicker against the full-resolution reference along the same path")
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    chart_files.save_figure(fig, out, dpi=110)
 
 
 def table(rows, out):
@@ -195,9 +194,7 @@ def table(rows, out):
         lines.append(f"| {scene} | " + " | ".join(cells) + " |")
     lines.append("| **mean** | " + " | ".join(
         f"**{sums[m][0] / sums[m][2]:.2f} / {sums[m][1] / sums[m][2]:.3f}**" if sums[m][2] else "—" for m in methods) + " |")
-    with open(out + ".tmp", "w") as f:
-        f.write("\n".join(lines) + "\n")
-    os.replace(out + ".tmp", out)
+    chart_files.write_text(out, "\n".join(lines) + "\n")
 
 
 def main():
@@ -221,4 +218,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    chart_files.run(main)

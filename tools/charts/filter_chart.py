@@ -5,10 +5,9 @@ import csv
 import os
 import sys
 
-import matplotlib
+import chart_files
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+plt = chart_files.pyplot()
 
 COLOURS = {"none": "tab:red", "one_euro": "tab:blue", "saccade_aware": "tab:green"}
 
@@ -53,13 +52,11 @@ def main(out_dir):
         ax.set_title("Real Vive Pro Eye recordings (spread around a 100 ms mean)", fontsize=10)
         ax.legend(fontsize=7)
     fig.tight_layout()
-    tmp = os.path.join(out_dir, ".filter_chart.tmp.png")
-    fig.savefig(tmp, dpi=90)
-    os.replace(tmp, os.path.join(out_dir, "filter_chart.png"))
+    chart_files.save_figure(fig, os.path.join(out_dir, "filter_chart.png"), dpi=90)
     return 0
 
 
 if __name__ == "__main__":
     if len(sys.argv) != 2:
         sys.exit("usage: filter_chart.py DIR")
-    sys.exit(main(sys.argv[1]))
+    sys.exit(chart_files.run(lambda: main(sys.argv[1])))

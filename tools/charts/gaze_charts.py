@@ -13,10 +13,9 @@ import math
 import os
 import sys
 
-import matplotlib
+import chart_files
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+plt = chart_files.pyplot()
 
 STYLE = {
     "oracle": ("darkred", "RMFR+EFR, perfect tracking (fovea on the true gaze)"),
@@ -83,7 +82,7 @@ def chart(avg, settings, out):
                  f"{settings.get('size', ['?', '?'])[1]}, {settings.get('fps', '?')} Hz, latency "
                  f"{settings.get('latency_ms', 0):.1f} ms\nlogs: {', '.join(l['name'] for l in settings.get('logs', []))}", fontsize=10)
     fig.tight_layout()
-    fig.savefig(out, dpi=100)
+    chart_files.save_figure(fig, out, dpi=100)
 
 
 def table(avg, out):
@@ -110,9 +109,7 @@ def table(avg, out):
 
             lines.append(f"| {scene} | {sigma:g} | {cost:.3f} | " + " | ".join(cells) +
                          f" | {delta('fixed')} | {delta('uniform')} | {share('rmfr')} / {share('fixed')} / {share('uniform')} |")
-    with open(out + ".tmp", "w") as f:
-        f.write("\n".join(lines) + "\n")
-    os.replace(out + ".tmp", out)
+    chart_files.write_text(out, "\n".join(lines) + "\n")
 
 
 def main():
@@ -131,4 +128,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    chart_files.run(main)

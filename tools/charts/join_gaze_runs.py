@@ -9,13 +9,13 @@ import json
 import os
 import sys
 
+import chart_files
+
 SETTINGS = ("display", "size", "fps", "latency_ms", "start_s", "efr_ratio", "fx", "fy", "patch_deg", "patch_margin_db")
 
 
 def write(path, text):
-    with open(path + ".tmp", "w") as f:
-        f.write(text)
-    os.replace(path + ".tmp", path)
+    chart_files.write_text(path, text)
 
 
 def main():
@@ -48,4 +48,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    chart_files.run(main)

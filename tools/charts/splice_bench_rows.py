@@ -8,14 +8,14 @@ by its key columns); a key missing from the re-run is an error. Files are rewrit
 atomically."""
 import csv, io, json, os, sys
 
+import chart_files
+
 KEYS = {"bench.csv": ("scene", "method", "sigma"), "rotation.csv": ("angle_deg", "method", "sigma"),
         "stability.csv": ("scene", "path", "t", "method", "sigma"), "flicker.csv": ("scene", "pipeline", "camera", "method", "sigma", "gaze", "reference")}
 
 
 def write_atomically(path, text):
-    with open(path + ".tmp", "w", newline="") as f:
-        f.write(text)
-    os.replace(path + ".tmp", path)
+    chart_files.write_text(path, text)
 
 
 def key(row, cols):
@@ -77,4 +77,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    chart_files.run(main)

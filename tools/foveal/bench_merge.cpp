@@ -21,6 +21,13 @@ struct MergeArgs {
   bool no_png = false, json = false;
 };
 
+// A value from a shard file, cut short: messages never print unbounded input.
+std::string shown(std::string s) {
+  constexpr std::size_t kMax = 120;
+  if (s.size() > kMax) s = s.substr(0, kMax) + "...";
+  return s;
+}
+
 // The first option line where two sweeps differ, for the message.
 std::string first_difference(const std::string& a, const std::string& b) {
   std::istringstream ia(a), ib(b);
@@ -30,7 +37,7 @@ std::string first_difference(const std::string& a, const std::string& b) {
     if (!more_a && !more_b) return "";
     if (!more_a) la.clear();
     if (!more_b) lb.clear();
-    if (la != lb) return "'" + lb + "' against '" + la + "'";
+    if (la != lb) return "'" + shown(lb) + "' against '" + shown(la) + "'";
   }
 }
 
@@ -61,8 +68,8 @@ int merge(const MergeArgs& a) {
   }
   for (const auto& f : files) {
     if (f.summary.value("renderer", nlohmann::json()) != summary.value("renderer", nlohmann::json()))
-      cli::warn(f.path + ": rendered on '" + f.summary.value("renderer", nlohmann::json()).dump() + "', " + files.front().path +
-                " on '" + summary.value("renderer", nlohmann::json()).dump() + "': the timing columns mix machines");
+      cli::warn(f.path + ": rendered on '" + shown(f.summary.value("renderer", nlohmann::json()).dump()) + "', " + files.front().path +
+                " on '" + shown(summary.value("renderer", nlohmann::json()).dump()) + "': the timing columns mix machines");
   }
   summary["shards"] = files.size();
   return bench::write_outputs(a.out, *merged, summary, files.front().kind, !a.no_png, a.json);

@@ -2,37 +2,18 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 
-#include "foveal/core/atomic_file.hpp"
 #include "foveal/core/data_paths.hpp"
 #include "foveal/tools/cli.hpp"
+#include "foveal/tools/run_program.hpp"
+#include "foveal/tools/staged_outputs.hpp"
 
 namespace foveal::bench {
 
 namespace {
 
-constexpr const char* kShardFormat = "foveal bench shard";
-constexpr int kShardVersion = 1;
-
-struct Kind {
-  const char* name;
-  const char* json_file;
-  const char* charts;  ///< under the data directory
-};
-constexpr Kind kKinds[] = {
-    {"bench", "bench.json", "tools/charts/bench_charts.py"},
-    {"gaze", "gaze.json", "tools/charts/gaze_charts.py"},
-};
-
-const Kind* find_kind(const std::string& name) {
-  for (const Kind& k : kKinds)
-    if (name == k.name) return &k;
-  return nullptr;
-}
+constexpr const char* kPython = "/usr/bin/python3";
 
 double number(const nlohmann::json& v) { return v.is_string() ? INFINITY : v.get<double>(); }
 
@@ -66,16 +47,24 @@ Result<nlohmann::json> auto_f_results(const SweepRows& rows) {
   return out;
 }
 
-Status write_tables(const std::string& dir, const SweepRows& rows) {
+// Every table into the staging directory. Names come from the code or, in a merge, from
+// shard files that read_shard held to their kind's list; StagedOutputs refuses any name
+// that is not a plain file name as well.
+Status write_tables(cli::StagedOutputs& out, const SweepRows& rows) {
   for (const std::string& file : rows.tables())
-    if (Status s = write_file_atomically(dir + "/" + file, rows.csv(file)); !s) return s;
+    if (Status s = out.write(file, rows.csv(file)); !s) return s;
   return {};
 }
 
-Status make_dir(const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) return io_error(dir + ": cannot create directory: " + ec.message());
+// The chart script on the staged files, run without a shell: the folder is one argv
+// entry whatever it holds. Its PNGs and tables land in the staging directory too.
+Status run_charts(const char* script, const cli::StagedOutputs& out) {
+  const std::string path = data_path(script);
+  auto r = cli::run_program({kPython, path, out.staging()});
+  if (!r) return r.error();
+  if (!r->ok())
+    return io_error("charts: " + std::string(kPython) + " " + path + " ended with " + cli::describe_end(*r) +
+                    " (its message is above); nothing was written");
   return {};
 }
 
@@ -102,14 +91,14 @@ int write_outputs(const std::string& dir, const SweepRows& rows, nlohmann::json 
     summary["auto_f"] = std::move(*autos);
     if (nlohmann::json flicker = rows.list("flicker"); !flicker.empty()) summary["flicker"] = std::move(flicker);  // bench_flicker.cpp
   }
-  if (Status s = make_dir(dir); !s) return fail(s.error());
-  if (Status s = write_tables(dir, rows); !s) return fail(s.error());
-  if (Status s = write_file_atomically(dir + "/" + k->json_file, summary.dump(2) + "\n"); !s) return fail(s.error());
-  if (charts) {
-    const std::string cmd = "/usr/bin/python3 '" + data_path(k->charts) + "' '" + dir + "'";
-    if (std::system(cmd.c_str()) != 0)
-      return fail(io_error("charts: '" + cmd + "' failed (is python3-matplotlib installed?); the CSV and JSON files are written"));
-  }
+  // All or nothing: tables, JSON and charts are staged, then moved into `dir` together.
+  auto out = cli::StagedOutputs::create(dir);
+  if (!out) return fail(out.error());
+  if (Status s = write_tables(*out, rows); !s) return fail(s.error());
+  if (Status s = out->write(k->json_file, summary.dump(2) + "\n"); !s) return fail(s.error());
+  if (charts)
+    if (Status s = run_charts(k->charts, *out); !s) return fail(s.error());
+  if (auto moved = out->commit(); !moved) return fail(moved.error());
   if (json) cli::print_json(summary);
   else
     std::printf("bench: %zu rows -> %s/%s and its tables%s\n", summary["rows"].size(), dir.c_str(), k->json_file,
@@ -122,47 +111,17 @@ int write_shard(const std::string& dir, const SweepRows& rows, const nlohmann::j
   auto fail = [](const Error& e) { return cli::report(e); };
   const nlohmann::json file = {{"format", kShardFormat}, {"version", kShardVersion}, {"sweep", sweep}, {"kind", kind},
                                {"summary", summary}, {"rows", rows.to_json()}};
-  if (Status s = make_dir(dir); !s) return fail(s.error());
-  if (Status s = write_tables(dir, rows); !s) return fail(s.error());
-  if (Status s = write_file_atomically(dir + "/shard.json", file.dump(1) + "\n"); !s) return fail(s.error());
+  auto out = cli::StagedOutputs::create(dir);
+  if (!out) return fail(out.error());
+  if (Status s = write_tables(*out, rows); !s) return fail(s.error());
+  if (Status s = out->write("shard.json", file.dump(1) + "\n"); !s) return fail(s.error());
+  if (auto moved = out->commit(); !moved) return fail(moved.error());
   const std::size_t own = rows.list("rows").size();
   if (json) cli::print_json({{"shard", rows.shard().text()}, {"points", rows.points()}, {"rows", own}, {"out", dir + "/shard.json"}});
   else
     std::printf("bench: shard %s of a sweep of %zu points: %zu rows -> %s/shard.json\n", rows.shard().text().c_str(), rows.points(),
                 own, dir.c_str());
   return cli::kExitOk;
-}
-
-Result<ShardFile> read_shard(const std::string& dir) {
-  ShardFile f;
-  f.path = dir + "/shard.json";
-  std::ifstream in(f.path, std::ios::binary);
-  if (!in) {
-    if (!std::filesystem::is_directory(dir)) return bad_input(dir + ": no such directory");
-    return bad_input(f.path + ": missing: not the output of `foveal bench --shard K/N`");
-  }
-  std::stringstream text;
-  text << in.rdbuf();
-  const nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) return bad_input(f.path + ": not valid JSON");
-  if (!j.is_object() || !j.contains("format") || j["format"] != kShardFormat)
-    return bad_input(f.path + ": field 'format': not a bench shard file");
-  if (!j.contains("version") || j["version"] != kShardVersion)
-    return bad_input(f.path + ": field 'version': expected " + std::to_string(kShardVersion) + " (written by another foveal version?)");
-  if (!j.contains("sweep") || !j["sweep"].is_string()) return bad_input(f.path + ": field 'sweep': expected a string");
-  if (!j.contains("kind") || !j["kind"].is_string() || !find_kind(j["kind"].get<std::string>())) {
-    std::string known;
-    for (const Kind& k : kKinds) known += std::string(known.empty() ? "" : ", ") + k.name;
-    return bad_input(f.path + ": field 'kind': expected one of " + known);
-  }
-  if (!j.contains("summary") || !j["summary"].is_object()) return bad_input(f.path + ": field 'summary': expected an object");
-  auto rows = SweepRows::from_json(j.contains("rows") ? j["rows"] : nlohmann::json(), f.path);
-  if (!rows) return rows.error();
-  f.sweep = j["sweep"].get<std::string>();
-  f.kind = j["kind"].get<std::string>();
-  f.summary = j["summary"];
-  f.rows = std::move(*rows);
-  return f;
 }
 
 }  // namespace foveal::bench

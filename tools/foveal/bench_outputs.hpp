@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench_shard_file.hpp"
 #include "bench_sweep.hpp"
 #include "foveal/core/error.hpp"
 
@@ -32,13 +33,5 @@ int write_outputs(const std::string& dir, const SweepRows& rows, nlohmann::json 
 /// tagged rows, the summary, the kind and `sweep` (the options that define the grid).
 int write_shard(const std::string& dir, const SweepRows& rows, const nlohmann::json& summary, const std::string& sweep,
                 const std::string& kind, bool json);
-
-struct ShardFile {
-  std::string path;   ///< DIR/shard.json
-  std::string sweep, kind;
-  nlohmann::json summary;
-  SweepRows rows;
-};
-Result<ShardFile> read_shard(const std::string& dir);
 
 }  // namespace foveal::bench

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cstdint>
 #include <cstdlib>
+#include <map>
 
 namespace foveal::bench {
 
@@ -23,7 +25,7 @@ Result<Shard> parse_shard(const std::string& text) {
   auto integer = [](const std::string& s, int& v) {
     char* end = nullptr;
     const long n = std::strtol(s.c_str(), &end, 10);
-    if (s.empty() || *end || n < 1 || n > 1000000) return false;
+    if (s.empty() || *end || n < 1 || n > kMaxShards) return false;
     v = static_cast<int>(n);
     return true;
   };
@@ -127,8 +129,12 @@ Result<SweepRows> SweepRows::from_json(const nlohmann::json& j, const std::strin
   if (!j.is_object() || !j.contains("shard") || !j["shard"].is_array() || j["shard"].size() != 2 ||
       !j["shard"][0].is_number_integer() || !j["shard"][1].is_number_integer())
     return bad("field 'shard': expected [K, N]");
-  SweepRows r(Shard{j["shard"][0].get<int>(), j["shard"][1].get<int>()});
-  if (r.shard_.n < 1 || r.shard_.k < 1 || r.shard_.k > r.shard_.n) return bad("field 'shard': K must lie in 1..N");
+  // Range-checked as int64 first: a cast of 1e10 to int would be garbage. N is bounded
+  // like --shard's, and merge needs all N directories, so a huge N is never a real sweep.
+  const auto k = j["shard"][0].get<std::int64_t>(), n = j["shard"][1].get<std::int64_t>();
+  if (n < 1 || n > kMaxShards) return bad("field 'shard': N must lie in 1.." + std::to_string(kMaxShards));
+  if (k < 1 || k > n) return bad("field 'shard': K must lie in 1..N");
+  SweepRows r(Shard{static_cast<int>(k), static_cast<int>(n)});
   if (!j.contains("points") || !j["points"].is_number_unsigned()) return bad("field 'points': expected a count");
   r.next_ = j["points"].get<std::size_t>();
   // A row must come from a point of this shard: anything else is a damaged or edited file.
@@ -171,7 +177,7 @@ Result<SweepRows> SweepRows::merge(const std::vector<SweepRows>& parts, const st
   if (parts.empty()) return bad_input("merge: no shards given");
   const SweepRows& first = parts.front();
   const int n = first.shard_.n;
-  std::vector<int> seen(static_cast<std::size_t>(n) + 1, -1);
+  std::map<int, std::size_t> seen;  // shard K -> its part: memory for the parts given, not for N
   SweepRows out;
   out.next_ = first.next_;
   for (std::size_t i = 0; i < parts.size(); ++i) {
@@ -179,10 +185,8 @@ Result<SweepRows> SweepRows::merge(const std::vector<SweepRows>& parts, const st
     if (p.shard_.n != n)
       return bad_input(names[i] + ": shard " + p.shard_.text() + " of a sweep in " + std::to_string(p.shard_.n) + " parts, but " +
                        names[0] + " is one of " + std::to_string(n));
-    if (int& s = seen[static_cast<std::size_t>(p.shard_.k)]; s >= 0)
-      return bad_input(names[i] + ": shard " + p.shard_.text() + " is given twice (also " + names[static_cast<std::size_t>(s)] + ")");
-    else
-      s = static_cast<int>(i);
+    if (const auto [at, added] = seen.emplace(p.shard_.k, i); !added)
+      return bad_input(names[i] + ": shard " + p.shard_.text() + " is given twice (also " + names[at->second] + ")");
     if (p.next_ != first.next_)
       return bad_input(names[i] + ": a sweep of " + std::to_string(p.next_) + " points, but " + names[0] + "'s has " +
                        std::to_string(first.next_));
@@ -200,10 +204,17 @@ Result<SweepRows> SweepRows::merge(const std::vector<SweepRows>& parts, const st
       merged.insert(merged.end(), items.begin(), items.end());
     }
   }
-  std::string missing;
-  for (int k = 1; k <= n; ++k)
-    if (seen[static_cast<std::size_t>(k)] < 0) missing += (missing.empty() ? "" : ", ") + std::to_string(k) + "/" + std::to_string(n);
-  if (!missing.empty()) return bad_input("merge: shard " + missing + " missing (every one of the " + std::to_string(n) + " is needed)");
+  if (seen.size() != static_cast<std::size_t>(n)) {
+    // The first few missing shards by name, then a count: N may be a million.
+    constexpr std::size_t kNamed = 10;
+    std::string missing;
+    std::size_t named = 0;
+    for (int k = 1; k <= n && named < kNamed; ++k)
+      if (!seen.count(k)) missing += (named++ ? ", " : "") + std::to_string(k) + "/" + std::to_string(n);
+    const std::size_t absent = static_cast<std::size_t>(n) - seen.size();
+    if (absent > named) missing += " and " + std::to_string(absent - named) + " more";
+    return bad_input("merge: shard " + missing + " missing (every one of the " + std::to_string(n) + " is needed)");
+  }
   out.sort();
   return out;
 }

@@ -20,6 +20,9 @@
 
 namespace foveal::bench {
 
+/// The most parts a sweep is split into (`--shard K/N`, shard.json's "shard").
+inline constexpr int kMaxShards = 1000000;
+
 /// `--shard K/N`: the K-th of N disjoint parts; 1/1 is the whole sweep.
 struct Shard {
   int k = 1, n = 1;

@@ -2,17 +2,17 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
 #include "commands.hpp"
-#include "foveal/core/atomic_file.hpp"
 #include "foveal/core/data_paths.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/import/importers.hpp"
 #include "foveal/tools/filter_score.hpp"
 #include "foveal/tools/cli.hpp"
+#include "foveal/tools/run_program.hpp"
+#include "foveal/tools/staged_outputs.hpp"
 
 namespace foveal::cmd {
 
@@ -91,9 +91,10 @@ void add_filter_chart(CLI::App& app, int& exit_code) {
   sub->add_flag("--json", a->json, "Print the results as JSON");
   sub->callback([a, &exit_code] {
     auto fail = [&exit_code](const Error& e) { exit_code = cli::report(e); };
+    // Every output is staged and moved into --out together at the end (or not at all).
+    auto staged = cli::StagedOutputs::create(a->out);
+    if (!staged) return fail(staged.error());
     std::error_code ec;
-    std::filesystem::create_directories(a->out, ec);
-    if (ec) return fail(io_error(a->out + ": cannot create: " + ec.message()));
     const auto vs = variants();
     std::string csv = "method,label,min_cutoff_hz,beta,jitter_deg,step_lag_ms,pursuit_lag_ms,onset_f1\n";
     nlohmann::json results = nlohmann::json::array();
@@ -128,7 +129,7 @@ void add_filter_chart(CLI::App& app, int& exit_code) {
     if (std::filesystem::is_directory(a->vive_dir, dir_ec)) {
       for (const auto& entry : std::filesystem::directory_iterator(a->vive_dir)) {
         if (entry.path().extension() != ".csv") continue;
-        const std::string tmp = a->out + "/.import.csv";
+        const std::string tmp = staged->staging() + "/.import.csv";
         if (auto imp = import_sranipal(entry.path().string(), tmp); !imp) return fail(imp.error());
         auto samples = read_gaze_log(tmp);
         std::filesystem::remove(tmp, ec);
@@ -138,15 +139,19 @@ void add_filter_chart(CLI::App& app, int& exit_code) {
                       std::to_string(real_jitter_deg(*samples, v.cfg, v.raw)) + "\n";
       }
     }
-    if (Status s = write_file_atomically(a->out + "/filter_chart.csv", csv); !s) return fail(s.error());
-    if (Status s = write_file_atomically(a->out + "/filter_chart_real.csv", real_csv); !s) return fail(s.error());
-    if (Status s = write_file_atomically(a->out + "/filter_chart.json", results.dump(2) + "\n"); !s) return fail(s.error());
+    if (Status s = staged->write("filter_chart.csv", csv); !s) return fail(s.error());
+    if (Status s = staged->write("filter_chart_real.csv", real_csv); !s) return fail(s.error());
+    if (Status s = staged->write("filter_chart.json", results.dump(2) + "\n"); !s) return fail(s.error());
     if (!a->no_png) {
-      const std::string script = data_path("tools/charts/filter_chart.py");
-      const std::string cmd = "/usr/bin/python3 '" + script + "' '" + a->out + "'";
-      if (std::system(cmd.c_str()) != 0)
-        return fail(io_error("charts: '" + cmd + "' failed (is python3-matplotlib installed?); the CSV files are written"));
+      // No shell: --out reaches the script as one argument whatever characters it holds.
+      const std::string python = "/usr/bin/python3", script = data_path("tools/charts/filter_chart.py");
+      auto r = cli::run_program({python, script, staged->staging()});
+      if (!r) return fail(r.error());
+      if (!r->ok())
+        return fail(io_error("charts: " + python + " " + script + " ended with " + cli::describe_end(*r) +
+                             " (its message is above); nothing was written"));
     }
+    if (auto moved = staged->commit(); !moved) return fail(moved.error());
     if (a->json) cli::print_json({{"synthetic", results}, {"out", a->out}});
     else std::printf("wrote %s/filter_chart.{csv,json,png} and filter_chart_real.csv\n", a->out.c_str());
   });
