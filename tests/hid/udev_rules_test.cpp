@@ -58,7 +58,8 @@ bool parse_device_line(const std::string& line, std::string& subsystem, std::str
 
 TEST(UdevRules, EverySupportedTrackerHasHidrawAndUsbLinesWithUaccess) {
   const Rules r = load_rules();
-  const std::set<std::string> expected = {"2104:020f", "054c:0cde", "03f0:0680", "35bd:0202"};
+  // The eye trackers, and the Vive / Vive Pro sensor devices `--head vive` opens.
+  const std::set<std::string> expected = {"2104:020f", "054c:0cde", "03f0:0680", "35bd:0202", "28de:2000", "28de:2300"};
   std::set<std::string> hidraw, usb;
   for (std::size_t i = 1; i + 1 < r.lines.size(); ++i) {
     std::string subsystem, id;

@@ -1,0 +1,33 @@
+# The installed user unit starts the foveald of that install: `cmake --install --prefix P`
+# writes ExecStart=P/bin/foveald (no /usr/bin left over from a template), and DESTDIR
+# stages it without changing what it names.
+# Usage: cmake -DBUILD_DIR=... -DWORK_DIR=... -P systemd_unit_test.cmake
+file(REMOVE_RECURSE "${WORK_DIR}")
+set(prefix "${WORK_DIR}/prefix")
+foreach(mode plain destdir)
+  set(env)
+  set(root "")
+  if(mode STREQUAL "destdir")
+    set(root "${WORK_DIR}/stage")
+    set(env ${CMAKE_COMMAND} -E env "DESTDIR=${root}")
+  endif()
+  execute_process(COMMAND ${env} ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}" --component systemd-unit
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${mode}: cmake --install failed (${rc}): ${out}${err}")
+  endif()
+  set(unit "${root}${prefix}/lib/systemd/user/foveald.service")
+  if(NOT EXISTS "${unit}")
+    message(FATAL_ERROR "${mode}: no unit at ${unit}: ${out}")
+  endif()
+  file(STRINGS "${unit}" exec REGEX "^ExecStart=")
+  if(NOT exec STREQUAL "ExecStart=${prefix}/bin/foveald --quiet --out %S/foveal")
+    message(FATAL_ERROR "${mode}: ${unit}: '${exec}' does not start ${prefix}/bin/foveald")
+  endif()
+  file(READ "${unit}" text)
+  if(text MATCHES "@")
+    message(FATAL_ERROR "${mode}: ${unit} has an unreplaced @VARIABLE@")
+  endif()
+  message(STATUS "${mode}: ${exec}")
+endforeach()
+file(REMOVE_RECURSE "${WORK_DIR}")
