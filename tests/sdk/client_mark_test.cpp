@@ -1,7 +1,8 @@
 // foveal_client_mark against the runtime's real ControlServer on a real Unix socket: the
 // request foveald's handler sees, its reply's time, a refusal's reason, a server that
-// never answers, nobody listening, and text the runtime would refuse. (A real foveald
-// takes the marker into its trace in tests/sdk/install_test.sh.)
+// never answers, one whose backlog is full, nobody listening, and text the runtime would
+// refuse. (A real foveald takes the marker into its trace in tests/sdk/install_test.sh;
+// a stopped one with a full backlog is in tests/daemon/foveald_integration_test.cpp.)
 #include <gtest/gtest.h>
 
 #include <sys/socket.h>
@@ -9,13 +10,16 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstring>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "foveal/client.h"
+#include "foveal/core/clock.hpp"
 #include "foveal/runtime/control_server.hpp"
 #include "test_support.hpp"
 
@@ -94,6 +98,52 @@ TEST(FovealClientMark, ASilentServerTimesOut) {
   ::close(fd);
 }
 
+/// A listening socket that never accepts, its backlog filled as a stopped foveald's is:
+/// connections queued until one more would block.
+struct FullBacklog {
+  explicit FullBacklog(const std::string& path) {
+    listen_fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_un a{};
+    a.sun_family = AF_UNIX;
+    std::strncpy(a.sun_path, path.c_str(), sizeof a.sun_path - 1);
+    EXPECT_EQ(::bind(listen_fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+    EXPECT_EQ(::listen(listen_fd, 4), 0);
+    for (int i = 0; i < 1000; ++i) {
+      const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+      if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
+        EXPECT_EQ(errno, EAGAIN) << std::strerror(errno);
+        ::close(fd);
+        full = true;
+        break;
+      }
+      queued.push_back(fd);
+    }
+  }
+  ~FullBacklog() {
+    for (int fd : queued) ::close(fd);
+    ::close(listen_fd);
+  }
+  int listen_fd = -1;
+  std::vector<int> queued;
+  bool full = false;
+};
+
+TEST(FovealClientMark, AFullBacklogTimesOutInsteadOfBlocking) {
+  // A blocking connect waited here until killed: the timeout now covers connecting too.
+  test::TempDir d;
+  const std::string path = d.path("stopped.sock");
+  FullBacklog backlog(path);
+  ASSERT_TRUE(backlog.full);
+  for (int i = 0; i < 100; ++i) {
+    foveal_error err{};
+    const TimeNs t0 = monotonic_now_ns();
+    ASSERT_EQ(foveal_client_mark(path.c_str(), "x", 100, nullptr, &err), FOVEAL_ERR_TIMEOUT) << err.message;
+    const TimeNs took = monotonic_now_ns() - t0;
+    ASSERT_LT(took, kNsPerSec) << "call " << i + 1 << " took " << took / kNsPerMs << " ms";
+    EXPECT_NE(std::string(err.message).find("within 100 ms"), std::string::npos) << err.message;
+  }
+}
+
 TEST(FovealClientMark, NobodyListeningIsNoWriter) {
   test::TempDir d;
   foveal_error err{};
@@ -119,8 +169,17 @@ TEST(FovealClientMark, TextTheRuntimeWouldRefuseIsAnInvalidArgument) {
   EXPECT_EQ(foveal_client_mark(path.c_str(), "two\nlines", 200, nullptr, &err), FOVEAL_ERR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(err.message).find("byte 4"), std::string::npos) << err.message;
   EXPECT_EQ(foveal_client_mark(path.c_str(), std::string(257, 'x').c_str(), 200, nullptr, &err), FOVEAL_ERR_INVALID_ARGUMENT);
+  // Not UTF-8 (foveald's JSON parser refused these as a malformed request, REFUSED): a
+  // stray continuation byte, a cut sequence, an overlong '/', a surrogate, above U+10FFFF.
+  for (const char* bad : {"a\x80" "b", "trial \xc3", "\xc0\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80", "\xff"}) {
+    EXPECT_EQ(foveal_client_mark(path.c_str(), bad, 200, nullptr, &err), FOVEAL_ERR_INVALID_ARGUMENT) << err.message;
+    EXPECT_NE(std::string(err.message).find("not valid UTF-8"), std::string::npos) << err.message;
+  }
+  EXPECT_NE(std::string(err.message).find("byte 1"), std::string::npos) << err.message;
+  EXPECT_EQ(foveal_client_mark(path.c_str(), "\xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x91\x81", 2000, nullptr, &err), FOVEAL_OK)
+      << err.message;  // é, €, an eye: fine
   EXPECT_EQ(foveal_client_mark(path.c_str(), std::string(256, 'x').c_str(), 2000, nullptr, &err), FOVEAL_OK) << err.message;
-  EXPECT_EQ(requests.load(), 1);
+  EXPECT_EQ(requests.load(), 2);
 }
 
 }  // namespace

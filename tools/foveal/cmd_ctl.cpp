@@ -47,7 +47,9 @@ void add_ctl(CLI::App& app, int& exit_code) {
       "                           `foveal record --control` in progress (without --socket)\n");
   ctl->add_option("request", a->words, "The request and its arguments")->required();
   ctl->add_option("--socket", a->socket, "Control socket")->capture_default_str();
-  ctl->add_option("--timeout-ms", a->timeout_ms, "How long to wait for the reply")->capture_default_str();
+  ctl->add_option("--timeout-ms", a->timeout_ms, "How long connecting, sending and the reply may take together (per socket)")
+      ->check(CLI::Range(1, 3600 * 1000))
+      ->capture_default_str();
   ctl->add_flag("--json", a->json, "Print the reply as JSON (the default prints it indented too)");
   ctl->callback([a, ctl, &exit_code] {
     const std::string& cmd = a->words.front();

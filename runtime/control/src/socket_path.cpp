@@ -78,8 +78,11 @@ Status clear_stale_socket(const std::string& path, const sockaddr_un& addr) {
   if (!S_ISSOCK(st.st_mode))
     return bad_input(path + ": exists and is not a socket; foveald replaces only a stale socket of its own "
                             "(remove the file or choose another --control path)");
-  const int probe = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  const bool live = probe >= 0 && ::connect(probe, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0;
+  // Non-blocking: a stopped foveald's full backlog answers EAGAIN at once (it is alive)
+  // where a blocking probe would wait for it forever.
+  const int probe = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+  const bool live = probe >= 0 && (::connect(probe, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0 ||
+                                   errno == EAGAIN);
   if (probe >= 0) ::close(probe);
   if (live) return bad_input(path + ": another foveald is already listening there");
   if (::unlink(path.c_str()) != 0 && errno != ENOENT)

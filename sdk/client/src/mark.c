@@ -7,6 +7,7 @@
 #include "foveal/client.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <poll.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -14,6 +15,7 @@
 #include <string.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/time.h>
 #include <sys/un.h>
 #include <time.h>
 #include <unistd.h>
@@ -46,6 +48,71 @@ static int64_t now_ms(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (int64_t)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
+}
+
+/* Length of the well-formed UTF-8 sequence at p (RFC 3629: no overlong forms, no
+ * surrogates, nothing above U+10FFFF), or 0. foveald's JSON parser refuses anything else
+ * as a malformed request, so it is the caller's mistake and said so here. */
+static size_t utf8_sequence(const unsigned char *p, size_t left) {
+  if (p[0] < 0x80) return 1;
+  size_t n;
+  unsigned min, cp;
+  if ((p[0] & 0xe0) == 0xc0) n = 2, min = 0x80, cp = p[0] & 0x1fu;
+  else if ((p[0] & 0xf0) == 0xe0) n = 3, min = 0x800, cp = p[0] & 0x0fu;
+  else if ((p[0] & 0xf8) == 0xf0) n = 4, min = 0x10000, cp = p[0] & 0x07u;
+  else return 0;
+  if (n > left) return 0;
+  for (size_t i = 1; i < n; ++i) {
+    if ((p[i] & 0xc0) != 0x80) return 0;
+    cp = (cp << 6) | (p[i] & 0x3fu);
+  }
+  if (cp < min || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff)) return 0;
+  return n;
+}
+
+/* Milliseconds as a timeval, for SO_SNDTIMEO (at least 1 ms: 0 would mean no limit). */
+static struct timeval timeval_ms(int64_t ms) {
+  if (ms < 1) ms = 1;
+  struct timeval tv = {(time_t)(ms / 1000), (suseconds_t)((ms % 1000) * 1000)};
+  return tv;
+}
+
+/* connect() that gives up at deadline_ms. A Unix stream connect waits while the
+ * listener's backlog is full (a stopped foveald); Linux bounds that wait by SO_SNDTIMEO
+ * and then fails with EAGAIN, which a non-blocking connect would return at once without
+ * a way to poll for room. 0, or -1 with errno (EAGAIN: the deadline passed). */
+static int connect_until(int fd, const struct sockaddr_un *addr, int64_t deadline_ms) {
+  for (;;) {
+    const int64_t left = deadline_ms - now_ms();
+    if (left <= 0) {
+      errno = EAGAIN;
+      return -1;
+    }
+    const struct timeval tv = timeval_ms(left);
+    if (setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv) != 0) return -1;
+    if (connect(fd, (const struct sockaddr *)addr, sizeof *addr) == 0) return 0;
+    if (errno != EINTR) return -1;
+  }
+}
+
+/* send() of the whole request by deadline_ms; 0, or -1 with errno (EAGAIN: too late). */
+static int send_until(int fd, const char *data, size_t len, int64_t deadline_ms) {
+  size_t sent = 0;
+  while (sent < len) {
+    const int64_t left = deadline_ms - now_ms();
+    if (left <= 0) {
+      errno = EAGAIN;
+      return -1;
+    }
+    const struct timeval tv = timeval_ms(left);
+    if (setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv) != 0) return -1;
+    const ssize_t n = send(fd, data + sent, len - sent, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0 && errno == EWOULDBLOCK) errno = EAGAIN;
+    if (n < 0) return -1;
+    sent += (size_t)n;
+  }
+  return 0;
 }
 
 /* {"cmd":"mark","text":"..."}\n with the text escaped; 0 when it does not fit. */
@@ -90,8 +157,14 @@ static int mark_one(const char *path, const char *request, size_t request_len, i
   const int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
   if (fd < 0) return mark_error(err, FOVEAL_ERR_SYSTEM, path, "socket: %s", strerror(errno));
   int code = FOVEAL_OK;
-  if (connect(fd, (const struct sockaddr *)&addr, sizeof addr) != 0) {
-    code = mark_error(err, FOVEAL_ERR_NO_WRITER, path, "cannot connect (is foveald running?): %s", strerror(errno));
+  /* One deadline for connect, send and the reply: a stopped foveald can hold each. */
+  const int64_t deadline = now_ms() + timeout_ms;
+  if (connect_until(fd, &addr, deadline) != 0) {
+    if (errno == EAGAIN)
+      code = mark_error(err, FOVEAL_ERR_TIMEOUT, path, "not accepting connections within %d ms (foveald stopped or flooded?)",
+                        timeout_ms);
+    else
+      code = mark_error(err, FOVEAL_ERR_NO_WRITER, path, "cannot connect (is foveald running?): %s", strerror(errno));
     goto done;
   }
   /* Only this user's foveald (or root's) may take the marker: a socket another user
@@ -107,13 +180,13 @@ static int mark_one(const char *path, const char *request, size_t request_len, i
                       (unsigned)peer.uid, (unsigned)geteuid());
     goto done;
   }
-  if (send(fd, request, request_len, MSG_NOSIGNAL) != (ssize_t)request_len) {
-    code = mark_error(err, FOVEAL_ERR_SYSTEM, path, "send: %s", strerror(errno));
+  if (send_until(fd, request, request_len, deadline) != 0) {
+    if (errno == EAGAIN) code = mark_error(err, FOVEAL_ERR_TIMEOUT, path, "request not taken within %d ms", timeout_ms);
+    else code = mark_error(err, FOVEAL_ERR_SYSTEM, path, "send: %s", strerror(errno));
     goto done;
   }
   char reply[kMaxReplyBytes];
   size_t got = 0;
-  const int64_t deadline = now_ms() + timeout_ms;
   while (!memchr(reply, '\n', got)) {
     const int64_t left = deadline - now_ms();
     if (left <= 0) {
@@ -121,7 +194,7 @@ static int mark_one(const char *path, const char *request, size_t request_len, i
       goto done;
     }
     struct pollfd p = {fd, POLLIN, 0};
-    if (poll(&p, 1, (int)left) <= 0) continue;
+    if (poll(&p, 1, left > INT_MAX ? INT_MAX : (int)left) <= 0) continue;
     if (got + 1 >= sizeof reply) {
       code = mark_error(err, FOVEAL_ERR_SYSTEM, path, "reply longer than %d bytes", kMaxReplyBytes);
       goto done;
@@ -156,6 +229,11 @@ int foveal_client_mark(const char *socket_or_null, const char *text, int timeout
   for (size_t i = 0; i < len; ++i)
     if ((unsigned char)text[i] < 0x20 || text[i] == 0x7f)
       return mark_error(err, FOVEAL_ERR_INVALID_ARGUMENT, "mark", "byte %zu of the text is a control character", i + 1);
+  for (size_t i = 0; i < len;) {
+    const size_t n = utf8_sequence((const unsigned char *)text + i, len - i);
+    if (n == 0) return mark_error(err, FOVEAL_ERR_INVALID_ARGUMENT, "mark", "byte %zu of the text is not valid UTF-8", i + 1);
+    i += n;
+  }
   if (timeout_ms <= 0) timeout_ms = 1000;
   char request[2 * kMaxMarkerBytes + 64];
   const size_t request_len = mark_request(request, sizeof request, text);

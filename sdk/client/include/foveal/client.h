@@ -160,12 +160,13 @@ FOVEAL_CLIENT_API void foveal_client_close(foveal_client *c);
  *   ($XDG_RUNTIME_DIR/foveal/control.sock, else /tmp/foveal-<uid>/control.sock) and, when
  *   present beside it, a `foveal record --control` in progress (record.sock), which writes
  *   the marker into its recording too. With NULL it succeeds when either takes it.
- * text: 1 to 256 bytes of printable text, one line (no control characters).
- * timeout_ms: how long to wait for each reply; 0 or less means 1000.
+ * text: 1 to 256 bytes of printable UTF-8 text, one line (no control characters).
+ * timeout_ms: how long each socket may take, connecting (a stopped foveald's full
+ *   backlog), sending and replying together; 0 or less means 1000.
  * t_ns_out: when not NULL, the marker's CLOCK_MONOTONIC time as foveald stamped it.
  * err: filled on failure when not NULL; left alone on success.
- * Returns FOVEAL_OK, or INVALID_ARGUMENT (text NULL, empty, too long or not one printable
- *   line), NO_WRITER (nobody listens: is foveald running?), NOT_FOVEALDS (the socket is
+ * Returns FOVEAL_OK, or INVALID_ARGUMENT (text NULL, empty, too long, not UTF-8 or not one
+ *   printable line), NO_WRITER (nobody listens: is foveald running?), NOT_FOVEALDS (the socket is
  *   served by another user), REFUSED (foveald said no, e.g. too many markers waiting for
  *   the next sample), TIMEOUT, SYSTEM.
  * Blocking: one connection and one round trip per socket, at most timeout_ms each; not

@@ -95,7 +95,8 @@ class ControlServer {
   std::atomic<std::uint64_t> served_{0}, bad_{0}, dropped_{0};
 };
 
-/// Client side: connects, sends one request, waits up to timeout_ms for its reply.
+/// Client side: connects, sends one request and reads its reply, all within timeout_ms
+/// (a stopped server's full backlog or unread socket counts against it too).
 Result<nlohmann::json> control_request(const std::string& path, const nlohmann::json& request, int timeout_ms = 2000);
 
 }  // namespace foveal
