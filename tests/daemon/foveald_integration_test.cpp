@@ -1,9 +1,12 @@
 // foveald end to end: a real process, a real control socket, real signals.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/mman.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -14,8 +17,10 @@
 #include <filesystem>
 #include <sstream>
 
+#include "foveal/client.h"
 #include "foveal/core/clock.hpp"
 #include "foveal/runtime/control_server.hpp"
+#include "foveal/runtime/fovea_shm_layout.h"
 #include "test_support.hpp"
 
 extern char** environ;
@@ -39,16 +44,26 @@ class Foveald : public ::testing::Test {
     }
   }
 
-  void start(std::vector<std::string> args) {
+  /// stderr_fd >= 0: foveald's stderr (and stdout to /dev/null); extra_env: VAR=VALUE.
+  void start(std::vector<std::string> args, int stderr_fd = -1, const std::vector<std::string>& extra_env = {}) {
     std::vector<std::string> env_store = {"XDG_CONFIG_HOME=" + dir_.path("config"), "XDG_RUNTIME_DIR=" + dir_.path("run"),
                                           "PATH=/usr/bin:/bin"};
+    env_store.insert(env_store.end(), extra_env.begin(), extra_env.end());
     args.insert(args.begin(), test::bin("foveald"));
     std::vector<char*> argv, envp;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
     for (auto& e : env_store) envp.push_back(e.data());
     envp.push_back(nullptr);
-    ASSERT_EQ(::posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), envp.data()), 0);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    if (stderr_fd >= 0) {
+      posix_spawn_file_actions_adddup2(&actions, stderr_fd, STDERR_FILENO);
+      posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    }
+    const int spawned = ::posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), envp.data());
+    posix_spawn_file_actions_destroy(&actions);
+    ASSERT_EQ(spawned, 0);
     // The socket appears once foveald is set up.
     for (int i = 0; i < 500 && !std::filesystem::exists(socket_); ++i) sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
     ASSERT_TRUE(std::filesystem::exists(socket_)) << "foveald did not open its control socket";
@@ -398,6 +413,148 @@ TEST_F(Foveald, NonReadingClientsStallNeitherStatusNorFrames) {
   EXPECT_LT(ms[ms.size() * 99 / 100], 100.0) << "status p99 under the flood (" << ms.size() << " requests)";
   EXPECT_GT(quiet, 15) << "about 30 frames a second without the flood";
   EXPECT_GE(flooded, quiet / 2) << "frames during the flood: " << flooded << ", before: " << quiet;
+  ASSERT_EQ(::kill(pid_, SIGTERM), 0);
+  EXPECT_EQ(wait_exit(1000), 0);
+}
+
+/// The shared block's heartbeat (CLOCK_MONOTONIC ns), read as any client would; -1
+/// when the block cannot be mapped.
+std::int64_t heartbeat_of(const std::string& shm_name) {
+  const int fd = ::shm_open(shm_name.c_str(), O_RDONLY | O_CLOEXEC, 0);
+  if (fd < 0) return -1;
+  void* p = ::mmap(nullptr, FOVEAL_SHM_V3_SIZE, PROT_READ, MAP_SHARED, fd, 0);
+  ::close(fd);
+  if (p == MAP_FAILED) return -1;
+  const auto* hb = reinterpret_cast<const std::int64_t*>(static_cast<const char*>(p) + FOVEAL_SHM_HEARTBEAT_OFFSET);
+  const std::int64_t v = __atomic_load_n(hb, __ATOMIC_ACQUIRE);
+  ::munmap(p, FOVEAL_SHM_V3_SIZE);
+  return v;
+}
+
+// stderr on a pipe nobody reads, full before foveald starts: its control thread wrote
+// its log lines there itself, so after 686 `set` requests the socket went deaf, the
+// heartbeat stopped and SIGTERM went unheard; when the reader died, SIGPIPE killed it
+// with nothing committed. Now lines queue (and drop, counted) in front of a thread of
+// their own, and SIGPIPE is ignored.
+TEST_F(Foveald, AFullStderrPipeSilencesNeitherSocketNorHeartbeatNorSigterm) {
+  int fds[2];
+  ASSERT_EQ(::pipe2(fds, O_CLOEXEC), 0);
+  ASSERT_EQ(::fcntl(fds[1], F_SETFL, O_NONBLOCK), 0);
+  const std::string fill(4096, 'x');
+  std::size_t filled = 0;
+  while (::write(fds[1], fill.data(), fill.size()) > 0) filled += fill.size();
+  while (::write(fds[1], "x", 1) > 0) ++filled;  // the last bytes: writes of a page wait for a page
+  ASSERT_EQ(errno, EAGAIN);
+  ASSERT_EQ(::fcntl(fds[1], F_SETFL, 0), 0);  // foveald gets a blocking, full stderr
+  ASSERT_GT(filled, 0u);
+  const std::string shm = "/foveal-test-stderr-" + std::to_string(::getpid());
+  start({"--loop", "--end", "5", "--speed", "1", "--no-render", "--out", dir_.path("out")}, fds[1],
+        {"FOVEAL_SHM_NAME=" + shm});
+  ::close(fds[1]);
+
+  // Each change logs an info line: 3000 are over 256 KiB, more than the queue holds.
+  for (int i = 0; i < 3000; ++i) {
+    auto r = control_request(socket_, {{"cmd", "set"}, {"sigma_d", i % 2 ? 2.1 : 2.0}}, 2000);
+    ASSERT_TRUE(r) << "set " << i + 1 << ": " << r.error().message;
+    ASSERT_EQ((*r)["ok"], true) << r->dump();
+  }
+  nlohmann::json st;
+  for (int i = 0; i < 10; ++i) {
+    const TimeNs t0 = monotonic_now_ns();
+    auto r = control_request(socket_, {{"cmd", "status"}}, 2000);
+    const TimeNs took = monotonic_now_ns() - t0;
+    ASSERT_TRUE(r) << r.error().message;
+    EXPECT_LT(took, 250 * kNsPerMs) << "status took " << took / kNsPerMs << " ms";
+    st = *r;
+  }
+  EXPECT_EQ(st["state"], "running");
+  EXPECT_GT(st["log"]["dropped_lines"].get<int>(), 0) << st["log"].dump();
+  // The heartbeat goes on (every 10 ms; allow a loaded machine 500 ms).
+  const std::int64_t h0 = heartbeat_of(shm);
+  ASSERT_GT(h0, 0) << "cannot map " << shm;
+  bool beating = false;
+  for (int i = 0; i < 100 && !beating; ++i) {
+    sleep_until_ns(monotonic_now_ns() + 5 * kNsPerMs);
+    beating = heartbeat_of(shm) > h0;
+  }
+  EXPECT_TRUE(beating) << "the shared block's heartbeat stopped";
+  EXPECT_LT(monotonic_now_ns() - heartbeat_of(shm), 500 * kNsPerMs);
+
+  // The reader dies: the next lines are EPIPE, not SIGPIPE.
+  ::close(fds[0]);
+  for (int i = 0; i < 20; ++i) EXPECT_TRUE(control_request(socket_, {{"cmd", "set"}, {"sigma_d", 2.2}}, 2000));
+  const TimeNs t0 = monotonic_now_ns();
+  ASSERT_EQ(::kill(pid_, SIGTERM), 0);
+  const int rc = wait_exit(2000);
+  EXPECT_EQ(rc, 0) << "exit code (128 + 13: killed by SIGPIPE)";
+  EXPECT_LT(monotonic_now_ns() - t0, kNsPerSec) << "SIGTERM must end foveald within 1 s";
+  const auto summary = nlohmann::json::parse(test::read_file(dir_.path("out/summary.json")));
+  EXPECT_EQ(summary["state"], "stopped");
+  EXPECT_GT(summary["log"]["dropped_lines"].get<int>(), 0);
+  EXPECT_GT(summary["samples"].get<int>(), 0);
+  EXPECT_NE(test::read_file(dir_.path("out/trace.csv")).find('\n'), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(socket_)) << "the socket is removed on exit";
+  EXPECT_EQ(heartbeat_of(shm), -1) << "the shared block is removed on exit";
+  ::shm_unlink(shm.c_str());
+}
+
+// A stopped foveald (SIGSTOP) whose listen backlog is full: `foveal ctl --timeout-ms
+// 100` and foveal_client_mark(..., 100, ...) blocked in connect() until killed.
+TEST_F(Foveald, AStoppedFovealdWithAFullBacklogTimesClientsOut) {
+  start({"--loop", "--end", "5", "-q", "--no-shm", "--no-render", "--out", dir_.path("out")});
+  ASSERT_EQ(::kill(pid_, SIGSTOP), 0);
+  std::vector<int> queued;  // connections it will never accept while stopped
+  sockaddr_un a{};
+  a.sun_family = AF_UNIX;
+  std::snprintf(a.sun_path, sizeof a.sun_path, "%s", socket_.c_str());
+  for (int i = 0; i < 10000; ++i) {
+    const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+    if (::connect(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0) {
+      ASSERT_EQ(errno, EAGAIN) << std::strerror(errno);
+      ::close(fd);
+      break;
+    }
+    queued.push_back(fd);
+  }
+  ASSERT_LT(queued.size(), 10000u) << "the backlog never filled";
+  const std::string ctl_status = "XDG_RUNTIME_DIR=" + dir_.path("run") + " timeout -s KILL 10 " + test::bin("foveal") +
+                                 " ctl --timeout-ms 100 status";
+  for (int i = 0; i < 100; ++i) {
+    const TimeNs t0 = monotonic_now_ns();
+    const auto r = test::run(ctl_status);
+    const TimeNs took = monotonic_now_ns() - t0;
+    ASSERT_NE(r.exit_code, 0);
+    ASSERT_NE(r.err.find("not accepting connections within 100 ms"), std::string::npos) << r.err;
+    ASSERT_LT(took, kNsPerSec) << "foveal ctl call " << i + 1 << " took " << took / kNsPerMs << " ms";
+  }
+  for (int i = 0; i < 100; ++i) {
+    foveal_error err{};
+    const TimeNs t0 = monotonic_now_ns();
+    ASSERT_EQ(foveal_client_mark(socket_.c_str(), "x", 100, nullptr, &err), FOVEAL_ERR_TIMEOUT) << err.message;
+    const TimeNs took = monotonic_now_ns() - t0;
+    ASSERT_LT(took, kNsPerSec) << "foveal_client_mark call " << i + 1 << " took " << took / kNsPerMs << " ms";
+  }
+  for (int fd : queued) ::close(fd);
+  ASSERT_EQ(::kill(pid_, SIGCONT), 0);
+  EXPECT_EQ(ctl({{"cmd", "status"}})["ok"], true) << "it answers again once it runs";
+  ASSERT_EQ(::kill(pid_, SIGTERM), 0);
+  EXPECT_EQ(wait_exit(1000), 0);
+}
+
+// A FIFO as ~/.config/foveal/active: foveald waited in open() for a writer, with SIGTERM
+// already masked. It now refuses at once, naming the file.
+TEST_F(Foveald, AFifoAsTheActiveProfileFileIsRefusedNamed) {
+  const std::string active = dir_.path("config/foveal/active");
+  ASSERT_EQ(::mkfifo(active.c_str(), 0600), 0);
+  const auto r = test::run("timeout -s KILL 10 env XDG_CONFIG_HOME=" + dir_.path("config") +
+                           " XDG_RUNTIME_DIR=" + dir_.path("run") + " " + test::bin("foveald") +
+                           " --source synthetic --duration 5 --no-render --no-shm --out " + dir_.path("out"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(active + ": the active-profile file is a FIFO"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_.path("out/summary.json")));
+  // With --profile the active file is not read: foveald runs, and SIGTERM ends it.
+  start({"--profile", "bob", "--loop", "--end", "5", "-q", "--no-shm", "--no-render", "--out", dir_.path("out")});
+  EXPECT_EQ(ctl({{"cmd", "status"}})["profile"], "bob");
   ASSERT_EQ(::kill(pid_, SIGTERM), 0);
   EXPECT_EQ(wait_exit(1000), 0);
 }

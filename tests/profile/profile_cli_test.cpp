@@ -3,6 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -111,6 +113,20 @@ TEST_F(ProfileCli, AHeldStoreLockTimesOutWithAClearError) {
   auto again = store.lock(200);  // a second descriptor: flock excludes it like another process
   ASSERT_FALSE(again);
   EXPECT_NE(again.error().message.find(dir_.path("foveal/lock")), std::string::npos) << again.error().message;
+}
+
+TEST_F(ProfileCli, AFifoAsTheActiveFileIsNamedNotWaitedFor) {
+  // `profile list` waited in open() for a writer that never came.
+  ASSERT_EQ(foveal("create alice").exit_code, 0);
+  const std::string active = dir_.path("foveal/active");
+  ASSERT_EQ(::mkfifo(active.c_str(), 0600), 0);
+  for (const char* cmd : {"list", "show"}) {
+    // `timeout` turns the old hang into a failure (exit 124) instead of a stuck test.
+    const auto r = test::run("XDG_CONFIG_HOME=" + dir_.path() + " timeout 10 " + test::bin("foveal") + " profile " + cmd);
+    EXPECT_EQ(r.exit_code, 2) << cmd << ": " << r.err;
+    EXPECT_NE(r.err.find(active + ": the active-profile file is a FIFO"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
 }
 
 }  // namespace

@@ -1,5 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+
 #include "foveal/runtime/profile.hpp"
 #include "test_support.hpp"
 
@@ -85,7 +90,7 @@ TEST(Profile, SetParsesAndValidates) {
 TEST(ProfileStore, SaveLoadListActiveDelete) {
   test::TempDir dir;
   ProfileStore store(dir.path("foveal"));
-  EXPECT_EQ(store.active(), "default");
+  EXPECT_EQ(store.active().value(), "default");
   Profile p;
   p.name = "bob";
   p.sigma_nd = 2.6;
@@ -99,7 +104,7 @@ TEST(ProfileStore, SaveLoadListActiveDelete) {
   ASSERT_TRUE(bob) << bob.error().message;
   EXPECT_DOUBLE_EQ(bob->sigma_nd, 2.6);
   ASSERT_TRUE(store.set_active("bob"));
-  EXPECT_EQ(store.active(), "bob");
+  EXPECT_EQ(store.active().value(), "bob");
   EXPECT_FALSE(store.set_active("nobody"));
   ASSERT_TRUE(store.remove("alice"));
   EXPECT_FALSE(store.exists("alice"));
@@ -128,6 +133,36 @@ TEST(ProfileStore, ABrokenFileIsReportedNotLoaded) {
   ASSERT_FALSE(q);
   EXPECT_NE(q.error().message.find("ok.json"), std::string::npos) << q.error().message;
   EXPECT_NE(q.error().message.find("not valid JSON"), std::string::npos) << q.error().message;
+}
+
+// A FIFO as the active-profile file hung every reader in open() (foveald with SIGTERM
+// masked); a link to a device read it without end. Both are named and refused at once.
+TEST(ProfileStore, AFifoOrDeviceAsTheActiveFileIsRefusedNamedWithoutBlocking) {
+  test::TempDir dir;
+  ProfileStore store(dir.path("foveal"));
+  ASSERT_TRUE(std::filesystem::create_directories(dir.path("foveal")));
+  const std::string active = dir.path("foveal/active");
+  ASSERT_EQ(::mkfifo(active.c_str(), 0600), 0);
+  auto a = store.active();
+  ASSERT_FALSE(a);
+  EXPECT_NE(a.error().message.find(active + ": the active-profile file is a FIFO"), std::string::npos) << a.error().message;
+  ASSERT_EQ(::unlink(active.c_str()), 0);
+  ASSERT_EQ(::symlink("/dev/zero", active.c_str()), 0);
+  a = store.active();
+  ASSERT_FALSE(a);
+  EXPECT_NE(a.error().message.find("a character device"), std::string::npos) << a.error().message;
+  ASSERT_EQ(::unlink(active.c_str()), 0);
+  EXPECT_EQ(store.active().value(), "default") << "no file: the default, as before";
+}
+
+TEST(ProfileStore, AFifoAsTheLockFileIsRefused) {
+  test::TempDir dir;
+  ProfileStore store(dir.path("foveal"));
+  ASSERT_TRUE(std::filesystem::create_directories(dir.path("foveal")));
+  ASSERT_EQ(::mkfifo(dir.path("foveal/lock").c_str(), 0600), 0);
+  auto lock = store.lock(100);
+  ASSERT_FALSE(lock);
+  EXPECT_NE(lock.error().message.find("lock file is not a regular file"), std::string::npos) << lock.error().message;
 }
 
 }  // namespace

@@ -192,7 +192,9 @@ void add_calibrate(CLI::App& app, int& exit_code) {
     const ProfileStore store = ProfileStore::user();
     auto lock = store.lock();  // the profile is read, changed and saved
     if (!lock) return fail(lock.error());
-    const std::string name = a->profile.empty() ? store.active() : a->profile;
+    auto active = store.active();
+    if (!active) return fail(active.error());
+    const std::string name = a->profile.empty() ? *active : a->profile;
     Profile p;
     p.name = name;
     if (store.exists(name)) {

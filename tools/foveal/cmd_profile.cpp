@@ -79,7 +79,9 @@ void add_profile(CLI::App& app, int& exit_code) {
     auto built = Profile::from_json(j, a->name, "profile " + a->name);
     if (!built) return fail(built.error());
     if (Status s = store.save(*built); !s) return fail(s.error());
-    print_profile(*built, store.active() == a->name, a->json);
+    auto active = store.active();
+    if (!active) return fail(active.error());
+    print_profile(*built, *active == a->name, a->json);
   });
 
   CLI::App* list = prof->add_subcommand("list", "List profiles");
@@ -88,7 +90,9 @@ void add_profile(CLI::App& app, int& exit_code) {
     const ProfileStore store = ProfileStore::user();
     auto names = store.list();
     if (!names) return fail(names.error());
-    const std::string active = store.active();
+    auto read_active = store.active();
+    if (!read_active) return fail(read_active.error());
+    const std::string active = *read_active;
     if (a->json) {
       cli::print_json({{"profiles", *names}, {"active", active}, {"directory", store.root() + "/profiles"}});
       return;
@@ -102,10 +106,12 @@ void add_profile(CLI::App& app, int& exit_code) {
   show->add_flag("--json", a->json, "Print JSON");
   show->callback([a, fail] {
     const ProfileStore store = ProfileStore::user();
-    const std::string name = a->name.empty() ? store.active() : a->name;
+    auto active = store.active();
+    if (!active) return fail(active.error());
+    const std::string name = a->name.empty() ? *active : a->name;
     auto p = store.load(name);
     if (!p) return fail(p.error());
-    print_profile(*p, store.active() == name, a->json);
+    print_profile(*p, *active == name, a->json);
   });
 
   CLI::App* set = prof->add_subcommand("set", "Set one key of a profile, e.g. 'set alice sigma_nd 3.2'");
@@ -121,7 +127,9 @@ void add_profile(CLI::App& app, int& exit_code) {
     if (!p) return fail(p.error());
     if (Status s = p->set(a->key, a->value); !s) return fail(s.error());
     if (Status s = store.save(*p); !s) return fail(s.error());
-    print_profile(*p, store.active() == a->name, a->json);
+    auto active = store.active();
+    if (!active) return fail(active.error());
+    print_profile(*p, *active == a->name, a->json);
   });
 
   CLI::App* use = prof->add_subcommand("use", "Make a profile the active one");

@@ -37,8 +37,9 @@ FoveaShmSettings shm_settings(const RenderSettings& r) {
 
 Result<Profile> DaemonApp::load_startup_profile() const {
   if (!o_.profile.empty()) return store_.load(o_.profile);
-  const std::string active = store_.active();
-  if (store_.exists(active)) return store_.load(active);
+  auto active = store_.active();
+  if (!active) return active.error();
+  if (store_.exists(*active)) return store_.load(*active);
   Profile p;  // no profile yet: the built-in defaults (EFR seed pair)
   p.name = "default";
   return p;
@@ -120,16 +121,14 @@ double DaemonApp::output_refresh_hz() const {
   return model_.refresh_hz > 0 ? model_.refresh_hz : 90.0;
 }
 
-Status DaemonApp::setup() {
+Status DaemonApp::setup(const Profile& profile) {
   if (o_.duration_s && !(*o_.duration_s > 0)) return bad_input("--duration must be > 0 seconds");
-  auto profile = load_startup_profile();
-  if (!profile) return profile.error();
   if (!o_.display.empty()) {
     auto m = DisplayModel::load(o_.display);
     if (!m) return m.error();
     model_ = *m;
   }
-  if (Status s = apply_profile(*profile, "loaded"); !s) return s;
+  if (Status s = apply_profile(profile, "loaded"); !s) return s;
   if (Status s = setup_source(); !s) return s;
 
   std::error_code ec;
@@ -247,6 +246,10 @@ int DaemonApp::render_loop() {
 }
 
 int DaemonApp::run() {
+  // The profile store's files first, while SIGTERM still works: they are opened without
+  // blocking (a FIFO is refused), and nothing else may stand between a signal and us.
+  auto profile = load_startup_profile();
+  if (!profile) return cli::report(profile.error(), "foveald");
   // Signals go to a signalfd read by the control thread; every thread has them blocked.
   sigset_t sigs;
   sigemptyset(&sigs);
@@ -257,7 +260,7 @@ int DaemonApp::run() {
   const int sigfd = ::signalfd(-1, &sigs, SFD_NONBLOCK | SFD_CLOEXEC);
 
   started_ = monotonic_now_ns();
-  if (Status s = setup(); !s) return cli::report(s.error(), "foveald");
+  if (Status s = setup(*profile); !s) return cli::report(s.error(), "foveald");
   if (!source_.live)
     if (Status s = source_.source->start(); !s) return cli::report(s.error(), "foveald");
 
@@ -291,7 +294,7 @@ int DaemonApp::run() {
 int DaemonApp::shutdown(int rc) {
   loop_->stop();
   head_->stop();
-  if (log::enabled(log::Level::info) && !o_.json && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
+  if (log::enabled(log::Level::info) && !o_.json && ::isatty(STDERR_FILENO)) log::raw("\n");  // ends the status line
   const GazeLoopStats st = loop_->stats();
   if (st.failed) rc = cli::report(bad_input(st.last_error), "foveald");
   trace_->write_markers(markers_.take_all());  // those after the last sample

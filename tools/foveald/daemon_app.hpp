@@ -40,7 +40,7 @@ class DaemonApp {
 
  private:
   // Setup (main thread, before the other threads start).
-  Status setup();
+  Status setup(const Profile& startup_profile);
   Status setup_source();
   Status setup_head(const probe::SourceOptions& so);
   double output_refresh_hz() const;  // for the pose prediction's horizon

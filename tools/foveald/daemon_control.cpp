@@ -112,7 +112,9 @@ nlohmann::json DaemonApp::status_json() const {
           {"resident_mb", current_rss_mb()},
           {"render", renderer_ ? renderer_->stats_json() : nlohmann::json(nullptr)},
           {"head", head_ ? head_->json() : nlohmann::json(nullptr)},
-          {"control", {{"requests", control_ ? control_->requests_served() : 0}, {"bad_requests", control_ ? control_->bad_requests() : 0}}}};
+          {"control", {{"requests", control_ ? control_->requests_served() : 0}, {"bad_requests", control_ ? control_->bad_requests() : 0}}},
+          // Log lines lost because stderr did not keep up (a pipe nobody reads).
+          {"log", {{"dropped_lines", log::dropped_lines()}}}};
 }
 
 nlohmann::json DaemonApp::handle(const nlohmann::json& req) {
@@ -186,11 +188,14 @@ void DaemonApp::print_status_line() {
   const GazeLoopStats st = loop_->stats();
   FoveaFrame f;
   (void)loop_->latest().load(f);
-  std::fprintf(stderr, "\rfoveald: %s %s %llu samples  reconnects %llu  latency p99 %.3f ms  L(%4.0f,%4.0f) %-8s R(%4.0f,%4.0f) %-8s ",
-               loop_->paused() ? "paused" : source_state_name(st.state), source_.spec.driver.c_str(),
-               static_cast<unsigned long long>(st.samples), static_cast<unsigned long long>(st.reconnects),
-               ms(st.latency_p99_ns), f.eyes[0].px.x, f.eyes[0].px.y, fovea_state_name(f.eyes[0].state),
-               f.eyes[1].px.x, f.eyes[1].px.y, fovea_state_name(f.eyes[1].state));
+  // Through the log's queue: a terminal stopped by ^S must not stop this thread.
+  char line[256];
+  std::snprintf(line, sizeof line, "\rfoveald: %s %s %llu samples  reconnects %llu  latency p99 %.3f ms  L(%4.0f,%4.0f) %-8s R(%4.0f,%4.0f) %-8s ",
+                loop_->paused() ? "paused" : source_state_name(st.state), source_.spec.driver.c_str(),
+                static_cast<unsigned long long>(st.samples), static_cast<unsigned long long>(st.reconnects),
+                ms(st.latency_p99_ns), f.eyes[0].px.x, f.eyes[0].px.y, fovea_state_name(f.eyes[0].state),
+                f.eyes[1].px.x, f.eyes[1].px.y, fovea_state_name(f.eyes[1].state));
+  log::raw(line);
 }
 
 nlohmann::json DaemonApp::summary_json() const {
@@ -233,7 +238,7 @@ void DaemonApp::emergency_exit() {
   control_.reset();  // removes the socket
   shm_.reset();      // and the shared-memory block
   std::fflush(stdout);
-  std::fflush(stderr);
+  log::flush(/*stall_ms=*/100);  // the last lines, unless stderr is stuck
   ::_exit(rc);  // the main thread is inside the GL driver: no destructors may run under it
 }
 

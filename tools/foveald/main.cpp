@@ -4,6 +4,8 @@
 // control thread serves the socket and signals, the main thread renders.
 #include <CLI/CLI.hpp>
 
+#include <signal.h>
+
 #include "daemon_app.hpp"
 #include "foveal/drivers/probe.hpp"
 #include "foveal/image/foveation_plan.hpp"
@@ -64,5 +66,12 @@ int main(int argc, char** argv) {
   }
   o.verbosity = verbose - quiet;
   foveal::log::init("foveald", o.verbosity);
-  return foveal::daemon::DaemonApp(o).run();
+  // stderr may be a pipe nobody reads, or whose reader died: lines go through a queue
+  // to a thread of their own (dropped and counted when it is full), and a dead reader
+  // is an EPIPE, never a SIGPIPE that kills foveald with its outputs uncommitted.
+  ::signal(SIGPIPE, SIG_IGN);
+  foveal::log::start_writer_thread();
+  const int rc = foveal::daemon::DaemonApp(o).run();
+  foveal::log::flush(/*stall_ms=*/250);  // the last lines, unless stderr is stuck
+  return rc;
 }

@@ -1,5 +1,6 @@
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -7,12 +8,11 @@
 #include <cstring>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/clock.hpp"
 #include "foveal/core/json_file.hpp"
+#include "foveal/core/read_file.hpp"
 #include "foveal/runtime/profile.hpp"
 
 namespace foveal {
@@ -73,11 +73,15 @@ Status ProfileStore::remove(const std::string& name) const {
   return {};
 }
 
-std::string ProfileStore::active() const {
-  std::ifstream in(root_ + "/active");
-  std::string name;
-  std::getline(in, name);
-  return valid_profile_name(name) ? name : "default";
+Result<std::string> ProfileStore::active() const {
+  // A regular file only, opened without blocking: a FIFO here hung every reader (and
+  // foveald with its signals masked), a device would be read without end.
+  const std::string path = root_ + "/active";
+  if (::access(path.c_str(), F_OK) != 0 && errno == ENOENT) return std::string("default");
+  auto text = read_regular_file(path, 4096, "the active-profile file");
+  if (!text) return text.error();
+  const std::string name = text->substr(0, text->find('\n'));
+  return valid_profile_name(name) ? name : std::string("default");
 }
 
 Status ProfileStore::set_active(const std::string& name) const {
@@ -94,9 +98,13 @@ Result<ProfileStore::Lock> ProfileStore::lock(int timeout_ms) const {
   fs::create_directories(root_, ec);
   if (ec) return io_error(root_ + ": cannot create: " + ec.message());
   const std::string path = root_ + "/lock";
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0600);
+  // O_NONBLOCK: a FIFO planted here must not hold the open; only a regular file is a lock.
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK, 0600);
   if (fd < 0) return io_error(path + ": cannot open the profile store's lock file: " + std::strerror(errno));
   Lock held(fd);
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
+    return bad_input(path + ": the profile store's lock file is not a regular file; remove it");
   const TimeNs deadline = monotonic_now_ns() + static_cast<TimeNs>(timeout_ms) * kNsPerMs;
   while (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     if (errno != EWOULDBLOCK && errno != EINTR) return io_error(path + ": cannot lock: " + std::strerror(errno));

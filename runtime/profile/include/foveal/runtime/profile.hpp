@@ -78,8 +78,9 @@ class ProfileStore {
   Status remove(const std::string& name) const;
   bool exists(const std::string& name) const;
 
-  /// The active profile's name: the one `use` chose, else "default".
-  std::string active() const;
+  /// The active profile's name: the one `use` chose, else "default". An error names
+  /// the file when it is there but not a readable regular file (a FIFO, a device).
+  Result<std::string> active() const;
   Status set_active(const std::string& name) const;
 
   /// An exclusive flock on <root>/lock, released when destroyed (or when the process

@@ -1,6 +1,13 @@
 #pragma once
 // Leveled logging to stderr for the command-line programs. The level comes from -v/-q
-// or $FOVEAL_LOG (error, warn, info, debug). Thread-safe (one fprintf per message).
+// or $FOVEAL_LOG (error, warn, info, debug). Thread-safe (whole lines from each thread).
+//
+// By default a line is written at once. A daemon calls start_writer_thread(): lines then
+// go through a bounded queue to a thread of their own, so that a stderr nobody reads (a
+// full pipe, a stopped terminal) never blocks a thread that serves clients or signals;
+// lines that find the queue full are dropped and counted (dropped_lines()).
+#include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 
@@ -14,10 +21,23 @@ void init(const char* program, int verbosity);
 Level level();
 bool enabled(Level l);
 void write(Level l, const std::string& msg);
+/// Text as it is (a status line with its own "\r"), through the same path as lines.
+void raw(const std::string& text);
 
 inline void error(const std::string& m) { write(Level::error, m); }
 inline void warn(const std::string& m) { write(Level::warn, m); }
 inline void info(const std::string& m) { write(Level::info, m); }
 inline void debug(const std::string& m) { write(Level::debug, m); }
+
+/// Bytes of text the queue holds before it drops lines.
+inline constexpr std::size_t kMaxQueuedBytes = 256 * 1024;
+/// From here on lines are queued and written by a thread (all signals blocked in it).
+/// Call once, early; there is no way back (the thread may be stuck in write() at exit).
+void start_writer_thread();
+/// Lines dropped because the queue was full (0 without the writer thread).
+std::uint64_t dropped_lines();
+/// Waits until the queue is written out; false when the writer made no progress for
+/// `stall_ms` (stderr stuck), so that an exit is never held up by a silent reader.
+bool flush(int stall_ms);
 
 }  // namespace foveal::log
