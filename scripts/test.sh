@@ -38,7 +38,7 @@ ctest --test-dir build-tsan -R 'SeqLock|FoveaShm|PoseTrack|GazeLoop|LatencyHisto
 
 step "libFuzzer: each target ${FOVEAL_FUZZ_SECONDS:-15} s"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DFOVEAL_FUZZ=ON "${fast[@]}" > /dev/null
-targets=(fuzz_gaze_log fuzz_import fuzz_profile fuzz_control fuzz_hid fuzz_psvr2 fuzz_display fuzz_gltf fuzz_hmd fuzz_shard)
+targets=(fuzz_gaze_log fuzz_import fuzz_profile fuzz_control fuzz_hid fuzz_psvr2 fuzz_display fuzz_gltf fuzz_hmd fuzz_vive fuzz_shard)
 ninja -C build-fuzz -j"$jobs" "${targets[@]}"
 for t in "${targets[@]}"; do
   corpus=$(mktemp -d)

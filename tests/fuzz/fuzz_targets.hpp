@@ -147,6 +147,21 @@ inline int hmd(const std::uint8_t* data, std::size_t size) {
 }
 #endif
 
+// The Vive configuration JSON (`foveal devices --from-config`, the headset's own): a
+// clean error or a config whose display model validates; never a crash, and no message
+// longer than a few hundred bytes (values are quoted shortly).
+#ifdef FOVEAL_HAVE_VIVE
+inline int vive(const std::uint8_t* data, std::size_t size) {
+  auto c = foveal::vive::parse_config(std::string(reinterpret_cast<const char*>(data), size), "fuzz");
+  if (!c) {
+    if (c.error().message.size() > 1000) std::abort();
+    return 0;
+  }
+  if (auto m = foveal::vive::vive_display_model(*c); m && !m->validate("fuzz")) std::abort();
+  return 0;
+}
+#endif
+
 inline int control(const std::uint8_t* data, std::size_t size) {
   // The socket needs a private directory (docs/daemon.md), removed again at exit.
   static struct Served {

@@ -50,6 +50,9 @@ TEST(FuzzRegressions, Psvr2) { replay("psvr2", fuzz::psvr2); }
 #if defined(FOVEAL_HAVE_USB) && defined(FOVEAL_HAVE_VIVE)
 TEST(FuzzRegressions, Hmd) { replay("hmd", fuzz::hmd); }
 #endif
+#ifdef FOVEAL_HAVE_VIVE
+TEST(FuzzRegressions, Vive) { replay("vive", fuzz::vive); }
+#endif
 
 }  // namespace
 }  // namespace foveal

@@ -4,6 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "foveal/core/json_file.hpp"
+#include "foveal/core/shown_text.hpp"
+
 namespace foveal::vive {
 namespace {
 
@@ -63,7 +66,7 @@ Result<ChannelDistortion> parse_channel(const Node& d) {
   if (d.has("type")) {
     const json& t = d.get().at("type");
     if (!t.is_string() || (t != "DISTORT_DPOLY3" && t != "DISTORT_DPOLY3_SCALED"))
-      return bad_input(d.path() + ".type: " + t.dump() + " is not DISTORT_DPOLY3 (the only model read)");
+      return bad_input(d.path() + ".type: " + shown_text(t.dump()) + " is not DISTORT_DPOLY3 (the only model read)");
   }
   FOVEAL_TRY(cx, d.at("center_x"));
   FOVEAL_TRY(cxv, cx.number());
@@ -124,11 +127,25 @@ Result<glm::vec3> optional_vec3(const Node& parent, const char* key, glm::vec3 f
   return n.vec3();
 }
 
+Status check_label(const std::string& text, const std::string& where) {
+  constexpr std::size_t kMaxLabelBytes = 64;
+  if (text.size() > kMaxLabelBytes)
+    return bad_input(where + ": " + std::to_string(text.size()) + " bytes (\"" + shown_text(text) + "\"); at most " +
+                     std::to_string(kMaxLabelBytes));
+  for (char ch : text)
+    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f)
+      return bad_input(where + ": \"" + shown_text(text) + "\" contains a control character");
+  return {};
+}
+
 }  // namespace
 
 Result<Config> parse_config(const std::string& text, const std::string& where) {
-  const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) return bad_input(where + ": not valid JSON");
+  // Size and depth limits before nlohmann parses it: a 400,000-deep value recursed
+  // in dump() until SIGSEGV.
+  auto parsed = parse_json(text, where);
+  if (!parsed) return parsed.error();
+  const json& j = *parsed;
   if (!j.is_object()) return bad_input(where + ": expected a JSON object");
   const Node root(j, where + ":");
   Config c;
@@ -136,11 +153,14 @@ Result<Config> parse_config(const std::string& text, const std::string& where) {
   if (!j.contains(model_key) || !j.at(model_key).is_string())
     return bad_input(where + ": model_number: missing (neither model_number nor model_name is a string)");
   c.model_number = j.at(model_key).get<std::string>();
+  // Both end up in the display model's name and source: short printable text only.
+  if (Status s = check_label(c.model_number, where + ": " + model_key); !s) return s.error();
   c.variant = c.model_number.find("Pro") != std::string::npos || c.model_number.find("PRO") != std::string::npos
                   ? Variant::vive_pro
                   : Variant::vive;
   if (j.contains("device_serial_number") && j["device_serial_number"].is_string())
     c.serial = j["device_serial_number"].get<std::string>();
+  if (Status s = check_label(c.serial, where + ": device_serial_number"); !s) return s.error();
 
   FOVEAL_TRY(device, root.at("device"));
   FOVEAL_TRY(w, device.at("eye_target_width_in_pixels"));
