@@ -2,11 +2,11 @@
 
 namespace foveal::render::detail {
 
-Status decode_gltf_model(tinygltf::Model& m, const std::string& path, DecodeBudget& budget) {
+Status decode_gltf_model(tinygltf::Model& m, const std::string& path, const GltfLimits& limits, DecodeBudget& budget) {
   // Meshopt first: Draco payloads and sparse indices/values may sit in compressed views.
   if (Status s = decode_meshopt_views(m, path, budget); !s) return s;
   if (Status s = decode_draco_primitives(m, path, budget); !s) return s;
-  return densify_sparse_accessors(m, path, budget);
+  return densify_sparse_accessors(m, path, limits, budget);
 }
 
 Result<const unsigned char*> buffer_span(const tinygltf::Model& m, int buffer, std::size_t offset, std::size_t length,

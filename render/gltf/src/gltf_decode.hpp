@@ -13,14 +13,15 @@
 namespace foveal::render::detail {
 
 /// Runs the three steps below in the order they depend on each other.
-Status decode_gltf_model(tinygltf::Model& m, const std::string& path, DecodeBudget& budget);
+Status decode_gltf_model(tinygltf::Model& m, const std::string& path, const GltfLimits& limits, DecodeBudget& budget);
 
 /// EXT_meshopt_compression buffer views (gltf_meshopt.cpp).
 Status decode_meshopt_views(tinygltf::Model& m, const std::string& path, DecodeBudget& budget);
 /// KHR_draco_mesh_compression primitives (gltf_draco.cpp).
 Status decode_draco_primitives(tinygltf::Model& m, const std::string& path, DecodeBudget& budget);
-/// Sparse accessors made dense (gltf_sparse.cpp).
-Status densify_sparse_accessors(tinygltf::Model& m, const std::string& path, DecodeBudget& budget);
+/// Sparse accessors that a primitive reads made dense (gltf_sparse.cpp); the others are
+/// left alone. Without a buffer view at most limits.max_zero_accessor_count elements.
+Status densify_sparse_accessors(tinygltf::Model& m, const std::string& path, const GltfLimits& limits, DecodeBudget& budget);
 
 // Shared by the steps.
 

@@ -221,9 +221,25 @@ class Checker {
     const std::string where = path + "." + key;
     if (!it->is_object()) return fail(where, "must be an object, got " + shown(*it));
     if (Status s = index(*it, "index", "textures", where, true); !s) return s;
-    if (Status s = integer(*it, "texCoord", where, false); !s) return s;
+    // tinygltf narrows texCoord to int: 4294967297 became 1.
+    if (Status s = integer(*it, "texCoord", where, false, 0, INT32_MAX); !s) return s;
     if (Status s = number(*it, "scale", where); !s) return s;
-    return number(*it, "strength", where);
+    if (Status s = number(*it, "strength", where); !s) return s;
+    return texture_transform(*it, where);
+  }
+
+  // KHR_texture_transform: the loader read members of the wrong type as absent.
+  Status texture_transform(const json& info, const std::string& path) const {
+    auto ext = info.find("extensions");
+    if (ext == info.end() || !ext->is_object()) return {};
+    auto t = ext->find("KHR_texture_transform");
+    if (t == ext->end()) return {};
+    const std::string where = path + ".extensions.KHR_texture_transform";
+    if (!t->is_object()) return fail(where, "must be an object, got " + shown(*t));
+    if (Status s = numbers(*t, "offset", 2, where); !s) return s;
+    if (Status s = numbers(*t, "scale", 2, where); !s) return s;
+    if (Status s = number(*t, "rotation", where); !s) return s;
+    return integer(*t, "texCoord", where, false, 0, INT32_MAX);
   }
 
   Status materials() const {
@@ -241,6 +257,12 @@ class Checker {
       }
       for (const char* t : {"normalTexture", "occlusionTexture", "emissiveTexture"})
         if (Status s = texture_info(m, t, path); !s) return s;
+      if (auto ext = m.find("extensions"); ext != m.end() && ext->is_object())
+        if (auto sg = ext->find("KHR_materials_pbrSpecularGlossiness"); sg != ext->end() && sg->is_object()) {
+          const std::string p = path + ".extensions.KHR_materials_pbrSpecularGlossiness";
+          for (const char* t : {"diffuseTexture", "specularGlossinessTexture"})
+            if (Status s = texture_info(*sg, t, p); !s) return s;
+        }
       if (Status s = numbers(m, "emissiveFactor", 3, path); !s) return s;
       if (Status s = number(m, "alphaCutoff", path); !s) return s;
       if (Status s = one_of(m, "alphaMode", {"OPAQUE", "MASK", "BLEND"}, path, false); !s) return s;

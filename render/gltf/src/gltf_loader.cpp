@@ -236,7 +236,7 @@ Result<GltfScene> load_gltf_bytes(std::string_view bytes, const std::string& nam
   }
   if (Status s = detail::check_gltf_extensions(model, name, warnings); !s) return s.error();
   if (Status s = decode_buffer_view_images(model, ctx); !s) return s.error();
-  if (Status s = detail::decode_gltf_model(model, name, budget); !s) return s.error();
+  if (Status s = detail::decode_gltf_model(model, name, limits, budget); !s) return s.error();
   auto scene = detail::build_gltf_scene(model, name, limits, budget, sink);
   if (scene) scene->warnings.insert(scene->warnings.begin(), warnings.begin(), warnings.end());
   return scene;

@@ -40,17 +40,25 @@ Status decode_view(tinygltf::Model& m, std::size_t index, const tinygltf::Value&
   if (*count > kMaxDecodedBytes / *stride) return bad_input(where + ": count " + std::to_string(*count) + " is too large");
   auto src = buffer_span(m, static_cast<int>(*buffer), *offset, *length, where);
   if (!src) return src.error();
+  // The codecs cannot expand past a fixed ratio (the EXT_meshopt_compression format:
+  // attributes carry at least 2 header bits per byte per 16 vertices, triangles at least
+  // one code byte per triangle, index sequences one byte per index), so a claim beyond
+  // it is refused before the output is allocated: a 1 KB file claimed 1 GiB here.
+  if (mode != "ATTRIBUTES" && mode != "TRIANGLES" && mode != "INDICES")
+    return bad_input(where + ": unknown mode \"" + mode + "\" (ATTRIBUTES, TRIANGLES or INDICES)");
+  if (mode != "ATTRIBUTES" && *stride != 2 && *stride != 4) return bad_input(where + ": index byteStride must be 2 or 4");
+  const std::size_t max_count = mode == "ATTRIBUTES" ? *length * 64 / *stride : mode == "TRIANGLES" ? *length * 3 : *length;
+  if (*count > max_count)
+    return bad_input(where + ": count " + std::to_string(*count) + " × byteStride " + std::to_string(*stride) + " = " +
+                     std::to_string(*count * *stride) + " bytes cannot be decoded from " + std::to_string(*length) +
+                     " compressed bytes (mode " + mode + ")");
   if (Status s = budget.take(*count * *stride, where); !s) return s;
   std::vector<unsigned char> out(*count * *stride);
   int rc = 0;
   if (mode == "ATTRIBUTES") rc = meshopt_decodeVertexBuffer(out.data(), *count, *stride, *src, *length);
-  else if (mode == "TRIANGLES" || mode == "INDICES") {
-    if (*stride != 2 && *stride != 4) return bad_input(where + ": index byteStride must be 2 or 4");
+  else
     rc = mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(out.data(), *count, *stride, *src, *length)
                              : meshopt_decodeIndexSequence(out.data(), *count, *stride, *src, *length);
-  } else {
-    return bad_input(where + ": unknown mode \"" + mode + "\" (ATTRIBUTES, TRIANGLES or INDICES)");
-  }
   if (rc != 0) return bad_input(where + ": the compressed data is corrupt (meshopt error " + std::to_string(rc) + ")");
   if (filter == "OCTAHEDRAL") {
     if (*stride != 4 && *stride != 8) return bad_input(where + ": OCTAHEDRAL needs byteStride 4 or 8");

@@ -7,7 +7,7 @@ namespace foveal::render::detail {
 
 namespace {
 
-Status densify(tinygltf::Model& m, std::size_t index, const std::string& path, DecodeBudget& budget) {
+Status densify(tinygltf::Model& m, std::size_t index, const std::string& path, const GltfLimits& limits, DecodeBudget& budget) {
   tinygltf::Accessor& a = m.accessors[index];
   const std::string where = path + ": accessor " + std::to_string(index) + " (sparse)";
   const int comps = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
@@ -15,14 +15,23 @@ Status densify(tinygltf::Model& m, std::size_t index, const std::string& path, D
   if (comps <= 0 || csize <= 0) return bad_input(where + ": bad type or component type");
   const std::size_t elem = static_cast<std::size_t>(comps) * static_cast<std::size_t>(csize);
   if (a.count > kMaxDecodedBytes / elem) return bad_input(where + ": count " + std::to_string(a.count) + " is too large");
-  if (Status s = budget.take(a.count * elem, where); !s) return s;
-  std::vector<unsigned char> dense(a.count * elem, 0);
+  // Without a buffer view the base is zeros, bounded as a plain zero accessor is: an
+  // 848-byte file asked for 2^27 elements (2.1 GB) here.
+  if (a.bufferView < 0 && a.count > limits.max_zero_accessor_count)
+    return bad_input(where + ": count " + std::to_string(a.count) + " elements without a buffer view (all zeros) is more than the " +
+                     std::to_string(limits.max_zero_accessor_count) + " accepted");
+  // Every read is checked before the dense copy is allocated.
+  const unsigned char* base = nullptr;
+  std::size_t stride = elem;
   if (a.bufferView >= 0 && a.count > 0) {
     const tinygltf::BufferView& v = m.bufferViews.at(static_cast<std::size_t>(a.bufferView));
-    const std::size_t stride = v.byteStride ? v.byteStride : elem;
-    auto base = view_span(m, a.bufferView, a.byteOffset, stride * (a.count - 1) + elem, where);
-    if (!base) return base.error();
-    for (std::size_t i = 0; i < a.count; ++i) std::memcpy(&dense[i * elem], *base + i * stride, elem);
+    stride = v.byteStride ? v.byteStride : elem;
+    std::size_t span = 0;
+    if (__builtin_mul_overflow(stride, a.count - 1, &span) || __builtin_add_overflow(span, elem, &span))
+      return bad_input(where + ": count " + std::to_string(a.count) + " × stride " + std::to_string(stride) + " is too large");
+    auto b = view_span(m, a.bufferView, a.byteOffset, span, where);
+    if (!b) return b.error();
+    base = *b;
   }
   const auto& sp = a.sparse;
   if (sp.count < 1 || static_cast<std::size_t>(sp.count) > a.count)
@@ -35,6 +44,10 @@ Status densify(tinygltf::Model& m, std::size_t index, const std::string& path, D
   if (!idx) return idx.error();
   auto val = view_span(m, sp.values.bufferView, static_cast<std::size_t>(sp.values.byteOffset), n * elem, where + " values");
   if (!val) return val.error();
+  if (Status s = budget.take(a.count * elem, where); !s) return s;
+  std::vector<unsigned char> dense(a.count * elem, 0);
+  if (base)
+    for (std::size_t i = 0; i < a.count; ++i) std::memcpy(&dense[i * elem], base + i * stride, elem);
   for (std::size_t i = 0; i < n; ++i) {
     std::uint32_t k = 0;
     const unsigned char* p = *idx + i * static_cast<std::size_t>(isize);
@@ -52,10 +65,21 @@ Status densify(tinygltf::Model& m, std::size_t index, const std::string& path, D
 
 }  // namespace
 
-Status densify_sparse_accessors(tinygltf::Model& m, const std::string& path, DecodeBudget& budget) {
+Status densify_sparse_accessors(tinygltf::Model& m, const std::string& path, const GltfLimits& limits, DecodeBudget& budget) {
+  // Only what a primitive reads is decoded: the builder never meets the others, and a
+  // file of unused sparse accessors asked for 4.3 GB.
+  std::vector<bool> used(m.accessors.size(), false);
+  auto use = [&](int i) {
+    if (i >= 0 && static_cast<std::size_t>(i) < used.size()) used[static_cast<std::size_t>(i)] = true;
+  };
+  for (const tinygltf::Mesh& mesh : m.meshes)
+    for (const tinygltf::Primitive& p : mesh.primitives) {
+      use(p.indices);
+      for (const auto& [name, accessor] : p.attributes) use(accessor);
+    }
   for (std::size_t i = 0; i < m.accessors.size(); ++i)
-    if (m.accessors[i].sparse.isSparse)
-      if (Status s = densify(m, i, path, budget); !s) return s;
+    if (used[i] && m.accessors[i].sparse.isSparse)
+      if (Status s = densify(m, i, path, limits, budget); !s) return s;
   return {};
 }
 
