@@ -147,6 +147,14 @@ TEST(GazeMarkers, BadMarkerRowsNameTheLineAndColumn) {
   EXPECT_EQ(error_of(row0 + "#mark,150,x\n" + row1), p + ":6: t_ns: 100 is earlier than the marker before it (150)");
   EXPECT_EQ(error_of(row0 + "#mark,50,cut"), p + ":5: truncated: the file ends inside this marker row");
   EXPECT_EQ(error_of("#mark,50,only a marker\n"), p + ": no samples: the log has a header only");
+  // Held to the samples' range [-2^62, 2^62) (issue 27): a marker minus a sample never overflows.
+  EXPECT_EQ(error_of("#mark,-9223372036854775808,x\n" + row0 + row1),
+            p + ":4: t_ns: marker time -9223372036854775808 is out of range (timestamps are in [-2^62, 2^62) ns, ±146 years)");
+  EXPECT_EQ(error_of(row0 + row1 + "#mark,4611686018427387904,x\n"),
+            p + ":6: t_ns: marker time 4611686018427387904 is out of range (timestamps are in [-2^62, 2^62) ns, ±146 years)");
+  EXPECT_EQ(error_of("#mark,-4611686018427387904,x\n" + row0 + "#mark,4611686018427387903,y\n"), "(no error)");
+  EXPECT_EQ(error_of(row0 + "#mark," + std::string(1000, '7') + ",x\n" + row1),
+            p + ":5: t_ns: '" + std::string(60, '7') + "…' is not an integer");
   // A streaming reader keeps a bounded number of markers.
   std::string many = row0;
   for (std::size_t i = 0; i <= kMaxGazeLogMarkers; ++i) many += "#mark,1,m\n";

@@ -13,6 +13,8 @@ namespace foveal {
 
 namespace {
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+/// The narrowest frustum accepted, in tangent units per axis (about 0.6°).
+constexpr float kMinTangentSpan = 0.01f;
 
 // A field that is a number of the wrong kind or size. nlohmann's get<float>() and
 // get<int>() cast out-of-range values, which is undefined behaviour.
@@ -87,7 +89,10 @@ Status DisplayModel::validate(const std::string& where) const {
   if (eye_width < 1 || eye_height < 1 || eye_width > 16384 || eye_height > 16384)
     return bad_input(where + ": eye_width/eye_height must be in 1..16384");
   if (!(ipd_mm > 0.0f && ipd_mm < 200.0f)) return bad_input(where + ": ipd_mm must be in (0, 200)");
-  if (!(refresh_hz >= 0.0 && refresh_hz <= 1000.0)) return bad_input(where + ": refresh_hz must be in [0, 1000]");
+  // 0 stays "any" (docs/display-model.md); a rate between 0 and 1 Hz is no panel's, and
+  // foveald's prediction horizon is one refresh (1e-30 Hz made it overflow).
+  if (!(refresh_hz == 0.0 || (refresh_hz >= 1.0 && refresh_hz <= 1000.0)))
+    return bad_input(where + ": refresh_hz " + std::to_string(refresh_hz) + " must be 0 (any) or in [1, 1000] Hz");
   if (!edid_vendor.empty() &&
       (edid_vendor.size() != 3 || !std::all_of(edid_vendor.begin(), edid_vendor.end(), [](char c) { return c >= 'A' && c <= 'Z'; })))
     return bad_input(where + ": edid_vendor must be three capital letters (a PNP ID such as \"HVR\")");
@@ -99,6 +104,10 @@ Status DisplayModel::validate(const std::string& where) const {
         return bad_input(where + ": " + eye_name(e) + " frustum tangents must be finite");
     if (!(f.tan_left < f.tan_right) || !(f.tan_bottom < f.tan_top))
       return bad_input(where + ": " + eye_name(e) + " frustum needs left < right and bottom < top");
+    // The focal length in pixels is the eye's size over these spans: ±1e-30 made it 1e33.
+    if (!(f.tan_right - f.tan_left >= kMinTangentSpan) || !(f.tan_top - f.tan_bottom >= kMinTangentSpan))
+      return bad_input(where + ": " + eye_name(e) + " frustum spans " + std::to_string(f.tan_right - f.tan_left) + " × " +
+                       std::to_string(f.tan_top - f.tan_bottom) + " in tangents; right - left and top - bottom must be at least 0.01 (about 0.6°)");
     const LensDistortion& d = distortion[static_cast<std::size_t>(e)];
     const float dv[8] = {d.center.x, d.center.y, d.k1, d.k2, d.k3, d.channel_scale.x, d.channel_scale.y, d.channel_scale.z};
     for (float x : dv)

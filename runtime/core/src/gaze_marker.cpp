@@ -1,5 +1,7 @@
 #include "foveal/core/gaze_marker.hpp"
 
+#include "foveal/core/gaze_log.hpp"
+#include "foveal/core/shown_text.hpp"
 #include "foveal/core/text_fields.hpp"
 
 namespace foveal {
@@ -27,7 +29,11 @@ Result<GazeMarker> parse_marker_row(std::string_view row) {
   if (comma == std::string_view::npos) return bad_input("t_ns: the marker row has no text (expected #mark,T_NS,TEXT)");
   GazeMarker m;
   const std::string_view t = row.substr(0, comma);
-  if (!parse_number(t, m.t_ns)) return bad_input("t_ns: '" + std::string(t) + "' is not an integer");
+  if (!parse_number(t, m.t_ns)) return bad_input("t_ns: '" + shown_text(t) + "' is not an integer");
+  // The samples' range, so a marker minus a sample cannot overflow either.
+  if (m.t_ns < -kMaxGazeLogTimeNs || m.t_ns >= kMaxGazeLogTimeNs)
+    return bad_input("t_ns: marker time " + std::to_string(m.t_ns) +
+                     " is out of range (timestamps are in [-2^62, 2^62) ns, ±146 years)");
   m.text = std::string(row.substr(comma + 1));
   if (Status s = check_marker_text(m.text); !s) return bad_input("text: " + s.error().message.substr(6));
   return m;
