@@ -152,6 +152,9 @@ std::vector<ImportCase> sranipal_cases() {
       {"helmet_nan", kSrHelmetHeader + sr_helmet_row(100, "0.97;nan;0.55;4.7;356.7;3.5"), ":2: helmet_pos_y: 'nan' is not finite"},
       {"helmet_position_out_of_range", kSrHelmetHeader + sr_helmet_row(100, "1e300;1.18;0.55;4.7;356.7;3.5"), ":2: helmet_pos_x: 1e300 m is out of range"},
       {"helmet_column_missing", kSrHelmetHeader.substr(0, kSrHelmetHeader.rfind(';')) + "\n" + sr_row(100), "'helmet_rot_z' is missing"},
+      // Which copy would be read is anyone's guess (issue 27): the header is refused.
+      {"helmet_column_twice", kSrHelmetHeader.substr(0, kSrHelmetHeader.size() - 1) + ";helmet_pos_x\n" + sr_helmet_row(100, "0.97;1.18;0.55;4.7;356.7;3.5;9"),
+       ":1: column 'helmet_pos_x' appears twice in the header (columns 22 and 28)"},
   };
 }
 

@@ -100,6 +100,11 @@ void add_study(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   stats->add_flag("--json", args->json, "Print the report as JSON");
   stats->callback([args, &exit_code] {
+    // CLI::Range lets NaN through (every comparison with it is false).
+    if (!(args->threshold >= 1.0 && args->threshold <= 5.0)) {
+      exit_code = cli::report(bad_input("--threshold: " + std::to_string(args->threshold) + " is not a mean score in [1, 5]"));
+      return;
+    }
     auto trials = read_study_trials(args->file);
     if (!trials) {
       exit_code = cli::report(trials.error());

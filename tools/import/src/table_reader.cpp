@@ -1,7 +1,9 @@
 #include "foveal/import/table_reader.hpp"
 
 #include <cmath>
+#include <unordered_map>
 
+#include "foveal/core/shown_text.hpp"
 #include "foveal/core/text_fields.hpp"
 
 namespace foveal {
@@ -21,6 +23,16 @@ Result<TableReader> TableReader::open(const std::string& path, char delim) {
   split_fields(head, delim, names);
   for (auto n : names) t.header_.emplace_back(n);
   t.line_no_ = line.number;
+  // A name given twice is ambiguous whichever copy is read (no export repeats one); empty
+  // names, from a trailing delimiter, name nothing.
+  std::unordered_map<std::string_view, std::size_t> seen;  // a 1 MiB header has up to 512 Ki names
+  for (std::size_t i = 0; i < t.header_.size(); ++i) {
+    if (t.header_[i].empty()) continue;
+    const auto [at, fresh] = seen.emplace(t.header_[i], i);
+    if (!fresh)
+      return bad_input(path + ":1: column '" + shown_text(t.header_[i]) + "' appears twice in the header (columns " +
+                       std::to_string(at->second + 1) + " and " + std::to_string(i + 1) + ")");
+  }
   if (t.header_.size() < 2)
     return bad_input(path + ":1: header has " + std::to_string(t.header_.size()) + " column; is the delimiter '" +
                      std::string(1, delim) + "'?");
@@ -68,7 +80,7 @@ Result<bool> TableReader::next() {
 }
 
 Error TableReader::field_error(std::size_t i, const std::string& what) const {
-  const std::string col = i < header_.size() ? header_[i] : "#" + std::to_string(i + 1);
+  const std::string col = i < header_.size() ? shown_text(header_[i]) : "#" + std::to_string(i + 1);
   return bad_input(lines_.path() + ":" + std::to_string(line_no_) + ": " + col + ": " + what);
 }
 
@@ -77,9 +89,9 @@ Result<T> TableReader::number(std::size_t i) const {
   T v{};
   const std::string_view f = fields_[i];
   if (f.empty()) return field_error(i, "empty");
-  if (!parse_number(f, v)) return field_error(i, "'" + std::string(f) + "' is " + number_problem<T>(f));
+  if (!parse_number(f, v)) return field_error(i, "'" + shown_text(f) + "' is " + number_problem<T>(f));
   if constexpr (std::is_floating_point_v<T>)
-    if (!std::isfinite(v)) return field_error(i, "'" + std::string(f) + "' is not finite");
+    if (!std::isfinite(v)) return field_error(i, "'" + shown_text(f) + "' is not finite");
   return v;
 }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "foveal/core/shown_text.hpp"
+
 namespace foveal {
 
 Result<StudyResponse> parse_study_response(const std::string& word) {
@@ -11,7 +13,7 @@ Result<StudyResponse> parse_study_response(const std::string& word) {
   const std::size_t at = word.find('@');
   const std::string key = word.substr(0, at);
   if (key.size() != 1 || key[0] < '1' || key[0] > '5')
-    return bad_input("'" + word + "' is not a response (1 to 5, optionally @SECONDS)");
+    return bad_input("'" + shown_text(word) + "' is not a response (1 to 5, optionally @SECONDS)");
   r.key = key[0] - '0';
   if (at != std::string::npos) {
     double s = 0;
@@ -19,7 +21,11 @@ Result<StudyResponse> parse_study_response(const std::string& word) {
     const char* e = word.data() + word.size();
     const auto [end, ec] = std::from_chars(b, e, s);
     if (ec != std::errc{} || end != e || !std::isfinite(s) || s < 0)
-      return bad_input("'" + word + "': the response time after '@' must be seconds >= 0");
+      return bad_input("'" + shown_text(word) + "': the response time after '@' must be seconds >= 0");
+    // No answer takes longer than an hour; 1e308 was written to the trials as it came.
+    if (s > kMaxResponseSeconds)
+      return bad_input("'" + shown_text(word) + "': a response time of " + shown_text(word.substr(at + 1)) +
+                       " s is more than " + std::to_string(static_cast<int>(kMaxResponseSeconds)) + " s");
     r.response_s = s;
   }
   return r;

@@ -1,5 +1,6 @@
 #include "foveal/study/study_trials.hpp"
 
+#include "foveal/core/shown_text.hpp"
 #include "foveal/import/table_reader.hpp"
 
 namespace foveal {
@@ -40,10 +41,30 @@ TrialColumns find_columns(const TableReader& t, const std::vector<std::string>& 
   return c;
 }
 
+/// A field that becomes part of a label: no control characters (a NUL cut the printed
+/// label short), at most kMaxLabelBytes.
+Status check_label_field(const TableReader& t, std::size_t col) {
+  constexpr std::size_t kMaxLabelBytes = 256;
+  const std::string_view v = t.field(col);
+  if (v.size() > kMaxLabelBytes)
+    return t.field_error(col, std::to_string(v.size()) + " bytes; a label has at most " + std::to_string(kMaxLabelBytes));
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const auto ch = static_cast<unsigned char>(v[i]);
+    if (ch < 0x20 || ch == 0x7f)
+      return t.field_error(col, "byte " + std::to_string(i + 1) + " of '" + shown_text(v) + "' is a control character");
+  }
+  return {};
+}
+
 /// "rmfr", or "rmfr sigma=2.6 f=0.3" when the file has sigma_a/sigma_b, f_a/f_b columns.
-std::string condition_of(const TableReader& t, const TrialColumns& c, bool side_a) {
-  std::string label(t.field(static_cast<std::size_t>(side_a ? c.method_a : c.method_b)));
-  for (const auto& p : c.parameters) label += " " + p.name + "=" + std::string(t.field(side_a ? p.a : p.b));
+Result<std::string> condition_of(const TableReader& t, const TrialColumns& c, bool side_a) {
+  const auto method = static_cast<std::size_t>(side_a ? c.method_a : c.method_b);
+  if (Status s = check_label_field(t, method); !s) return s.error();
+  std::string label(t.field(method));
+  for (const auto& p : c.parameters) {
+    if (Status s = check_label_field(t, side_a ? p.a : p.b); !s) return s.error();
+    label += " " + p.name + "=" + std::string(t.field(side_a ? p.a : p.b));
+  }
   return label;
 }
 
@@ -52,7 +73,7 @@ Result<bool> validation_flag(const TableReader& t, long column) {
   const std::string_view v = t.field(static_cast<std::size_t>(column));
   if (v.empty() || v == "0" || v == "false") return false;
   if (v == "1" || v == "true") return true;
-  return t.field_error(static_cast<std::size_t>(column), "'" + std::string(v) + "' is not 0, 1, true or false");
+  return t.field_error(static_cast<std::size_t>(column), "'" + shown_text(v) + "' is not 0, 1, true or false");
 }
 
 }  // namespace
@@ -87,13 +108,17 @@ Result<StudyTrials> read_study_trials(const std::string& path) {
     if (chose) {
       const auto col = static_cast<std::size_t>(c.chosen);
       const std::string_view v = t.field(col);
-      if (v != "a" && v != "b") return t.field_error(col, "'" + std::string(v) + "' is not a or b");
+      if (v != "a" && v != "b") return t.field_error(col, "'" + shown_text(v) + "' is not a or b");
       for (long m : {c.method_a, c.method_b})
         if (t.field(static_cast<std::size_t>(m)).empty()) return t.field_error(static_cast<std::size_t>(m), "empty");
-      ChoiceTrial trial{condition_of(t, c, true), condition_of(t, c, false), v == "a", t.line()};
+      auto cond_a = condition_of(t, c, true);
+      if (!cond_a) return cond_a.error();
+      auto cond_b = condition_of(t, c, false);
+      if (!cond_b) return cond_b.error();
+      ChoiceTrial trial{std::move(*cond_a), std::move(*cond_b), v == "a", t.line()};
       if (trial.condition_a == trial.condition_b)
         return t.field_error(static_cast<std::size_t>(c.method_b),
-                             "the same condition '" + trial.condition_a +
+                             "the same condition '" + shown_text(trial.condition_a) +
                                  "' on both sides; flag such rows in a validation column");
       out.choices.push_back(std::move(trial));
     }
@@ -104,6 +129,7 @@ Result<StudyTrials> read_study_trials(const std::string& path) {
       if (*score < 1 || *score > 5) return t.field_error(col, std::to_string(*score) + " is not a score from 1 to 5");
       const std::string_view cond = t.field(static_cast<std::size_t>(c.condition));
       if (cond.empty()) return t.field_error(static_cast<std::size_t>(c.condition), "empty");
+      if (Status st = check_label_field(t, static_cast<std::size_t>(c.condition)); !st) return st.error();
       ScoreTrial trial{std::string(cond), static_cast<int>(*score), t.line(), {}, {}};
       // Both levels or neither: a score of one eye's level alone places nothing.
       std::optional<double>* levels[2] = {&trial.sigma_d, &trial.sigma_nd};

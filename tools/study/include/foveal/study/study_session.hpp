@@ -19,7 +19,10 @@ struct StudyResponse {
   std::optional<double> response_s;  ///< from the end of the second presentation
 };
 
-/// "1".."5", optionally with the response time in seconds: "2@0.84".
+/// The longest response time a script may give (an hour).
+inline constexpr double kMaxResponseSeconds = 3600.0;
+
+/// "1".."5", optionally with the response time in seconds, 0 to kMaxResponseSeconds: "2@0.84".
 Result<StudyResponse> parse_study_response(const std::string& word);
 
 struct TrialResult {
