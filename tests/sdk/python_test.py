@@ -182,5 +182,65 @@ class Files(unittest.TestCase):
         self.assertIn(":3: left_state: 'dozing' is not a state", str(caught.exception))
 
 
+CASES = os.path.join(SOURCE, "tests", "sdk", "gaze_log_cases")
+
+
+class BothReaders(unittest.TestCase):
+    """read_gaze_log and foveal's own reader (`foveal log validate`) take and refuse the
+    same logs: every file of tests/sdk/gaze_log_cases through both, good_* accepted and
+    bad_* refused by each."""
+
+    def test_accept_and_refuse_the_same_files(self):
+        names = sorted(n for n in os.listdir(CASES) if n.endswith(".csv"))
+        self.assertGreater(len(names), 40)
+        for name in names:
+            with self.subTest(file=name):
+                path = os.path.join(CASES, name)
+                cli = subprocess.run([os.path.join(BUILD, "bin", "foveal"), "log", "validate", path],
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, errors="replace")
+                self.assertIn(cli.returncode, (0, 2), cli.stderr)
+                try:
+                    foveal.read_gaze_log(path)
+                    python_error = None
+                except foveal.FormatError as e:
+                    python_error = str(e)
+                want_ok = name.startswith("good_")
+                self.assertEqual(cli.returncode == 0, want_ok, f"foveal log validate: {cli.stderr.strip()}")
+                self.assertEqual(python_error is None, want_ok, f"read_gaze_log: {python_error}")
+
+    def test_a_fifo_is_refused_without_blocking(self):
+        d = tempfile.mkdtemp(prefix="foveal-python-fifo-")
+        self.addCleanup(os.rmdir, d)
+        fifo = os.path.join(d, "log.csv")
+        os.mkfifo(fifo)
+        self.addCleanup(os.unlink, fifo)
+        with self.assertRaises(foveal.FormatError) as caught:
+            foveal.read_gaze_log(fifo)
+        self.assertIn("not a regular file", str(caught.exception))
+
+
+class MarkArguments(unittest.TestCase):
+    """foveal.mark refuses, before anything is sent, what the C library cannot be handed:
+    ctypes would cut the text at a NUL, and a lone surrogate has no UTF-8 form."""
+
+    def refused(self, *args, **kwargs):
+        with self.assertRaises(foveal.ClientError) as caught:
+            foveal.mark(*args, **kwargs)
+        self.assertEqual(caught.exception.code, foveal.INVALID_ARGUMENT, str(caught.exception))
+        return str(caught.exception)
+
+    def test_nul_surrogates_and_wrong_types_are_invalid_arguments(self):
+        nowhere = os.path.join(tempfile.gettempdir(), f"foveal-python-no-socket-{os.getpid()}")
+        self.assertIn("NUL", self.refused("a\x00b", socket=nowhere))
+        self.assertIn("character 2", self.refused("a\x00b", socket=nowhere))
+        self.assertIn("surrogate", self.refused("trial \udc80", socket=nowhere))
+        self.assertIn("str", self.refused(b"trial", socket=nowhere))
+        self.assertIn("NUL", self.refused("trial", socket=nowhere + "\x00x"))
+        self.assertIn("socket", self.refused("trial", socket=5))
+        with self.assertRaises(foveal.ClientError) as caught:  # a good text is sent: nobody listens there
+            foveal.mark("trial 1", socket=nowhere)
+        self.assertEqual(caught.exception.code, foveal.NO_WRITER)
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)

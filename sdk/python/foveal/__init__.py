@@ -11,7 +11,7 @@
 The live side is ctypes over libfoveal-client (no compiled extension); the readers need
 NumPy only. docs/sdk.md.
 """
-from .client import (BLINK, BUSY, DEAD_WRITER, FIXATION, INVALID_ARGUMENT, LOST, NO_DATA, NO_WRITER,
+from .client import (BAD_DATA, BLINK, BUSY, DEAD_WRITER, FIXATION, INVALID_ARGUMENT, LOST, NO_DATA, NO_WRITER,
                      NOT_FOVEALDS, PURSUIT, REFUSED, SACCADE, SYSTEM, TIMEOUT, WRONG_VERSION, Client,
                      ClientError, Fovea, Settings, library_path, mark)
 from .files import FormatError, GazeLog, Trace, read_gaze_log, read_trace
@@ -19,6 +19,6 @@ from .files import FormatError, GazeLog, Trace, read_gaze_log, read_trace
 __all__ = [
     "Client", "ClientError", "Fovea", "Settings", "library_path", "mark",
     "GazeLog", "Trace", "FormatError", "read_gaze_log", "read_trace",
-    "INVALID_ARGUMENT", "NO_WRITER", "WRONG_VERSION", "DEAD_WRITER", "NOT_FOVEALDS", "NO_DATA", "BUSY", "SYSTEM", "REFUSED", "TIMEOUT",
+    "INVALID_ARGUMENT", "NO_WRITER", "WRONG_VERSION", "DEAD_WRITER", "NOT_FOVEALDS", "NO_DATA", "BUSY", "SYSTEM", "REFUSED", "TIMEOUT", "BAD_DATA",
     "FIXATION", "SACCADE", "PURSUIT", "BLINK", "LOST",
 ]

@@ -6,7 +6,7 @@ from typing import Optional, Tuple
 
 # enum foveal_error_code
 (INVALID_ARGUMENT, NO_WRITER, WRONG_VERSION, DEAD_WRITER, NOT_FOVEALDS, NO_DATA, BUSY, SYSTEM, REFUSED,
- TIMEOUT) = range(1, 11)
+ TIMEOUT, BAD_DATA) = range(1, 12)
 # enum foveal_fovea_state
 FIXATION, SACCADE, PURSUIT, BLINK, LOST = range(5)
 
@@ -115,16 +115,48 @@ def library_path() -> str:
     return _lib_path
 
 
+def _marker_text(text) -> bytes:
+    """The text as the C library takes it: UTF-8 without NUL (ctypes would cut the string
+    there, and a lone surrogate has no UTF-8 form); the library checks the rest."""
+    if not isinstance(text, str):
+        raise ClientError(INVALID_ARGUMENT, f"mark: the text must be a str, not {type(text).__name__}")
+    if "\0" in text:
+        raise ClientError(INVALID_ARGUMENT, f"mark: character {text.index(chr(0)) + 1} of the text is NUL, a control character")
+    try:
+        return text.encode("utf-8")
+    except UnicodeEncodeError as e:
+        raise ClientError(INVALID_ARGUMENT, f"mark: character {e.start + 1} of the text (U+{ord(text[e.start]):04X}) is a "
+                                            "lone surrogate, not text UTF-8 can hold") from None
+
+
+def _socket_path(socket) -> Optional[bytes]:
+    """A socket path as bytes (os.fsencode: any name the file system holds), without NUL."""
+    if socket is None:
+        return None
+    try:
+        path = os.fsencode(socket)
+    except TypeError:
+        raise ClientError(INVALID_ARGUMENT, f"mark: socket must be a path, not {type(socket).__name__}") from None
+    except UnicodeEncodeError:
+        raise ClientError(INVALID_ARGUMENT, f"mark: socket {socket!r} cannot be encoded as a file name") from None
+    if b"\0" in path:
+        raise ClientError(INVALID_ARGUMENT, f"mark: socket {socket!r} holds a NUL character")
+    return path
+
+
 def mark(text: str, socket: Optional[str] = None, timeout_ms: int = 1000) -> int:
     """Puts an event marker into foveald's trace (and a `foveal record --control` recording
     in progress), as `foveal ctl mark TEXT`. socket: a control socket's path, or None for
     the defaults. Returns the marker's CLOCK_MONOTONIC time in ns as foveald stamped it.
     Raises ClientError: INVALID_ARGUMENT (empty, over 256 bytes, not one printable line),
-    NO_WRITER (foveald not running), NOT_FOVEALDS, REFUSED (foveald's reason), TIMEOUT."""
+    NO_WRITER (foveald not running), NOT_FOVEALDS, REFUSED (foveald's reason), TIMEOUT.
+    A NUL character or a lone surrogate in the text is INVALID_ARGUMENT, as is a text or
+    socket of the wrong type."""
+    text_bytes, socket_bytes = _marker_text(text), _socket_path(socket)
     lib = _library()
     err = _Error()
     t_ns = ctypes.c_int64(0)
-    code = lib.foveal_client_mark(socket.encode() if socket is not None else None, text.encode(), timeout_ms,
+    code = lib.foveal_client_mark(socket_bytes, text_bytes, timeout_ms,
                                   ctypes.byref(t_ns), ctypes.byref(err))
     if code != 0:
         raise ClientError(code, err.message.decode(errors="replace"))

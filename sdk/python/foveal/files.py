@@ -1,17 +1,24 @@
 """foveal's files as NumPy arrays: the native gaze log (docs/gaze-log.md) and the fovea
 trace that foveald and `foveal replay --trace` write (docs/daemon.md).
 
-Both readers check the format the way foveal does (version line, header keys, column
-row, field counts, numbers, finite values, strictly increasing t_ns for logs) and raise
-FormatError naming the file, the line and the column. `foveal log validate` also checks
-each field against its validity bit; these readers leave that to it.
+Both readers check the format the way foveal does and raise FormatError naming the file,
+the line and the column. read_gaze_log accepts exactly the logs foveal's own reader
+(`foveal log validate`, runtime/core gaze_log_reader.cpp) accepts: the same number syntax
+and 32-bit float range, validity masks and the fields they cover, unit head quaternions,
+timestamps in [-2^62, 2^62) that increase strictly, marker rows in time order; the
+folder tests/sdk/gaze_log_cases holds the cases both are checked against.
 """
 import io
+import math
+import os
 import re
+import stat
 from dataclasses import dataclass, field
 from typing import Dict, List, Tuple
 
 import numpy as np
+
+from . import _gaze_log_rows
 
 _EYE_FIELDS = ("_valid", "_dir_x", "_dir_y", "_dir_z", "_origin_x_mm", "_origin_y_mm", "_origin_z_mm", "_pupil_mm",
                "_openness")
@@ -71,23 +78,45 @@ class Trace:
         return self.samples[column]
 
 
+_MAX_LINE_BYTES = 1 << 20  # LineReader's limit
+_MAX_TIME_NS = 1 << 62     # kMaxGazeLogTimeNs: timestamps are in [-2^62, 2^62)
+_MAX_MARKER_BYTES = 256    # kMaxMarkerBytes
+_MAX_MARKERS = 100_000     # kMaxGazeLogMarkers
+_MAX_RATE_HZ = 100_000.0
+
+
+def _read_bytes(path: str) -> bytes:
+    """The file's bytes; a FIFO, device, socket or directory is refused before anything is
+    read (opened non-blocking, as foveal's read_file does), so it cannot hang."""
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
+    except OSError as e:
+        raise FormatError(path, 1, f"cannot open: {e.strerror}") from None
+    with os.fdopen(fd, "rb") as f:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            raise FormatError(path, 1, "not a regular file (a FIFO, device, socket or directory)")
+        return f.read()
+
+
 def _read_lines(path: str) -> List[str]:
-    with open(path, "rb") as f:
-        data = f.read()
+    data = _read_bytes(path)
     if not data:
         raise FormatError(path, 1, "file is empty")
     if data.startswith(b"\xef\xbb\xbf"):
         raise FormatError(path, 1, "starts with a UTF-8 byte-order mark; foveal's files have none")
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError as e:
-        line = data[:e.start].count(b"\n") + 1
-        raise FormatError(path, line, f"byte {e.start}: not UTF-8") from None
-    if "\r" in text:
-        raise FormatError(path, text[:text.index("\r")].count("\n") + 1, "line ends in CRLF; foveal's files use LF")
+    # foveal reads bytes: text that is not UTF-8 (a file name in a header, say) is kept,
+    # its bytes as surrogate escapes (os.fsdecode's convention).
+    text = data.decode("utf-8", errors="surrogateescape")
+    if "\r\n" in text:
+        raise FormatError(path, text[:text.index("\r\n")].count("\n") + 1, "line ends in CRLF; foveal's files use LF")
     if not text.endswith("\n"):
         raise FormatError(path, text.count("\n") + 1, "truncated last row (no line end)")
-    return text[:-1].split("\n")
+    lines = text[:-1].split("\n")
+    if len(data) > _MAX_LINE_BYTES:
+        for number, line in enumerate(lines, start=1):
+            if len(line.encode("utf-8", errors="surrogateescape")) > _MAX_LINE_BYTES:
+                raise FormatError(path, number, f"line longer than {_MAX_LINE_BYTES} bytes")
+    return lines
 
 
 def _marker(path: str, number: int, line: str) -> Tuple[int, str]:
@@ -191,10 +220,11 @@ def _structured(columns: Tuple[str, ...], values: np.ndarray, t_ns: np.ndarray, 
     return out
 
 
-def read_gaze_log(path: str) -> GazeLog:
-    """Reads a native gaze log (v1 or v2) into NumPy arrays; raises FormatError."""
-    lines = _read_lines(path)
-    m = re.fullmatch(r"# foveal-gaze-log v([0-9]+)", lines[0])
+def _gaze_header(path: str, lines: List[str]):
+    """(version, rate_hz, meta, index of the column row), as foveal's reader takes them:
+    every line starting with '#' after the first is a '# key=value' (spaces after the '#'
+    optional), up to the first line that does not."""
+    m = re.fullmatch(r"# foveal-gaze-log v(-?[0-9]+)", lines[0])
     if not m:
         raise FormatError(path, 1, "expected '# foveal-gaze-log v1' or '... v2'")
     version = int(m.group(1))
@@ -202,35 +232,102 @@ def read_gaze_log(path: str) -> GazeLog:
         raise FormatError(path, 1, f"format version: v{version} is not supported (this reader reads v1 and v2)")
     meta: Dict[str, str] = {}
     i = 1
-    while i < len(lines) and lines[i].startswith("# "):
-        key, eq, value = lines[i][2:].partition("=")
+    while i < len(lines) and lines[i].startswith("#"):
+        key, eq, value = lines[i][1:].lstrip(" ").partition("=")
         if not eq or not key:
             raise FormatError(path, i + 1, "header: expected '# key=value'")
         meta[key] = value
+        if key == "rate_hz":
+            rate = value[1:] if value.startswith("+") and not value.startswith("+-") else value
+            ok = re.fullmatch(_gaze_log_rows.FLOAT, rate) is not None
+            rate_hz = float(rate) if ok else float("nan")
+            if not (math.isfinite(rate_hz) and 0 < rate_hz <= _MAX_RATE_HZ):
+                raise FormatError(path, i + 1, f"rate_hz: '{value}' is not a rate in (0, 100000] Hz")
         i += 1
+    if i >= len(lines):
+        raise FormatError(path, i + 1, "header: the column row is missing")
     if "rate_hz" not in meta:
         raise FormatError(path, i + 1, "header: rate_hz is required")
-    try:
-        rate_hz = float(meta["rate_hz"])
-    except ValueError:
-        rate_hz = float("nan")
-    if not (rate_hz > 0 and np.isfinite(rate_hz)):
-        raise FormatError(path, i + 1, f"header: rate_hz '{meta['rate_hz']}' is not a rate > 0")
-    if i >= len(lines):
-        raise FormatError(path, i + 1, "column row: missing")
+    return version, float(meta["rate_hz"].lstrip("+")), meta, i
+
+
+def _check_markers(path: str, markers, marker_lines, samples_before, t_ns: np.ndarray, numbers) -> None:
+    """Marker rows as foveal takes them: text of 1..256 bytes without control characters,
+    times in [-2^62, 2^62), no earlier than the row before them; and no sample earlier
+    than the marker before it."""
+    if len(markers) > _MAX_MARKERS:
+        raise FormatError(path, marker_lines[_MAX_MARKERS], f"more than {_MAX_MARKERS} markers; a gaze log holds at most that many")
+    previous = None
+    for (t, text), number, n in zip(markers, marker_lines, samples_before):
+        size = len(text.encode("utf-8", errors="surrogateescape"))
+        if size > _MAX_MARKER_BYTES:
+            raise FormatError(path, number, f"text: the text has {size} bytes; at most {_MAX_MARKER_BYTES}")
+        bad = next((k for k, ch in enumerate(text) if ord(ch) < 0x20 or ord(ch) == 0x7F), None)
+        if bad is not None:
+            raise FormatError(path, number, f"text: character {bad + 1} of the text is a control character")
+        if not -_MAX_TIME_NS <= t < _MAX_TIME_NS:
+            raise FormatError(path, number, f"t_ns: marker time {t} is out of range (timestamps are in [-2^62, 2^62) ns)")
+        before = [x for x in (previous, int(t_ns[n - 1]) if n > 0 else None) if x is not None]
+        if before and t < max(before):
+            raise FormatError(path, number, f"t_ns: marker time {t} is earlier than the row before it ({max(before)})")
+        if n < len(t_ns) and t_ns[n] < t:
+            raise FormatError(path, numbers[n], f"t_ns: {t_ns[n]} is earlier than the marker before it ({t})")
+        previous = t
+
+
+def read_gaze_log(path: str) -> GazeLog:
+    """Reads a native gaze log (v1 or v2) into NumPy arrays; raises FormatError. Accepts
+    exactly what foveal's reader (`foveal log validate`) accepts."""
+    lines = _read_lines(path)
+    version, rate_hz, meta, i = _gaze_header(path, lines)
     columns = gaze_log_columns(version)
     _check_columns(path, i + 1, lines[i], columns)
 
-    rows, numbers, markers = _split_markers(path, lines[i + 1:], i + 2)
+    rows, numbers, markers, marker_lines, samples_before = [], [], [], [], []
+    if not any(line.startswith("#") for line in lines[i + 1:]):  # the common case: no marker rows
+        rows, numbers = lines[i + 1:], list(range(i + 2, len(lines) + 1))
+    for number, line in enumerate(lines[i + 1:] if not rows else [], start=i + 2):
+        if line.startswith("#"):
+            markers.append(_marker(path, number, line))
+            marker_lines.append(number)
+            samples_before.append(len(rows))
+        else:
+            rows.append(line)
+            numbers.append(number)
     if not rows:
         raise FormatError(path, len(lines), "no samples: the log has a header only")
-    optional = lambda name: name != "t_ns" and not name.endswith("_valid")  # noqa: E731
-    values, t_ns = _parse_rows(path, rows, numbers, columns, optional)
+
+    def first_bad_row():
+        for number, line in zip(numbers, rows):
+            problem = _gaze_log_rows.row_problem(line.split(","), columns, version)
+            if problem:
+                column, what = problem
+                raise FormatError(path, number, f"{column}: {what}" if column else what)
+        raise FormatError(path, numbers[0], "unreadable rows")
+
+    values, t_ns, block = None, None, ""
+    if all(map(_gaze_log_rows.row_regex(version).fullmatch, rows)):
+        block = "\n".join(rows) + "\n"
+        filled = block.replace(",,", ",nan,").replace(",,", ",nan,").replace(",\n", ",nan\n")  # empty fields: NaN
+        values = np.loadtxt(io.StringIO(filled), delimiter=",", dtype=np.float64, ndmin=2)
+        try:  # exact integers: below 2^53 the doubles are, above that the text is parsed again
+            t_ns = (values[:, 0].astype(np.int64) if np.all(np.abs(values[:, 0]) < 2.0**53) else
+                    np.array([line[:line.find(",")] for line in rows], dtype=np.int64))
+        except OverflowError:
+            t_ns = None
+    if t_ns is None or not _gaze_log_rows.fast_rows_ok(block, values, t_ns, version):
+        first_bad_row()
     back = np.flatnonzero(np.diff(t_ns) <= 0)
+    markers_checked = False
     if back.size:
         k = int(back[0]) + 1
+        # A marker between the two rows may be what is wrong first, as foveal reads in file order.
+        _check_markers(path, markers, marker_lines, samples_before, t_ns, numbers)
+        markers_checked = True
         what = "repeats the previous timestamp" if t_ns[k] == t_ns[k - 1] else f"goes back from {t_ns[k - 1]}"
         raise FormatError(path, numbers[k], f"t_ns: {t_ns[k]} {what}")
+    if not markers_checked:
+        _check_markers(path, markers, marker_lines, samples_before, t_ns, numbers)
     kinds = lambda name: np.int64 if name == "t_ns" else np.uint8 if name.endswith("_valid") else np.float64  # noqa: E731
     return GazeLog(path, version, rate_hz, meta, _structured(columns, values, t_ns, kinds), markers)
 
