@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "foveal/runtime/profile.hpp"
 
@@ -120,13 +121,16 @@ TEST_F(ProfileCli, AFifoAsTheActiveFileIsNamedNotWaitedFor) {
   ASSERT_EQ(foveal("create alice").exit_code, 0);
   const std::string active = dir_.path("foveal/active");
   ASSERT_EQ(::mkfifo(active.c_str(), 0600), 0);
-  for (const char* cmd : {"list", "show"}) {
+  const std::string alice = test::read_file(dir_.path("foveal/profiles/alice.json"));
+  for (const char* cmd : {"list", "show", "show alice", "set alice sigma_nd 3.5", "create bob"}) {
     // `timeout` turns the old hang into a failure (exit 124) instead of a stuck test.
     const auto r = test::run("XDG_CONFIG_HOME=" + dir_.path() + " timeout 10 " + test::bin("foveal") + " profile " + cmd);
     EXPECT_EQ(r.exit_code, 2) << cmd << ": " << r.err;
     EXPECT_NE(r.err.find(active + ": the active-profile file is a FIFO"), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
+  EXPECT_EQ(test::read_file(dir_.path("foveal/profiles/alice.json")), alice) << "a refused set writes nothing";
+  EXPECT_FALSE(std::filesystem::exists(dir_.path("foveal/profiles/bob.json"))) << "nor does a refused create";
 }
 
 }  // namespace

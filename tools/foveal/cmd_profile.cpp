@@ -78,9 +78,9 @@ void add_profile(CLI::App& app, int& exit_code) {
     }
     auto built = Profile::from_json(j, a->name, "profile " + a->name);
     if (!built) return fail(built.error());
-    if (Status s = store.save(*built); !s) return fail(s.error());
-    auto active = store.active();
+    auto active = store.active();  // before the save: a refusal leaves nothing written
     if (!active) return fail(active.error());
+    if (Status s = store.save(*built); !s) return fail(s.error());
     print_profile(*built, *active == a->name, a->json);
   });
 
@@ -126,9 +126,9 @@ void add_profile(CLI::App& app, int& exit_code) {
     auto p = store.load(a->name);
     if (!p) return fail(p.error());
     if (Status s = p->set(a->key, a->value); !s) return fail(s.error());
-    if (Status s = store.save(*p); !s) return fail(s.error());
-    auto active = store.active();
+    auto active = store.active();  // before the save: a refusal leaves nothing written
     if (!active) return fail(active.error());
+    if (Status s = store.save(*p); !s) return fail(s.error());
     print_profile(*p, *active == a->name, a->json);
   });
 
