@@ -79,6 +79,12 @@ std::string csv_number(double v) {
 
 nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(csv_number(v)); }
 
+Status check_charts_can_run() {
+  auto r = cli::run_program({kPython, "-c", "import matplotlib"}, {true, true});
+  if (r && r->ok()) return {};
+  return bad_input(std::string("charts: ") + kPython + " cannot import matplotlib: install python3-matplotlib, or pass --no-png");
+}
+
 int write_outputs(const std::string& dir, const SweepRows& rows, nlohmann::json summary, const std::string& kind, bool charts,
                   bool json) {
   auto fail = [](const Error& e) { return cli::report(e); };

@@ -29,6 +29,10 @@ nlohmann::json json_number(double v);
 int write_outputs(const std::string& dir, const SweepRows& rows, nlohmann::json summary, const std::string& kind, bool charts,
                   bool json);
 
+/// Whether the chart scripts can run (/usr/bin/python3 imports matplotlib): bad_input
+/// saying what to install (or to pass --no-png) when not.
+Status check_charts_can_run();
+
 /// A shard's directory: its tables (its own rows only) and shard.json, which holds the
 /// tagged rows, the summary, the kind and `sweep` (the options that define the grid).
 int write_shard(const std::string& dir, const SweepRows& rows, const nlohmann::json& summary, const std::string& sweep,

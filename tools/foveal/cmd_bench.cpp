@@ -162,6 +162,10 @@ int run(const Args& a, const std::string& sweep) {
   if (!grid) return fail(grid.error());
   auto shard = bench::parse_shard(a.shard.empty() ? "1/1" : a.shard);
   if (!shard) return fail(shard.error());
+  // Charts come after the sweep and a failed chart step writes nothing: find a missing
+  // matplotlib before the work, not after it.
+  if (!a.no_png && a.shard.empty())
+    if (Status s = bench::check_charts_can_run(); !s) return fail(s.error());
   const std::vector<std::string> scenes = a.scenes.empty() ? std::vector<std::string>{default_scene()} : a.scenes;
   FlickerOptions fo;
   if (a.flicker) {
