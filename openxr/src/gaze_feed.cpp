@@ -71,11 +71,14 @@ void GazeFeed::check_connection() {
   if (Connection* c = current_.load(std::memory_order_acquire)) {
     foveal_fovea f;
     const int rc = foveal_client_read(c->client, &f);
-    if (rc != FOVEAL_ERR_NO_WRITER && rc != FOVEAL_ERR_DEAD_WRITER) return;
+    // BAD_DATA: the block was cut short or holds what foveald never writes; a new
+    // mapping (of a restarted foveald's block) is the way back.
+    if (rc != FOVEAL_ERR_NO_WRITER && rc != FOVEAL_ERR_DEAD_WRITER && rc != FOVEAL_ERR_BAD_DATA) return;
     current_.store(nullptr, std::memory_order_release);
     retired_.push_back(c);
-    log_(rc == FOVEAL_ERR_NO_WRITER ? "foveald stopped: eye gaze inactive until it is back"
-                                    : "foveald stopped answering: eye gaze inactive until it is back");
+    log_(rc == FOVEAL_ERR_NO_WRITER    ? "foveald stopped: eye gaze inactive until it is back"
+         : rc == FOVEAL_ERR_DEAD_WRITER ? "foveald stopped answering: eye gaze inactive until it is back"
+                                        : "foveald's block holds bad data: eye gaze inactive until it is back");
     said_lost_ = true;
   }
   foveal_error err{};
