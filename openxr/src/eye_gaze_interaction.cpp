@@ -46,15 +46,12 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateAction(XrActionSet set, const XrAct
   const XrResult r = l.next.CreateAction(set, &down, action);
   if (XR_FAILED(r) || info->actionType != XR_ACTION_TYPE_POSE_INPUT) return r;
   std::lock_guard lock(l.mutex);
-  for (auto& slot : l.actions) {
-    if (slot.action.load() != XR_NULL_HANDLE) continue;
+  const bool claimed = claim_slot(l.actions, *action, [set](ActionSlot& slot) {
     slot.set = set;
     slot.gaze = false;
     slot.set_active = false;
-    slot.action.store(*action, std::memory_order_release);
-    return r;
-  }
-  log_line("more than 64 pose actions: the later ones cannot be bound to eye gaze");
+  });
+  if (!claimed) log_line("more than 64 pose actions: the later ones cannot be bound to eye gaze");
   return r;
 }
 
@@ -62,7 +59,7 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroyAction(XrAction action) {
   Layer& l = layer();
   {
     std::lock_guard lock(l.mutex);
-    if (ActionSlot* s = find_action(action)) s->action.store(XR_NULL_HANDLE);
+    if (ActionSlot* s = find_action(action)) s->handle.store(XR_NULL_HANDLE);
   }
   return l.next.DestroyAction(action);
 }
@@ -72,7 +69,7 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroyActionSet(XrActionSet set) {
   {
     std::lock_guard lock(l.mutex);
     for (auto& s : l.actions)
-      if (s.action.load() != XR_NULL_HANDLE && s.set == set) s.action.store(XR_NULL_HANDLE);
+      if (s.handle.load() != XR_NULL_HANDLE && s.set == set) s.handle.store(XR_NULL_HANDLE);
   }
   return l.next.DestroyActionSet(set);
 }
@@ -115,7 +112,7 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrGetCurrentInteractionProfile(XrSession se
   if (!serving() || top_level != l.eyes_path || !state)
     return l.next.GetCurrentInteractionProfile(session, top_level, state);
   bool bound = false;
-  for (auto& s : l.actions) bound |= s.action.load(std::memory_order_acquire) != XR_NULL_HANDLE && s.gaze.load();
+  for (auto& s : l.actions) bound |= s.handle.load(std::memory_order_acquire) != XR_NULL_HANDLE && s.gaze.load();
   state->interactionProfile = l.attached && bound ? l.profile_path : XR_NULL_PATH;
   return XR_SUCCESS;
 }
@@ -145,7 +142,7 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrSyncActions(XrSession session, const XrAc
   const bool active = s && s->focused.load() && l.feed && l.feed->read(g) && g.tracked;
   if (s) s->gaze_active.store(active, std::memory_order_release);
   for (auto& a : l.actions) {
-    if (a.action.load(std::memory_order_acquire) == XR_NULL_HANDLE || !a.gaze.load()) continue;
+    if (a.handle.load(std::memory_order_acquire) == XR_NULL_HANDLE || !a.gaze.load()) continue;
     bool set_active = false;
     for (std::uint32_t i = 0; i < info->countActiveActionSets && info->activeActionSets; ++i)
       set_active |= info->activeActionSets[i].actionSet == a.set;
@@ -184,15 +181,13 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateActionSpace(XrSession session, cons
   std::lock_guard lock(l.mutex);
   ActionSlot* a = find_action(info->action);
   if (!a) return r;
-  for (auto& slot : l.spaces) {
-    if (slot.space.load() != XR_NULL_HANDLE) continue;
-    slot.action = static_cast<int>(a - l.actions.data());
+  const int index = static_cast<int>(a - l.actions.data());
+  const bool claimed = claim_slot(l.spaces, *space, [&](SpaceSlot& slot) {
+    slot.action = index;
     slot.session = session;
     slot.pose_in_action = info->poseInActionSpace;
-    slot.space.store(*space, std::memory_order_release);
-    return r;
-  }
-  log_line("more than 64 pose action spaces: the later ones show no eye gaze");
+  });
+  if (!claimed) log_line("more than 64 pose action spaces: the later ones show no eye gaze");
   return r;
 }
 
@@ -200,7 +195,7 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroySpace(XrSpace space) {
   Layer& l = layer();
   {
     std::lock_guard lock(l.mutex);
-    if (SpaceSlot* s = find_space(space)) s->space.store(XR_NULL_HANDLE);
+    if (SpaceSlot* s = find_space(space)) s->handle.store(XR_NULL_HANDLE);
   }
   return l.next.DestroySpace(space);
 }

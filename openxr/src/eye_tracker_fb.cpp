@@ -12,7 +12,7 @@ bool serving() { return layer().serve_fb.load(std::memory_order_relaxed); }
 
 EyeTrackerSlot* tracker_slot(XrEyeTrackerFB t) {
   for (auto& slot : layer().trackers)
-    if (reinterpret_cast<XrEyeTrackerFB>(&slot) == t && slot.session.load(std::memory_order_acquire) != XR_NULL_HANDLE)
+    if (reinterpret_cast<XrEyeTrackerFB>(&slot) == t && slot.handle.load(std::memory_order_acquire) != XR_NULL_HANDLE)
       return &slot;
   return nullptr;
 }
@@ -29,13 +29,10 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateEyeTrackerFB(XrSession session, con
   if (!info || !tracker || info->type != XR_TYPE_EYE_TRACKER_CREATE_INFO_FB) return XR_ERROR_VALIDATION_FAILURE;
   if (!find_session(session)) return XR_ERROR_HANDLE_INVALID;
   std::lock_guard lock(l.mutex);
-  for (auto& slot : l.trackers) {
-    if (slot.session.load() != XR_NULL_HANDLE) continue;
-    slot.session.store(session, std::memory_order_release);
-    *tracker = reinterpret_cast<XrEyeTrackerFB>(&slot);  // the handle is the slot
-    return XR_SUCCESS;
-  }
-  return XR_ERROR_LIMIT_REACHED;
+  EyeTrackerSlot* slot = claim_slot(l.trackers, session, [](EyeTrackerSlot&) {});
+  if (!slot) return XR_ERROR_LIMIT_REACHED;
+  *tracker = reinterpret_cast<XrEyeTrackerFB>(slot);  // the tracker's handle is its slot
+  return XR_SUCCESS;
 }
 
 XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroyEyeTrackerFB(XrEyeTrackerFB tracker) {
@@ -44,7 +41,7 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroyEyeTrackerFB(XrEyeTrackerFB tracke
   std::lock_guard lock(l.mutex);
   EyeTrackerSlot* slot = tracker_slot(tracker);
   if (!slot) return XR_ERROR_HANDLE_INVALID;
-  slot->session.store(XR_NULL_HANDLE);
+  slot->handle.store(XR_NULL_HANDLE);
   return XR_SUCCESS;
 }
 
@@ -57,7 +54,7 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrGetEyeGazesFB(XrEyeTrackerFB tracker, con
   if (info->time <= 0) return XR_ERROR_TIME_INVALID;
   const EyeTrackerSlot* slot = tracker_slot(tracker);
   if (!slot) return XR_ERROR_HANDLE_INVALID;
-  const SessionSlot* session = find_session(slot->session.load(std::memory_order_acquire));
+  const SessionSlot* session = find_session(slot->handle.load(std::memory_order_acquire));
   if (!session) return XR_ERROR_HANDLE_INVALID;
   for (auto& e : gazes->gaze) e = XrEyeGazeFB{XR_FALSE, identity_pose(), 0.0f};
   gazes->time = info->time;

@@ -21,24 +21,6 @@ Layer& layer() {
 
 void log_line(const char* text) { std::fprintf(stderr, "foveal-openxr: %s\n", text); }
 
-SessionSlot* find_session(XrSession s) {
-  for (auto& slot : layer().sessions)
-    if (s != XR_NULL_HANDLE && slot.session.load(std::memory_order_acquire) == s) return &slot;
-  return nullptr;
-}
-
-ActionSlot* find_action(XrAction a) {
-  for (auto& slot : layer().actions)
-    if (a != XR_NULL_HANDLE && slot.action.load(std::memory_order_acquire) == a) return &slot;
-  return nullptr;
-}
-
-SpaceSlot* find_space(XrSpace s) {
-  for (auto& slot : layer().spaces)
-    if (s != XR_NULL_HANDLE && slot.space.load(std::memory_order_acquire) == s) return &slot;
-  return nullptr;
-}
-
 namespace {
 
 GazeMode mode_from_environment() {
@@ -182,10 +164,10 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroyInstance(XrInstance instance) {
   {
     std::lock_guard lock(l.mutex);
     l.feed.reset();  // its thread converts times through the instance: stop it first
-    for (auto& a : l.actions) a.action.store(XR_NULL_HANDLE), a.gaze = false, a.set_active = false;
-    for (auto& s : l.spaces) s.space.store(XR_NULL_HANDLE);
-    for (auto& s : l.sessions) s.session.store(XR_NULL_HANDLE);
-    for (auto& t : l.trackers) t.session.store(XR_NULL_HANDLE);
+    for (auto& a : l.actions) a.handle.store(XR_NULL_HANDLE), a.gaze = false, a.set_active = false;
+    for (auto& s : l.spaces) s.handle.store(XR_NULL_HANDLE);
+    for (auto& s : l.sessions) s.handle.store(XR_NULL_HANDLE);
+    for (auto& t : l.trackers) t.handle.store(XR_NULL_HANDLE);
     l.instance = XR_NULL_HANDLE;
   }
   return destroy ? destroy(instance) : XR_ERROR_HANDLE_INVALID;
@@ -241,21 +223,22 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateSession(XrInstance instance, const 
   if (XR_FAILED(r) || l.mode == GazeMode::runtime || !(l.app_ext || l.app_fb)) return r;
   decide_serving(info->systemId);
   std::lock_guard lock(l.mutex);
-  for (auto& slot : l.sessions) {
-    if (slot.session.load() != XR_NULL_HANDLE) continue;
-    XrReferenceSpaceCreateInfo view{XR_TYPE_REFERENCE_SPACE_CREATE_INFO, nullptr, XR_REFERENCE_SPACE_TYPE_VIEW,
-                                    {{0, 0, 0, 1}, {0, 0, 0}}};
-    slot.view = XR_NULL_HANDLE;
-    if (XR_FAILED(l.next.CreateReferenceSpace(*session, &view, &slot.view))) {
-      log_line("the runtime refused a VIEW space: no eye gaze in this session");
-      return r;
-    }
-    slot.focused = false;
-    slot.gaze_active = false;
-    slot.session.store(*session, std::memory_order_release);
+  XrReferenceSpaceCreateInfo view_info{XR_TYPE_REFERENCE_SPACE_CREATE_INFO, nullptr, XR_REFERENCE_SPACE_TYPE_VIEW,
+                                       {{0, 0, 0, 1}, {0, 0, 0}}};
+  XrSpace view = XR_NULL_HANDLE;
+  if (XR_FAILED(l.next.CreateReferenceSpace(*session, &view_info, &view))) {
+    log_line("the runtime refused a VIEW space: no eye gaze in this session");
     return r;
   }
-  log_line("more than 4 sessions at once: no eye gaze in this one");
+  const bool claimed = claim_slot(l.sessions, *session, [view](SessionSlot& slot) {
+    slot.view = view;
+    slot.focused = false;
+    slot.gaze_active = false;
+  });
+  if (!claimed) {
+    l.next.DestroySpace(view);
+    log_line("more than 4 sessions at once: no eye gaze in this one");
+  }
   return r;
 }
 
@@ -264,13 +247,13 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroySession(XrSession session) {
   {
     std::lock_guard lock(l.mutex);
     if (SessionSlot* s = find_session(session)) {
-      s->session.store(XR_NULL_HANDLE);
+      s->handle.store(XR_NULL_HANDLE);
       l.next.DestroySpace(s->view);
     }
     for (auto& t : l.trackers)
-      if (t.session.load() == session) t.session.store(XR_NULL_HANDLE);
+      if (t.handle.load() == session) t.handle.store(XR_NULL_HANDLE);
     for (auto& sp : l.spaces)
-      if (sp.space.load() != XR_NULL_HANDLE && sp.session == session) sp.space.store(XR_NULL_HANDLE);
+      if (sp.handle.load() != XR_NULL_HANDLE && sp.session == session) sp.handle.store(XR_NULL_HANDLE);
   }
   return l.next.DestroySession(session);
 }

@@ -11,6 +11,7 @@
 #include <openxr/openxr_platform.h>
 
 #include <array>
+#include <cstddef>
 #include <atomic>
 #include <memory>
 #include <mutex>
@@ -54,29 +55,31 @@ struct Next {
 /// has no eye tracker), foveal (foveald's always), runtime (pass everything through).
 enum class GazeMode { automatic, foveal, runtime };
 
+// Each slot's `handle` is null while the slot is free; claim_slot() fills the slot and
+// stores the handle last, so that a reader that finds the handle sees the whole slot.
 struct ActionSlot {
-  std::atomic<XrAction> action{XR_NULL_HANDLE};
+  std::atomic<XrAction> handle{XR_NULL_HANDLE};
   XrActionSet set = XR_NULL_HANDLE;
   std::atomic<bool> gaze{false};        ///< bound to the eye-gaze profile's pose
   std::atomic<bool> set_active{false};  ///< its set was active in the last xrSyncActions
 };
 
 struct SpaceSlot {
-  std::atomic<XrSpace> space{XR_NULL_HANDLE};
+  std::atomic<XrSpace> handle{XR_NULL_HANDLE};
   int action = -1;  ///< index into actions
   XrSession session = XR_NULL_HANDLE;
   XrPosef pose_in_action{};
 };
 
 struct SessionSlot {
-  std::atomic<XrSession> session{XR_NULL_HANDLE};
+  std::atomic<XrSession> handle{XR_NULL_HANDLE};
   XrSpace view = XR_NULL_HANDLE;  ///< the layer's own VIEW space: the head the gaze is relative to
   std::atomic<bool> focused{false};
   std::atomic<bool> gaze_active{false};  ///< latched by xrSyncActions
 };
 
 struct EyeTrackerSlot {
-  std::atomic<XrSession> session{XR_NULL_HANDLE};  ///< null: free
+  std::atomic<XrSession> handle{XR_NULL_HANDLE};  ///< its session (the tracker's handle is the slot's address)
 };
 
 struct Layer {
@@ -104,9 +107,31 @@ void log_line(const char* text);
 /// own eye tracker wins in auto mode). Takes the mutex's lock.
 void decide_serving(XrSystemId system);
 
-SessionSlot* find_session(XrSession s);
-ActionSlot* find_action(XrAction a);
-SpaceSlot* find_space(XrSpace s);
+/// The slot holding handle h, or null. Lock-free: the per-frame paths call it.
+template <typename Slot, std::size_t N, typename H>
+Slot* find_slot(std::array<Slot, N>& slots, H h) {
+  if (h == XR_NULL_HANDLE) return nullptr;
+  for (auto& slot : slots)
+    if (slot.handle.load(std::memory_order_acquire) == h) return &slot;
+  return nullptr;
+}
+
+/// Fills the first free slot with fill(slot) and publishes h in it; null when all are
+/// taken. Under the layer's mutex.
+template <typename Slot, std::size_t N, typename H, typename Fill>
+Slot* claim_slot(std::array<Slot, N>& slots, H h, Fill fill) {
+  for (auto& slot : slots) {
+    if (slot.handle.load() != XR_NULL_HANDLE) continue;
+    fill(slot);
+    slot.handle.store(h, std::memory_order_release);
+    return &slot;
+  }
+  return nullptr;
+}
+
+inline SessionSlot* find_session(XrSession s) { return find_slot(layer().sessions, s); }
+inline ActionSlot* find_action(XrAction a) { return find_slot(layer().actions, a); }
+inline SpaceSlot* find_space(XrSpace s) { return find_slot(layer().spaces, s); }
 
 // The intercepted functions, by extension (eye_gaze_interaction.cpp, eye_tracker_fb.cpp).
 XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateAction(XrActionSet, const XrActionCreateInfo*, XrAction*);
