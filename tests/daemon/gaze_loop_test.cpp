@@ -92,8 +92,10 @@ TEST(GazeLoop, PauseSkipsAndSetMapperTakesEffect) {
   EXPECT_GT(loop.stats().skipped, 0u);
   loop.set_paused(false);
   loop.set_mapper([](const GazeSample& s) { return tag(s, 2.0f); });
-  sleep_until_ns(monotonic_now_ns() + 150 * kNsPerMs);
+  // The new mapper's first sample is waited for (up to 10 s), not expected by a set time.
   FoveaFrame f;
+  for (int i = 0; i < 1000 && !(loop.latest().load(f) && f.eyes[0].px.x == 2.0f); ++i)
+    sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
   ASSERT_TRUE(loop.latest().load(f));
   EXPECT_FLOAT_EQ(f.eyes[0].px.x, 2.0f);
   EXPECT_GT(loop.stats().samples, during_pause);
