@@ -80,7 +80,7 @@ Mat3 expected_orientation(const HelmetRow& r) {
   return m;
 }
 
-std::string recording(const char* name) { return test::shared_data(std::string("gaze/vive_pro_eye/") + name + ".csv"); }
+std::string recording(const char* name) { return test::source_path(std::string("data/gaze/vive_pro_eye/") + name + ".csv"); }
 
 class ViveHeadPose : public ::testing::TestWithParam<const char*> {};
 

@@ -42,7 +42,7 @@ class ViveImport : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ViveImport, OneSamplePerRowWithEyesTimesAndFramesRight) {
   test::TempDir dir;
-  const std::string src = test::shared_data(std::string("gaze/vive_pro_eye/") + GetParam() + ".csv");
+  const std::string src = test::source_path(std::string("data/gaze/vive_pro_eye/") + GetParam() + ".csv");
   auto sum = import_sranipal(src, dir.path("log.csv"));
   ASSERT_TRUE(sum) << sum.error().message;
   std::vector<std::string> h;
@@ -94,7 +94,7 @@ INSTANTIATE_TEST_SUITE_P(Recordings, ViveImport,
 
 TEST(ViveImportTestna01, ValidateReportsTheBlinkAndTheLongRunAtTheEnd) {
   test::TempDir dir;
-  ASSERT_TRUE(import_sranipal(test::shared_data("gaze/vive_pro_eye/TESTNA01_2D_Fist3.csv"), dir.path("l.csv")));
+  ASSERT_TRUE(import_sranipal(test::source_path("data/gaze/vive_pro_eye/TESTNA01_2D_Fist3.csv"), dir.path("l.csv")));
   auto r = test::run(test::bin("foveal") + " log validate --json " + dir.path("l.csv"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -112,7 +112,7 @@ TEST(ViveImportTestna01, ValidateReportsTheBlinkAndTheLongRunAtTheEnd) {
 
 TEST(BundledLog, EqualsAFreshImportByteForByte) {
   test::TempDir dir;
-  ASSERT_TRUE(import_sranipal(test::shared_data("gaze/vive_pro_eye/TESTNA01_2D_Fist3.csv"), dir.path("l.csv")));
+  ASSERT_TRUE(import_sranipal(test::source_path("data/gaze/vive_pro_eye/TESTNA01_2D_Fist3.csv"), dir.path("l.csv")));
   EXPECT_EQ(test::read_file(dir.path("l.csv")), test::read_file(test::source_path("data/gaze/vive_pro_eye_TESTNA01.csv")));
 }
 

@@ -26,7 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kVive = "gaze/vive_pro_eye/TESTNA01_2D_Fist3.csv";
+const std::string kVive = "data/gaze/vive_pro_eye/TESTNA01_2D_Fist3.csv";
 
 std::vector<std::string> temporaries_of(const std::string& dir) {
   std::vector<std::string> found;
@@ -74,7 +74,7 @@ TEST(OutputTargets, OnlyRegularFilesAreReplaced) {
 TEST(OutputTargets, ImportOntoACharacterDeviceExitsTwoAndLeavesIt) {
   test::TempDir dir;
   if (!make_null_device(dir.path("null"))) GTEST_SKIP() << "mknod needs root (CI runs as root)";
-  auto r = test::run(test::bin("foveal") + " import --from sranipal " + test::shared_data(kVive) + " --out " +
+  auto r = test::run(test::bin("foveal") + " import --from sranipal " + test::source_path(kVive) + " --out " +
                      dir.path("null"));
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find(dir.path("null") + ": is a character device"), std::string::npos) << r.err;
@@ -95,7 +95,7 @@ TEST(OutputTargets, ReplayTraceOntoAFifoExitsTwoWithoutBlocking) {
 TEST(OutputTargets, TheOutputMayNotBeTheInput) {
   test::TempDir dir;
   const std::string in = dir.path("in.csv"), linked = dir.path("hardlink.csv");
-  fs::copy_file(test::shared_data(kVive), in);
+  fs::copy_file(test::source_path(kVive), in);
   ASSERT_EQ(::link(in.c_str(), linked.c_str()), 0);
   const std::string original = test::read_file(in);
   for (const std::string& out : {in, linked, dir.path("./in.csv")}) {
@@ -162,7 +162,7 @@ TEST(OutputModes, NewFilesFollowTheUmaskAndExistingFilesKeepTheirMode) {
     }
   }
   UmaskScope u(027);  // through the CLI: a gaze log
-  auto r = test::run(test::bin("foveal") + " import --from sranipal " + test::shared_data(kVive) + " --out " +
+  auto r = test::run(test::bin("foveal") + " import --from sranipal " + test::source_path(kVive) + " --out " +
                      dir.path("log.csv"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(mode_of(dir.path("log.csv")) & 07777, 0640u);

@@ -35,10 +35,10 @@ TEST(ReplayCli, BadFilterConfigIsRejectedBeforeAnyWork) {
   EXPECT_FALSE(std::filesystem::exists(dir.path("t.csv")));
 }
 
+// No --vive-dir: the recordings foveal ships (data/gaze/vive_pro_eye) are charted.
 TEST(FilterChartCli, WritesDataAndChart) {
   test::TempDir dir;
-  auto r = test::run(test::bin("foveal") + " filter-chart --seconds 20 --vive-dir " + test::shared_data("gaze/vive_pro_eye") +
-                     " --out " + dir.path("c") + " --json");
+  auto r = test::run(test::bin("foveal") + " filter-chart --seconds 20 --out " + dir.path("c") + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_GE(j["synthetic"].size(), 5u);
@@ -51,8 +51,24 @@ TEST(FilterChartCli, WritesDataAndChart) {
   }
   EXPECT_LT(aware_lag, plain_best);
   EXPECT_TRUE(std::filesystem::exists(dir.path("c/filter_chart.csv")));
-  EXPECT_GT(test::read_file(dir.path("c/filter_chart_real.csv")).size(), 100u);
+  const std::string real = test::read_file(dir.path("c/filter_chart_real.csv"));
+  for (const char* rec : {"TESTNA01_2D_Fist3,", "TESTNA05_360VR_Spread7,", "TESTNA15_2D_Pen3,"})
+    EXPECT_NE(real.find(rec), std::string::npos) << rec << " missing from\n" << real;
   EXPECT_GT(std::filesystem::file_size(dir.path("c/filter_chart.png")), 10000u);
+}
+
+// A folder that is not there, or holds no recording, is refused before any work: no
+// chart without its real-data half.
+TEST(FilterChartCli, RefusesAMissingOrEmptyRecordingsFolder) {
+  test::TempDir dir;
+  std::filesystem::create_directory(dir.path("empty"));
+  for (const std::string& vive : {dir.path("absent"), dir.path("empty")}) {
+    auto r = test::run(test::bin("foveal") + " filter-chart --no-png --seconds 1 --vive-dir " + vive + " --out " +
+                       dir.path("c"));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("--vive-dir " + vive), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path("c")));
+  }
 }
 
 }  // namespace

@@ -9,11 +9,11 @@
 namespace foveal {
 namespace {
 
-// The reference implementation's output (../shared/data/filters): 120 Hz, mincutoff 1,
+// The reference implementation's output (tests/filter/data, SOURCE.md there): 120 Hz, mincutoff 1,
 // beta 0.1, dcutoff 1, timestamps in seconds; every row within 1e-4.
 TEST(OneEuro, ReproducesTheReferenceGroundTruth) {
-  std::ifstream in(test::shared_data("filters/oneeuro_groundtruth.csv"));
-  ASSERT_TRUE(in) << "missing ../shared/data/filters/oneeuro_groundtruth.csv";
+  std::ifstream in(test::source_path("tests/filter/data/oneeuro_groundtruth.csv"));
+  ASSERT_TRUE(in) << "missing tests/filter/data/oneeuro_groundtruth.csv";
   std::string line;
   std::getline(in, line);
   ASSERT_EQ(line, "timestamp,signal,noisy,filtered");

@@ -17,7 +17,7 @@ class PipelineOnVive : public ::testing::TestWithParam<const char*> {
  protected:
   std::vector<GazeSample> load() {
     const std::string out = dir_.path("log.csv");
-    auto imp = import_sranipal(test::shared_data(std::string("gaze/vive_pro_eye/") + GetParam() + ".csv"), out);
+    auto imp = import_sranipal(test::source_path(std::string("data/gaze/vive_pro_eye/") + GetParam() + ".csv"), out);
     EXPECT_TRUE(imp) << imp.error().message;
     auto samples = read_gaze_log(out);
     EXPECT_TRUE(samples) << samples.error().message;
@@ -61,7 +61,7 @@ INSTANTIATE_TEST_SUITE_P(Recordings, PipelineOnVive,
 
 TEST(PipelineOnViveEnd, TheLongLossAtTheEndOfTestna01EndsAtTheCentre) {
   test::TempDir dir;
-  ASSERT_TRUE(import_sranipal(test::shared_data("gaze/vive_pro_eye/TESTNA01_2D_Fist3.csv"), dir.path("l.csv")));
+  ASSERT_TRUE(import_sranipal(test::source_path("data/gaze/vive_pro_eye/TESTNA01_2D_Fist3.csv"), dir.path("l.csv")));
   auto samples = read_gaze_log(dir.path("l.csv"));
   ASSERT_TRUE(samples);
   const DisplayModel m = DisplayModel::vive_pro_eye();

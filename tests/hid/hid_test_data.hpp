@@ -1,5 +1,5 @@
 #pragma once
-// The real HUTRR74 eye-tracker descriptor from ../shared/data/hid, loaded once.
+// The real HUTRR74 eye-tracker descriptor bundled in data/hid (SOURCE.md there), loaded once.
 #include <vector>
 
 #include "foveal/drivers/hid/report_descriptor.hpp"
@@ -8,7 +8,7 @@
 namespace foveal::test {
 
 inline std::vector<std::uint8_t> eye_tracker_descriptor_bytes() {
-  auto bytes = hid::parse_hex_bytes(read_file(shared_data("hid/ms_gazehid_eye_tracker.desc.hex")));
+  auto bytes = hid::parse_hex_bytes(read_file(source_path("data/hid/ms_gazehid_eye_tracker.desc.hex")));
   return bytes ? *bytes : std::vector<std::uint8_t>{};
 }
 

@@ -30,7 +30,7 @@ TEST_P(RealRecording, MatchesNumPyPerEye) {
   test::TempDir d;
   const std::string log = d.path("log.csv");
   const auto imp = test::run(foveal_cli("import --from sranipal " +
-                                        test::shared_data(std::string("gaze/vive_pro_eye/") + GetParam()) +
+                                        test::source_path(std::string("data/gaze/vive_pro_eye/") + GetParam()) +
                                         " --out " + log));
   ASSERT_EQ(imp.exit_code, 0) << imp.err;
   for (const std::string window : {"", "2 8.5"}) {

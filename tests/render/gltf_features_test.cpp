@@ -1,4 +1,4 @@
-// The Khronos feature-test models (../shared/data/scenes/khronos, SOURCE.md there) render
+// The Khronos feature-test models (tests/render/data/khronos, SOURCE.md there) render
 // as their READMEs say a correct viewer shows them. Each test also renders the model with
 // the feature taken out of its JSON, so it can fail: the feature must make the
 // difference the README describes.
@@ -26,7 +26,7 @@ namespace {
 constexpr int kWidth = 1024, kHeight = 512;  // 512×512 per eye
 
 std::string khronos(const std::string& model) {
-  return test::shared_data("scenes/khronos/" + model + "/glTF/" + model + ".gltf");
+  return test::source_path("tests/render/data/khronos/" + model + "/glTF/" + model + ".gltf");
 }
 
 // A copy of the glTF (and every file beside it) in `dir`, its JSON passed through `edit`.

@@ -189,7 +189,7 @@ TEST(Visibility, EveryKindOfMaterialMatchesTheGBufferPipeline) {
   // Vertex-coloured: the crafted quad and the Khronos test model.
   const image::Image coloured = expect_same_material(c, quad_model(d, "coloured", kPlain, false, true), 60.0);
   EXPECT_LT(image::psnr(plain, coloured), 30.0) << "the vertex colours change the picture";
-  expect_same_material(c, test::shared_data("scenes/khronos/VertexColorTest/glTF/VertexColorTest.gltf"), 28.0);
+  expect_same_material(c, test::source_path("tests/render/data/khronos/VertexColorTest/glTF/VertexColorTest.gltf"), 28.0);
   // Alpha-masked: the texture's alpha checker cuts holes (the background shows through).
   json masked = kTextured;
   masked["alphaMode"] = "MASK";
@@ -207,7 +207,7 @@ TEST(Visibility, EveryKindOfMaterialMatchesTheGBufferPipeline) {
   // transforms and the second UV set: the Khronos models.
   expect_same_material(c, test::source_path("data/scenes/WaterBottle/WaterBottle.gltf"), 30.0);
   for (const char* m : {"TextureTransformTest", "MultiUVTest"})
-    expect_same_material(c, test::shared_data(std::string("scenes/khronos/") + m + "/glTF/" + m + ".gltf"), 30.0);
+    expect_same_material(c, test::source_path(std::string("tests/render/data/khronos/") + m + "/glTF/" + m + ".gltf"), 30.0);
 }
 
 // Foveated, both pipelines shade the same samples of the same surfaces: their images

@@ -28,7 +28,6 @@ class TempDir {
   std::string path_;
 };
 
-inline std::string shared_data(const std::string& rel) { return std::string(FOVEAL_SHARED_DATA) + "/" + rel; }
 inline std::string source_path(const std::string& rel) { return std::string(FOVEAL_SOURCE_DIR) + "/" + rel; }
 inline std::string bin(const std::string& name) { return std::string(FOVEAL_BIN_DIR) + "/" + name; }
 

@@ -1,6 +1,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -78,7 +79,8 @@ double real_jitter_deg(const std::vector<GazeSample>& samples, const FilterConfi
 void add_filter_chart(CLI::App& app, int& exit_code) {
   struct Args {
     std::string out = "filter-chart";
-    std::string vive_dir = "../shared/data/gaze/vive_pro_eye";
+    // The three recordings foveal ships (data/gaze/vive_pro_eye/SOURCE.md).
+    std::string vive_dir = data_path("data/gaze/vive_pro_eye");
     double seconds = 120;
     bool json = false, no_png = false;
   };
@@ -91,6 +93,15 @@ void add_filter_chart(CLI::App& app, int& exit_code) {
   sub->add_flag("--json", a->json, "Print the results as JSON");
   sub->callback([a, &exit_code] {
     auto fail = [&exit_code](const Error& e) { exit_code = cli::report(e); };
+    // A missing or empty folder is refused up front: a chart without its real-data half
+    // would look complete.
+    std::vector<std::filesystem::path> recordings;
+    std::error_code dir_ec;
+    for (std::filesystem::directory_iterator it(a->vive_dir, dir_ec), end; !dir_ec && it != end; it.increment(dir_ec))
+      if (it->path().extension() == ".csv") recordings.push_back(it->path());
+    if (dir_ec) return fail(bad_input("--vive-dir " + a->vive_dir + ": " + dir_ec.message()));
+    if (recordings.empty()) return fail(bad_input("--vive-dir " + a->vive_dir + ": no .csv recordings in it"));
+    std::sort(recordings.begin(), recordings.end());
     // Every output is staged and moved into --out together at the end (or not at all).
     auto staged = cli::StagedOutputs::create(a->out);
     if (!staged) return fail(staged.error());
@@ -125,19 +136,15 @@ void add_filter_chart(CLI::App& app, int& exit_code) {
     progress.finish();
     // Real recordings: jitter only.
     std::string real_csv = "recording,method,label,jitter_deg\n";
-    std::error_code dir_ec;
-    if (std::filesystem::is_directory(a->vive_dir, dir_ec)) {
-      for (const auto& entry : std::filesystem::directory_iterator(a->vive_dir)) {
-        if (entry.path().extension() != ".csv") continue;
-        const std::string tmp = staged->staging() + "/.import.csv";
-        if (auto imp = import_sranipal(entry.path().string(), tmp); !imp) return fail(imp.error());
-        auto samples = read_gaze_log(tmp);
-        std::filesystem::remove(tmp, ec);
-        if (!samples) return fail(samples.error());
-        for (const Variant& v : vs)
-          real_csv += entry.path().stem().string() + "," + v.method + "," + v.label + "," +
-                      std::to_string(real_jitter_deg(*samples, v.cfg, v.raw)) + "\n";
-      }
+    for (const std::filesystem::path& rec : recordings) {
+      const std::string tmp = staged->staging() + "/.import.csv";
+      if (auto imp = import_sranipal(rec.string(), tmp); !imp) return fail(imp.error());
+      auto samples = read_gaze_log(tmp);
+      std::filesystem::remove(tmp, ec);
+      if (!samples) return fail(samples.error());
+      for (const Variant& v : vs)
+        real_csv += rec.stem().string() + "," + v.method + "," + v.label + "," +
+                    std::to_string(real_jitter_deg(*samples, v.cfg, v.raw)) + "\n";
     }
     if (Status s = staged->write("filter_chart.csv", csv); !s) return fail(s.error());
     if (Status s = staged->write("filter_chart_real.csv", real_csv); !s) return fail(s.error());
