@@ -106,7 +106,8 @@ TEST(FilterChartCli, AQuoteInOutRunsNoShell) {
   if (!have_matplotlib()) GTEST_SKIP() << "/usr/bin/python3 has no matplotlib: the charts cannot run";
   TempDir d;
   const std::string out = d.path("x'; touch " + d.path("INJECTED") + "; echo '");
-  const auto r = foveal({"filter-chart", "--seconds", "2", "--vive-dir", d.path("none"), "--out", out});
+  // The shipped recordings (the default --vive-dir): a missing folder is refused.
+  const auto r = foveal({"filter-chart", "--seconds", "2", "--out", out});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_FALSE(fs::exists(d.path("INJECTED"))) << "a shell ran the --out text";
   EXPECT_TRUE(fs::is_regular_file(out + "/filter_chart.png"));
