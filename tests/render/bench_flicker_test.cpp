@@ -47,12 +47,12 @@ TEST(BenchFlicker, RmfrFlickersLessWithTheGazeFilter) {
                      "--flicker --flicker-frames 24 --grid-sigma 2.6 --no-png --out " + d.path("b"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto rows = read_csv(test::read_file(d.path("b/flicker.csv")));
-  ASSERT_EQ(rows.size(), 4u);  // full and rmfr × raw and filtered; the still camera and the G-buffer pipeline by default
-  const double raw = value(find(rows, "gbuffer", "static", "rmfr", "raw"), "flicker");
-  const double filtered = value(find(rows, "gbuffer", "static", "rmfr", "filtered"), "flicker");
+  ASSERT_EQ(rows.size(), 4u);  // full and rmfr × raw and filtered; the still camera and the default (visibility) pipeline
+  const double raw = value(find(rows, "visibility", "static", "rmfr", "raw"), "flicker");
+  const double filtered = value(find(rows, "visibility", "static", "rmfr", "filtered"), "flicker");
   EXPECT_GT(raw, 0.0);
   EXPECT_LT(filtered, raw);
-  EXPECT_EQ(value(find(rows, "gbuffer", "static", "full", "raw"), "flicker"), 0.0);  // a static scene at full rate does not flicker
+  EXPECT_EQ(value(find(rows, "visibility", "static", "full", "raw"), "flicker"), 0.0);  // a static scene at full rate does not flicker
   for (const Row& row : rows) {
     // A still camera: the reference never changes, so flicker is the frames' own change.
     EXPECT_EQ(value(row, "reference_change"), 0.0);

@@ -37,8 +37,8 @@ using render::Method;
 struct Args {
   std::vector<std::string> scenes;
   std::string methods = render::method_names_joined(",");
-  std::string pipeline = "gbuffer";
-  render::Pipeline pipeline_kind = render::Pipeline::gbuffer;  ///< parsed from `pipeline`
+  std::string pipeline = render::kDefaultPipelineName;
+  render::Pipeline pipeline_kind = render::Pipeline::visibility;  ///< parsed from `pipeline`
   std::string sigmas = "1.4:2.8:0.2";
   std::string fovea = "0.5,0.5";
   std::string size = "2880x1600";

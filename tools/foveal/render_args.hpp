@@ -15,7 +15,7 @@ namespace foveal::cmd {
 struct RenderArgs {
   std::string scene;  ///< default: the bundled Dungeon
   std::string method = "rmfr";
-  std::string pipeline = "gbuffer";
+  std::string pipeline = render::kDefaultPipelineName;
   double sigma_d = 2.0, sigma_nd = 3.0;
   std::string dominant = "right";
   double fx = 0.3, fy = 0.3;

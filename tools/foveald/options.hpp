@@ -4,6 +4,8 @@
 #include <optional>
 #include <string>
 
+#include "foveal/render/compositor.hpp"
+
 namespace foveal::daemon {
 
 struct Options {
@@ -26,7 +28,7 @@ struct Options {
   double fps = 0;             ///< headless frame pacing (0: as fast as the renderer goes)
   std::string scene;          ///< empty: the bundled Dungeon
   std::string method = "rmfr";
-  std::string pipeline = "gbuffer";  ///< gbuffer or visibility
+  std::string pipeline = render::kDefaultPipelineName;  ///< gbuffer or visibility
   std::string size;           ///< WxH; empty: the display model's
   int save_every = 0;         ///< save every Nth frame as PNG (first and last always)
   std::string monitor;        ///< window mode: fullscreen on this monitor

@@ -38,6 +38,10 @@ Result<Pipeline> parse_pipeline(const std::string& s);
 /// Both, gbuffer first, and their names in the same order.
 const std::vector<Pipeline>& all_pipelines();
 const std::vector<std::string>& pipeline_names();
+/// The pipeline foveald, `foveal render` and `foveal bench` use without --pipeline: the
+/// visibility pipeline, faster on every scene measured and at least as good on most
+/// (docs/rmfr.md, "Which pipeline by default"). FrameParams keeps gbuffer, the paper's.
+inline constexpr const char* kDefaultPipelineName = "visibility";
 
 // Method and EyeFoveation: foveal/image/foveation_plan.hpp.
 struct FrameParams {
