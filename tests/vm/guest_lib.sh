@@ -2,10 +2,12 @@
 # and the emulated USB devices. busybox sh.
 
 # Busybox's applets, the kernel's file systems, and the modules of /modules/order (one
-# a line, with its parameters) in turn.
+# a line, with its parameters) in turn. The binaries under test are in /opt/foveal/bin,
+# their non-system libraries in /opt/foveal/lib (qemu_guest.py): not at the build
+# tree's host path, which the tmpfs on /tmp would hide when the build is under /tmp.
 guest_boot() {
   /bin/busybox --install -s /bin
-  export PATH=/bin:/usr/bin
+  export PATH=/opt/foveal/bin:/bin:/usr/bin LD_LIBRARY_PATH=/opt/foveal/lib
   mount -t proc proc /proc
   mount -t sysfs sys /sys
   mount -t devtmpfs dev /dev

@@ -25,6 +25,20 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 KERNEL_ARGS = "console=ttyS0 panic=-1 quiet loglevel=3"
 
 
+# Where the binaries under test and their non-system libraries go in the guest: fixed
+# folders, whatever the host's build tree is called (docs/vm-tests.md).
+GUEST_BIN = "/opt/foveal/bin"
+GUEST_LIB = "/opt/foveal/lib"
+# The loader's built-in search folders (Debian's glibc, merged /usr: /lib is usr/lib):
+# a library here is found in the guest at its host path without any help.
+SYSTEM_LIBRARY_DIRS = ("/usr/lib", MULTIARCH, "/usr/lib64")
+
+
+def is_system_library(path):
+    """True for a library (resolved folder, see ldd) in one of the system's folders."""
+    return os.path.dirname(path) in SYSTEM_LIBRARY_DIRS
+
+
 def ldd(paths):
     """The shared libraries (and the dynamic loader) that `ldd` names for these files."""
     out = subprocess.run(["ldd"] + paths, capture_output=True, text=True, check=True).stdout
@@ -90,12 +104,18 @@ class Initramfs:
         self.add("/modules/order", "data", "".join(f"{m} {params.get(m, '')}\n" for m in order).encode())
 
     def add_binaries(self, binaries, extra_libraries=()):
-        """Each binary as /usr/bin/NAME, with what `ldd` names for it and for
-        `extra_libraries` at their host paths."""
+        """Each binary as GUEST_BIN/NAME and the libraries `ldd` names for them and for
+        `extra_libraries`: the system's at their host paths, the others (foveal's own,
+        from the build tree) in GUEST_LIB. The guest never sees the build tree's path,
+        which may be under /tmp, where the guest mounts a tmpfs (guest_lib.sh puts
+        GUEST_BIN on PATH and GUEST_LIB on LD_LIBRARY_PATH)."""
         for b in binaries:
-            self.add_file("/usr/bin/" + os.path.basename(b), b)
-        for lib in ldd(list(binaries) + list(extra_libraries)):
-            self.add_file(lib, lib)
+            self.add_file(f"{GUEST_BIN}/{os.path.basename(b)}", b)
+        for lib in sorted(ldd(list(binaries) + list(extra_libraries))):
+            guest = lib if is_system_library(lib) else f"{GUEST_LIB}/{os.path.basename(lib)}"
+            if guest in self.entries and self.entries[guest][1] != lib:
+                raise ValueError(f"two libraries named {os.path.basename(lib)}: {self.entries[guest][1]} and {lib}")
+            self.add_file(guest, lib)
         # Merged /usr: the paths the binaries name (/lib64/ld-linux-x86-64.so.2) lead to usr/.
         for top in ("/lib", "/lib64"):
             if os.path.islink(top):

@@ -201,7 +201,7 @@ def main():
 
     try:
         size = build_initramfs(a, kver, guest_args, guest_out, work)
-    except (OSError, subprocess.CalledProcessError) as e:
+    except (OSError, ValueError, subprocess.CalledProcessError) as e:  # ValueError: two libraries, one name
         print(f"run_drm_vm_test: cannot build the initramfs: {e}")
         return 1
     print(f"run_drm_vm_test: kernel {kver}, initramfs {size / 2**20:.0f} MiB (uncompressed) built in "

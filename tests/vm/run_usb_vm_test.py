@@ -39,7 +39,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--init", required=True, help="the guest's /init (busybox sh)")
     p.add_argument("--guest", required=True, help="foveal_vm_guest (also converts the descriptor here)")
-    p.add_argument("--bin", action="append", default=[], help="another binary for the guest's /usr/bin (repeatable)")
+    p.add_argument("--bin", action="append", default=[], help="another binary for the guest's /opt/foveal/bin (repeatable)")
     p.add_argument("--descriptor", required=True, help="the tracker's report descriptor (hex text)")
     p.add_argument("--mesa", action="store_true", help="add Mesa, shaders/ and data/display/ (needs --source-dir)")
     p.add_argument("--source-dir", help="the repository root (shaders/, data/)")
@@ -60,7 +60,7 @@ def main():
     qemu, kver = found
     try:
         size = build_initramfs(a, kver, work)
-    except (OSError, subprocess.CalledProcessError) as e:
+    except (OSError, ValueError, subprocess.CalledProcessError) as e:  # ValueError: two libraries, one name
         print(f"{NAME}: cannot build the initramfs: {e}")
         return 1
     print(f"{NAME}: kernel {kver}, initramfs {size / 2**20:.0f} MiB (uncompressed) built in "
