@@ -1,7 +1,7 @@
 #pragma once
 // The 1€ filter (Casiez et al. 2012): a first-order low-pass whose cutoff rises with
 // speed, so it smooths fixations and follows movement. Matches the reference
-// implementation (../shared/data/filters): the speed comes from the last *filtered*
+// implementation (tests/filter/data): the speed comes from the last *filtered*
 // value, the first output is the first input.
 #include <algorithm>
 #include <cmath>
