@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "foveal/core/data_paths.hpp"
+#include "foveal/core/shown_text.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
 #include "foveal/tools/args.hpp"
 #include "foveal/tools/cli.hpp"
@@ -64,7 +65,7 @@ Status DaemonApp::apply_profile(const Profile& p, const char* why) {
   if (shm_) shm_->publish_settings(shm_settings(rs));
   if (loop_ && filter_changed) loop_->set_mapper(make_mapper());
   log::info(std::string("profile '") + p.name + "' " + why + ": dominant " + eye_name(p.dominant_eye) +
-            ", sigma_d " + std::to_string(p.sigma_d) + ", sigma_nd " + std::to_string(p.sigma_nd));
+            ", sigma_d " + shown_number(p.sigma_d) + ", sigma_nd " + shown_number(p.sigma_nd));
   return {};
 }
 

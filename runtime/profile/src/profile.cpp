@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "foveal/core/json_file.hpp"
+#include "foveal/core/shown_text.hpp"
 #include "foveal/runtime/filter_config.hpp"
 #include "foveal/runtime/profile.hpp"
 
@@ -115,8 +116,8 @@ Status Profile::validate(const std::string& where) const {
   if (!(sigma_d >= 1.0 && sigma_d <= 16.0)) return bad_input(where + ": sigma_d: must be in [1, 16]");
   if (!(sigma_nd >= 1.0 && sigma_nd <= 16.0)) return bad_input(where + ": sigma_nd: must be in [1, 16]");
   if (sigma_nd < sigma_d)
-    return bad_input(where + ": sigma_nd (" + std::to_string(sigma_nd) + ") must be >= sigma_d (" +
-                     std::to_string(sigma_d) + "): the non-dominant eye is foveated at least as much");
+    return bad_input(where + ": sigma_nd (" + shown_number(sigma_nd) + ") must be >= sigma_d (" +
+                     shown_number(sigma_d) + "): the non-dominant eye is foveated at least as much");
   for (const auto& [key, f] : {std::pair{"f_x", f_x}, std::pair{"f_y", f_y}})
     if (f && !(*f > 0.0 && *f <= 100.0)) return bad_input(where + ": " + key + ": must be in (0, 100] or \"auto\"");
   if (!(ipd_mm > 40.0 && ipd_mm < 90.0)) return bad_input(where + ": ipd_mm: must be in (40, 90)");

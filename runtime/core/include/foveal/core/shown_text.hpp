@@ -33,4 +33,12 @@ inline std::string shown_text(std::string_view text, std::size_t max = kMaxShown
   return out;
 }
 
+/// A number for a message as a person writes it: 2, 2.8, 0.001, 1e+30 (at most six
+/// significant digits), never 2.000000.
+inline std::string shown_number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
 }  // namespace foveal
