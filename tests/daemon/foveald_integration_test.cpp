@@ -75,15 +75,9 @@ class Foveald : public ::testing::Test {
   }
   /// Waits for the process; returns its exit code, or -1 if it is still running after `ms`.
   int wait_exit(int ms) {
-    for (int i = 0; i < ms; ++i) {
-      int status = 0;
-      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
-        pid_ = -1;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      }
-      sleep_until_ns(monotonic_now_ns() + kNsPerMs);
-    }
-    return -1;
+    const int rc = test::wait_for_exit(pid_, ms);
+    if (rc >= 0) pid_ = -1;
+    return rc;
   }
 
   test::TempDir dir_;

@@ -53,15 +53,10 @@ class Child {
   void signal(int sig) const { if (pid_ > 0) ::kill(pid_, sig); }
   /// The exit code (128 + signal when killed), or -1 when still running after `ms`.
   int wait(int ms) {
-    for (int i = 0; i <= ms && pid_ > 0; ++i) {
-      int status = 0;
-      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
-        pid_ = -1;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      }
-      sleep_until_ns(monotonic_now_ns() + kNsPerMs);
-    }
-    return -1;
+    if (pid_ <= 0) return -1;
+    const int rc = wait_for_exit(pid_, ms);
+    if (rc >= 0) pid_ = -1;
+    return rc;
   }
 
  private:

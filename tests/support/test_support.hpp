@@ -1,10 +1,14 @@
 #pragma once
 // Helpers shared by the tests: temporary directories, running the CLI, reading files.
+#include <sys/wait.h>
+
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 
 namespace foveal::test {
 
@@ -27,6 +31,17 @@ class TempDir {
  private:
   std::string path_;
 };
+
+/// Waits up to `ms` for child `pid` to exit: its exit code (128 + the signal when
+/// killed), or -1 while it still runs (the child is then left as it is).
+inline int wait_for_exit(pid_t pid, int ms) {
+  for (int i = 0; i < ms; ++i) {
+    int status = 0;
+    if (::waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return -1;
+}
 
 inline std::string source_path(const std::string& rel) { return std::string(FOVEAL_SOURCE_DIR) + "/" + rel; }
 inline std::string bin(const std::string& name) { return std::string(FOVEAL_BIN_DIR) + "/" + name; }
