@@ -92,9 +92,12 @@ TEST(GazeLoop, PauseSkipsAndSetMapperTakesEffect) {
   EXPECT_GT(loop.stats().skipped, 0u);
   loop.set_paused(false);
   loop.set_mapper([](const GazeSample& s) { return tag(s, 2.0f); });
-  // The new mapper's first sample is waited for (up to 10 s), not expected by a set time.
+  // The new mapper's first sample, and the stats that count it (published every
+  // kStatsPeriod, after the fovea), are waited for (up to 10 s), not expected by a set time.
   FoveaFrame f;
-  for (int i = 0; i < 1000 && !(loop.latest().load(f) && f.eyes[0].px.x == 2.0f); ++i)
+  for (int i = 0; i < 1000 && !(loop.latest().load(f) && f.eyes[0].px.x == 2.0f &&
+                                loop.stats().samples > during_pause);
+       ++i)
     sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
   ASSERT_TRUE(loop.latest().load(f));
   EXPECT_FLOAT_EQ(f.eyes[0].px.x, 2.0f);
