@@ -149,6 +149,7 @@ bool HidTrackerSource::handle_report(std::span<const std::uint8_t> report, TimeN
   if (!t->gaze_valid) ++counters_.invalid_gaze;
   out = screen_gaze_to_sample(*t, plane_);
   out.t_ns = clock_.map(arrival, t->device_time_ns);
+  last_device_t_ns_ = t->device_time_ns.value_or(0);
   return true;
 }
 
@@ -185,6 +186,7 @@ ReadResult HidTrackerSource::next(std::chrono::nanoseconds timeout) {
     ++counters_.reports;
     const TimeNs arrival = monotonic_now_ns();
     if (handle_report(std::span<const std::uint8_t>(buffer_.data(), *got), arrival, r.sample)) {
+      r.device_t_ns = last_device_t_ns_;
       ++counters_.samples;
       r.status = ReadStatus::sample;
       return r;

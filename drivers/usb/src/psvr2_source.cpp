@@ -158,6 +158,7 @@ ReadResult Psvr2Source::next(std::chrono::nanoseconds timeout) {
         }
         r.sample = psvr2_to_sample(*rec);
         r.sample.t_ns = std::max(device_ns + offset_ns_, last_t_ + 1);
+        r.device_t_ns = device_ns;
         last_t_ = r.sample.t_ns;
         ++counters_.samples;
         r.status = ReadStatus::sample;

@@ -115,7 +115,9 @@ void GazeLoop::run() {
       if (paused_.load(std::memory_order_relaxed)) {
         ++local_.skipped;
       } else {
-        const FoveaFrame f = mapper_(r.sample);
+        FoveaFrame f = mapper_(r.sample);
+        f.device_t_ns = r.device_t_ns;
+        f.arrival_ns = arrival;
         latest_.store(f);
         latency_.add(monotonic_now_ns() - arrival);
         ++local_.samples;

@@ -35,6 +35,10 @@ enum class ReadStatus {
 struct ReadResult {
   ReadStatus status = ReadStatus::timeout;
   GazeSample sample{};
+  /// `sample`'s time on the tracker's own clock, before it was mapped to the runtime's
+  /// (a replay: the log row's t_ns); 0 when the driver has none. frames.csv names the
+  /// sample a frame used by it (docs/latency.md).
+  TimeNs device_t_ns = 0;
   Error error{};
 };
 

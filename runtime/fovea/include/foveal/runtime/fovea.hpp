@@ -20,7 +20,12 @@ struct FoveaPoint {
 };
 
 struct FoveaFrame {
-  TimeNs t_ns = 0;  ///< time of the sample it came from
+  TimeNs t_ns = 0;  ///< time of the sample it came from (runtime clock)
+  /// The same sample on the tracker's own clock (ReadResult::device_t_ns; 0 unknown) and
+  /// when it reached the runtime (CLOCK_MONOTONIC): set by the gaze loop, for the
+  /// gaze-to-photon breakdown (docs/latency.md).
+  TimeNs device_t_ns = 0;
+  TimeNs arrival_ns = 0;
   std::array<FoveaPoint, 2> eyes{};
   const FoveaPoint& eye(Eye e) const { return eyes[static_cast<std::size_t>(e)]; }
 };

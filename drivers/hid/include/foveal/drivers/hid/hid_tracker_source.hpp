@@ -85,6 +85,7 @@ class HidTrackerSource final : public GazeSource {
   TrackerConfiguration config_;
   ScreenPlane plane_;
   TrackingData last_;
+  TimeNs last_device_t_ns_ = 0;  ///< the last delivered report's device time
   DeviceClock clock_;
   HidTrackerCounters counters_;
   ProblemThrottle problems_;
