@@ -328,11 +328,14 @@ struct Compositor::Impl {
     return &*gbuffer;
   }
 
-  // The G-buffer pipeline's surface for one eye: the full-resolution G-buffer, mapped
-  // into the eye's transformed buffer unless the method is full.
-  Result<const detail::SurfaceTargets*> gbuffer_surface(const Scene& scene, const EyeView& view, const EyePlan& plan,
-                                                       std::size_t eye, std::size_t variant,
-                                                       const std::vector<glm::ivec4>& regions) {
+  // An eye's full-resolution pass, the first of its surface and the last that does not
+  // depend on the fovea: the G-buffer, or the visibility pass.
+  Status full_resolution_pass(const Scene& scene, const EyeView& view, Pipeline pipeline) {
+    if (pipeline == Pipeline::visibility) {
+      visibility->visibility_pass(scene, view);
+      timer.mark(Pass::gbuffer);
+      return {};
+    }
     auto g = gbuffer_targets();
     if (!g) return g.error();
     glBindFramebuffer(GL_FRAMEBUFFER, (*g)->fbo.id());
@@ -346,6 +349,15 @@ struct Compositor::Impl {
     else draw_geometry(scene, view);
     glDisable(GL_DEPTH_TEST);
     timer.mark(Pass::gbuffer);
+    return {};
+  }
+
+  // The G-buffer pipeline's surface for one eye after its full-resolution pass: the
+  // G-buffer itself for full, else mapped into the eye's transformed buffer.
+  Result<const detail::SurfaceTargets*> gbuffer_surface(const EyePlan& plan, std::size_t eye, std::size_t variant,
+                                                       const std::vector<glm::ivec4>& regions) {
+    auto g = gbuffer_targets();
+    if (!g) return g.error();
     if (plan.method == Method::full) return *g;
 
     // Mapping: G-buffer -> reduced G-buffer; RMFR's (also full through the lens) is foveal-rmfr's.
@@ -371,19 +383,35 @@ struct Compositor::Impl {
     return &tg;
   }
 
-  // The visibility pipeline's surface for one eye: visibility at full resolution, then
-  // the material at the samples the plan keeps (W×H for full).
+  // The visibility pipeline's surface for one eye after its visibility pass: the
+  // material at the samples the plan keeps (W×H for full).
   const detail::SurfaceTargets* visibility_surface(const Scene& scene, const EyeView& view, const EyePlan& plan,
                                                    std::size_t eye, std::size_t variant,
                                                    const std::vector<glm::ivec4>& regions) {
-    visibility->visibility_pass(scene, view);
-    timer.mark(Pass::gbuffer);
     detail::MaterialSurface& dst = plan.method == Method::full
                                              ? visibility->full_surface()
                                              : visibility->eye_surface(eye, plan.buffer_w, plan.buffer_h, !plan.layers.empty());
     visibility->material_pass(scene, view, plan, variant, regions, dst);
     timer.mark(Pass::mapping);
     return &dst.surface;
+  }
+
+  // Late latch: the GPU finishes the passes so far (a fence), then the latch reads the
+  // newest fovea; only the eyes' fovea points are taken from it.
+  void run_latch(const FoveaLatch& latch, std::array<EyeFoveation, 2>& eyes, PassTimes& times) {
+    if (latch) {
+      GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+      glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000);
+      glDeleteSync(fence);
+      std::array<EyeFoveation, 2> latched = eyes;
+      latch(latched);
+      for (std::size_t i = 0; i < eyes.size(); ++i)
+        if (std::isfinite(latched[i].fovea_x) && std::isfinite(latched[i].fovea_y)) {
+          eyes[i].fovea_x = std::clamp(latched[i].fovea_x, 0.0, 1.0);
+          eyes[i].fovea_y = std::clamp(latched[i].fovea_y, 0.0, 1.0);
+        }
+    }
+    times.latch_ns = monotonic_now_ns();
   }
 };
 
@@ -442,13 +470,14 @@ Compositor::Compositor(Compositor&&) noexcept = default;
 Compositor& Compositor::operator=(Compositor&&) noexcept = default;
 Compositor::~Compositor() = default;
 
-Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& params) {
+Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& params, const FoveaLatch& latch) {
   Impl& m = *impl_;
   const auto camera = frame_camera(params, m.opt.model);
   if (!camera) return camera.error();
   const auto cpu_start = Clock::now();
   PassTimes times;
   times.pipeline = params.pipeline;
+  times.start_ns = monotonic_now_ns();
   m.timer.begin_frame();
   m.timer.mark(Pass::shadow);
 
@@ -462,20 +491,25 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
   glNamedBufferSubData(m.lights_ubo.id(), 0, sizeof lights, &lights);
   glEnable(GL_FRAMEBUFFER_SRGB);
 
+  // The eyes' fovea points as of the latch, after the left eye's full-resolution pass:
+  // the right eye's could come later still, but both eyes show one gaze sample.
+  std::array<EyeFoveation, 2> eyes = params.eyes;
   for (Eye e : kEyes) {
     const std::size_t i = static_cast<std::size_t>(e);
     const LensDistortion& lens = m.opt.model.distortion[i];
     const bool distort = m.opt.distortion && lens.enabled;
+    const EyeView view = eye_view(scene, m.opt.model, e, camera->head, camera->ipd_mm);
+    if (Status s = m.full_resolution_pass(scene, view, params.pipeline); !s) return s.error();
+    if (e == Eye::left) m.run_latch(latch, eyes, times);
     // The full method has no resolve pass to fold the lens into: it runs as RMFR at σ = 1
     // (the identity map), which is the same image.
-    EyeFoveation eye_params = params.eyes[i];
+    EyeFoveation eye_params = eyes[i];
     Method method = params.method;
     if (distort && method == Method::full) method = Method::rmfr, eye_params.sigma = 1.0;
     auto planned = plan_eye(method, eye_params, m.eye_w, m.eye_h, m.opt.model.eye(e));
     if (!planned) return Error{planned.error().kind, std::string(eye_name(e)) + " eye: " + planned.error().message};
     const EyePlan& plan = m.plans[i] = std::move(*planned);
     times.shaded_samples += plan.shaded_samples();
-    const EyeView view = eye_view(scene, m.opt.model, e, camera->head, camera->ipd_mm);
     const glm::ivec2 eye_origin(static_cast<int>(i) * m.eye_w, 0);
 
     // The regions each pass draws: the whole buffer, or one per layer of the atlas.
@@ -494,7 +528,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     if (params.pipeline == Pipeline::visibility) {
       surface = m.visibility_surface(scene, view, plan, i, variant, regions);
     } else {
-      auto g = m.gbuffer_surface(scene, view, plan, i, variant, regions);
+      auto g = m.gbuffer_surface(plan, i, variant, regions);
       if (!g) return g.error();
       surface = *g;
     }
@@ -551,6 +585,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     m.timer.mark(Pass::inverse);
   }
   glFinish();
+  times.gpu_done_ns = monotonic_now_ns();
   times.cpu = std::chrono::duration<double, std::milli>(Clock::now() - cpu_start).count();
   m.timer.collect(times);
   if (GLenum err = glGetError(); err != GL_NO_ERROR) {

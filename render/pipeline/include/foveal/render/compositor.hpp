@@ -8,10 +8,12 @@
 // Thread safety: none; use a Compositor on the thread whose GL context created it, and
 // destroy it while that context is current.
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "foveal/core/clock.hpp"
 #include "foveal/core/display_model.hpp"
 #include "foveal/core/error.hpp"
 #include "foveal/core/pose.hpp"
@@ -72,7 +74,18 @@ struct PassTimes {
   double gpu_total = 0;  ///< first to last GPU timestamp of the frame
   double cpu = 0;        ///< wall time of render() including the wait for the GPU
   std::size_t shaded_samples = 0;  ///< lighting-pass samples, both eyes
+  /// CLOCK_MONOTONIC: render() began; the fovea was latched (FoveaLatch; without one,
+  /// when the latch would have run); glFinish returned, the GPU had finished the frame
+  /// (an upper bound by the wake-up, docs/latency.md).
+  TimeNs start_ns = 0, latch_ns = 0, gpu_done_ns = 0;
 };
+
+/// Late latch (docs/latency.md): called once per frame, after the shadow pass and the
+/// left eye's full-resolution pass (G-buffer or visibility) have finished on the GPU
+/// (render() waits on a fence first), the last point before a pass that depends on the
+/// fovea. It may move the eyes' fovea_x/fovea_y (finite values, clamped to [0, 1]);
+/// everything else it changes is ignored. Both eyes use what it leaves.
+using FoveaLatch = std::function<void(std::array<EyeFoveation, 2>& eyes)>;
 
 /// The names of the passes timed in `gbuffer` and `mapping` for a pipeline:
 /// {"gbuffer", "mapping"} or {"visibility", "material"}.
@@ -110,7 +123,8 @@ class Compositor {
 
   /// Renders one frame into the output and waits for it. σ < 1 or f <= 0 (or not finite),
   /// a bad head pose or IPD (FrameParams) are bad_input; transformed buffers are (re)allocated when an eye's w×h changes.
-  Result<PassTimes> render(const Scene& scene, const FrameParams& params);
+  /// `latch`, if given, supplies the fovea points late in the frame (FoveaLatch).
+  Result<PassTimes> render(const Scene& scene, const FrameParams& params, const FoveaLatch& latch = {});
 
   /// The output as 8-bit sRGB, top row first. With float_output, the float pixels
   /// (linear, bottom row first) come from read_float().
