@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "foveal/image/metrics.hpp"
+#include "foveal/perception/jod_files.hpp"
 #include "foveal/tools/args.hpp"
 #include "foveal/tools/cli.hpp"
 
@@ -20,6 +21,10 @@ struct Args {
   std::string ref, test, fovea, fovea_right, ssim_channels = "luma";
   double ppd = image::kDefaultPixelsPerDegree;
   bool stereo = false, json = false;
+  // --jod (docs/metrics.md, "JOD")
+  bool jod = false;
+  std::string display, fovea_list;
+  double fps = 0, peak = 133.3, black = 0.1;
 };
 
 // JSON has no infinity: identical images print "inf".
@@ -47,7 +52,63 @@ Result<image::Image> load_named(const std::string& path, const char* what) {
   return img;
 }
 
+nlohmann::json jod_json(const perception::JodScore& s) { return {{"jod", s.jod}, {"q", s.q}}; }
+
+// JOD per eye and combined; the fovea "none" scores without foveation.
+int run_jod(const Args& a) {
+  perception::JodRequest rq;
+  rq.reference = a.ref;
+  rq.test = a.test;
+  rq.stereo = a.stereo;
+  rq.fps = a.fps;
+  rq.fovea_list = a.fovea_list;
+  rq.photometry = {a.peak, a.black};
+  if (!a.display.empty()) {
+    auto m = DisplayModel::load(a.display);
+    if (!m) return cli::report(bad_input("--display " + m.error().message));
+    rq.display = *m;
+  }
+  const auto fovea = [](const std::string& s, const char* what) -> Result<std::optional<perception::NormFovea>> {
+    if (s.empty() || s == "none") return std::optional<perception::NormFovea>{};
+    auto p = parse_fovea(s, what);
+    if (!p) return p.error();
+    return std::optional<perception::NormFovea>{perception::NormFovea{p->x, p->y}};
+  };
+  auto l = fovea(a.fovea, "--fovea");
+  if (!l) return cli::report(l.error());
+  rq.fovea_left = rq.fovea_right = *l;
+  if (!a.fovea_right.empty()) {
+    if (!a.stereo) return cli::report(bad_input("--fovea-right: only with --stereo"));
+    auto r = fovea(a.fovea_right, "--fovea-right");
+    if (!r) return cli::report(r.error());
+    rq.fovea_right = *r;
+  }
+  auto rep = perception::run_jod(rq);
+  if (!rep) return cli::report(rep.error());
+  const auto& c = rep->combined;
+  if (a.json) {
+    nlohmann::json j = {{"ref", a.ref}, {"test", a.test}, {"size", {rep->width, rep->height}}, {"stereo", a.stereo},
+                        {"display", rq.display.name}, {"ppd", c.ppd}, {"peak_cd_m2", a.peak}, {"black_cd_m2", a.black},
+                        {"frames", c.frames}, {"fps", a.fps}, {"bands", c.bands},
+                        {"foveated", a.fovea_list.empty() ? nlohmann::json(rq.fovea_left.has_value()) : nlohmann::json("per frame")},
+                        {"jod", c.jod}, {"q", c.q}};
+    if (a.stereo) {
+      j["left"] = jod_json(rep->eyes[0]);
+      j["right"] = jod_json(rep->eyes[1]);
+    }
+    cli::print_json(j);
+  } else {
+    std::printf("%s vs %s (%dx%d%s, %d frame%s, %s, %.2f ppd)\n", a.test.c_str(), a.ref.c_str(), rep->width, rep->height,
+                a.stereo ? " per eye" : "", c.frames, c.frames == 1 ? "" : "s", rq.display.name.c_str(), c.ppd);
+    if (a.stereo) std::printf("left     JOD %.4f\nright    JOD %.4f\n", rep->eyes[0].jod, rep->eyes[1].jod);
+    std::printf("%-8s JOD %.4f\n", a.stereo ? "combined" : "image", c.jod);
+  }
+  return cli::kExitOk;
+}
+
 int run(const Args& a) {
+  if (a.jod) return run_jod(a);
+  if (a.fovea.empty()) return cli::report(bad_input("--fovea: required (except with --jod)"));
   image::MetricsOptions opt;
   auto fovea = parse_fovea(a.fovea, "--fovea");
   if (!fovea) return cli::report(fovea.error());
@@ -113,8 +174,8 @@ void add_metrics(CLI::App& app, int& exit_code) {
   sub->add_option("--ref,-r", args->ref, "Reference image (PNG, JPEG, BMP, TGA)")->required();
   sub->add_option("--test,-t", args->test, "Test image, same size")->required();
   sub->add_option("--fovea,--fovea-left", args->fovea,
-                  "Fovea X,Y in [0,1] of the image (of the left half with --stereo), origin top-left")
-      ->required();
+                  "Fovea X,Y in [0,1] of the image (of the left half with --stereo), origin top-left; "
+                  "required except with --jod, where 'none' or leaving it out scores without foveation");
   sub->add_option("--fovea-right", args->fovea_right, "With --stereo: the right half's fovea (default: --fovea)");
   sub->add_flag("--stereo", args->stereo, "Side-by-side stereo frame: each half is an eye with its own fovea");
   sub->add_option("--ppd", args->ppd, "Pixels per degree at the (eye) image centre")->capture_default_str();
@@ -122,6 +183,13 @@ void add_metrics(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"luma", "rgb"}))
       ->capture_default_str();
   sub->add_flag("--json", args->json, "Print the metrics as JSON (infinite PSNR as \"inf\")");
+  sub->add_flag("--jod", args->jod,
+                "FovVideoVDP's JOD instead (docs/metrics.md): --ref/--test may be folders or .txt lists of frames");
+  sub->add_option("--display", args->display, "--jod: display-model JSON (default: HTC Vive Pro Eye)");
+  sub->add_option("--fps", args->fps, "--jod: frame rate of frame sequences");
+  sub->add_option("--fovea-list", args->fovea_list, "--jod: a file with one fovea per frame (X,Y or XL,YL,XR,YR or none)");
+  sub->add_option("--peak", args->peak, "--jod: the display's peak luminance, cd/m²")->capture_default_str();
+  sub->add_option("--black", args->black, "--jod: the display's black level, cd/m²")->capture_default_str();
   sub->callback([args, &exit_code] { exit_code = run(*args); });
 }
 

@@ -1,0 +1,46 @@
+#pragma once
+// JOD of image files and frame sequences as `foveal metrics --jod` reads them: a still, a
+// folder of frames (sorted by name) or a .txt list of frame paths; side-by-side stereo
+// frames scored per eye (docs/metrics.md, "JOD").
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "foveal/core/display_model.hpp"
+#include "foveal/core/error.hpp"
+#include "foveal/perception/jod.hpp"
+
+namespace foveal::perception {
+
+/// A fovea in normalised coordinates of an eye's image ([0,1]², origin top-left).
+struct NormFovea {
+  double x = 0.5, y = 0.5;
+};
+
+struct JodRequest {
+  std::string reference, test;  ///< image, folder of frames, or .txt list of frame paths
+  DisplayModel display = DisplayModel::vive_pro_eye();
+  Photometry photometry;
+  Parameters parameters;
+  bool stereo = false;          ///< side by side, left eye on the left
+  double fps = 0;               ///< needed for more than one frame
+  /// Per eye (left, right); none: not foveated.
+  std::optional<NormFovea> fovea_left, fovea_right;
+  /// One line per frame, "X,Y" (both eyes) or "XL,YL,XR,YR"; overrides the foveae.
+  std::string fovea_list;
+};
+
+struct JodReport {
+  std::vector<JodScore> eyes;  ///< one, or left and right
+  JodScore combined;           ///< stereo: the JOD of both eyes' mean difference
+  int width = 0, height = 0;   ///< of one eye's image
+};
+
+/// The frames `path` names: itself if an image file, a folder's image files sorted by
+/// name, or the non-empty lines of a .txt file (relative to its folder).
+Result<std::vector<std::string>> frame_paths(const std::string& path, const char* what);
+
+Result<JodReport> run_jod(const JodRequest& request);
+
+}  // namespace foveal::perception
