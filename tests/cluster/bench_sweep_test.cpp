@@ -1,9 +1,9 @@
-// The sweep's parts (tools/foveal/bench_sweep.cpp) without rendering: which shard runs
+// The sweep's parts (tools/bench/src/bench_sweep.cpp) without rendering: which shard runs
 // which point, rows kept in point order, the shard file's round trip and its refusals,
 // and merges that are refused.
 #include <gtest/gtest.h>
 
-#include "bench_sweep.hpp"
+#include "foveal/bench/bench_sweep.hpp"
 
 using foveal::bench::parse_shard;
 using foveal::bench::Shard;

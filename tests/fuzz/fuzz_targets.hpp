@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <unistd.h>
 
+#include "foveal/bench/bench_shard_file.hpp"
 #include "foveal/core/display_model.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/core/gaze_log_stats.hpp"
@@ -32,7 +33,6 @@
 #endif
 #include "foveal/runtime/control_server.hpp"
 #include "foveal/runtime/profile.hpp"
-#include "bench_shard_file.hpp"
 #include "fuzz_file.hpp"
 
 namespace foveal::fuzz {
@@ -279,7 +279,7 @@ inline int gltf(const std::uint8_t* data, std::size_t size) {
 }
 #endif
 
-// foveal bench merge's shard.json reader (tools/foveal/bench_shard_file.hpp): a clean
+// foveal bench merge's shard.json reader (foveal/bench/bench_shard_file.hpp): a clean
 // error or a shard naming only its kind's tables, whose merge (alone) writes nothing else;
 // never a crash or an allocation sized by a field (N of 2e9 shards, say).
 inline int shard(const std::uint8_t* data, std::size_t size) {

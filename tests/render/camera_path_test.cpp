@@ -1,4 +1,4 @@
-// The camera paths of `foveal bench --flicker` (tools/foveal/camera_path.cpp) without
+// The camera paths of `foveal bench --flicker` (tools/bench/src/camera_path.cpp) without
 // rendering: specs and their refusals, the back-and-forth wave, the orbit keeping its
 // pivot ahead at a constant distance, the dolly along the line of sight, the defaults
 // from a scene's bounds.
@@ -9,10 +9,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "camera_path.hpp"
+#include "foveal/bench/camera_path.hpp"
 
 using namespace foveal;
-using namespace foveal::cmd;
+using namespace foveal::bench;
 
 namespace {
 

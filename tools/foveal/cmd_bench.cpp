@@ -1,30 +1,13 @@
-// foveal bench: every method at every level against the full reference, on one or more
-// scenes: per-pass times, shaded samples, PSNR/SSIM/FPSNR; optional experiments (RMFR f
-// grid with the automatic f, rotated patterns); CSV + JSON + charts (docs/bench.md).
-#include <sys/resource.h>
-
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <filesystem>
+// foveal bench and bench merge: their command lines into the bench's options (tools/bench,
+// docs/bench.md); the sweep, its experiments, outputs and merge run there.
 #include <memory>
-#include <optional>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
-#include "bench_flicker.hpp"
-#include "bench_outputs.hpp"
-#include "bench_sweep.hpp"
-#include "bench_gaze.hpp"
 #include "commands.hpp"
-#include "foveal/core/atomic_file.hpp"
-#include "foveal/image/auto_f.hpp"
-#include "foveal/image/metrics.hpp"
-#include "foveal/render/egl_context.hpp"
-#include "foveal/render/scene.hpp"
-#include "foveal/tools/args.hpp"
+#include "foveal/bench/bench_merge.hpp"
+#include "foveal/bench/bench_run.hpp"
 #include "foveal/tools/cli.hpp"
 #include "render_args.hpp"
 
@@ -32,337 +15,30 @@ namespace foveal::cmd {
 
 namespace {
 
-using render::Method;
-
 struct Args {
-  std::vector<std::string> scenes;
-  std::string methods = render::method_names_joined(",");
-  std::string pipeline = render::kDefaultPipelineName;
-  render::Pipeline pipeline_kind = render::Pipeline::visibility;  ///< parsed from `pipeline`
-  std::string sigmas = "1.4:2.8:0.2";
-  std::string fovea = "0.5,0.5";
-  std::string size = "2880x1600";
-  std::string out;
-  int frames = 3, warmup = 1;
-  double fx = 0.3, fy = 0.3;
-  bool auto_f = false;
-  bool f_grid = false, rotation = false, stability = false, flicker = false, no_png = false, json = false;
-  std::string flicker_log;  ///< empty: the bundled recording
-  int flicker_frames = 48;
-  std::string camera_paths = "static", flicker_gaze = "raw,filtered", flicker_pipelines;  ///< bench_flicker.hpp
-  std::string flicker_reference = "shared";
-  std::optional<double> camera_pivot, flicker_sigma_nd;
-  bool camera_fill = false;
-  double grid_sigma = 2.0;
-  std::string grid_values = "0.1:0.5:0.05";
-  std::string shard;  ///< K/N; empty: the whole sweep
-  GazeBenchOptions gaze;  ///< --gaze runs (bench_gaze.cpp)
+  bench::BenchOptions options;
+  std::string pipeline = render::kDefaultPipelineName;  ///< parsed into options.pipeline
 };
 
-constexpr auto num = bench::csv_number;
-
-Result<std::vector<double>> parse_range(const std::string& s, const std::string& what) {
-  std::vector<double> out;
-  if (s.find(':') != std::string::npos) {
-    double a = 0, b = 0, step = 0;
-    char c1 = 0, c2 = 0;
-    std::istringstream in(s);
-    if (!(in >> a >> c1 >> b >> c2 >> step) || c1 != ':' || c2 != ':' || !(step > 0) || b < a || !std::isfinite(a) || !std::isfinite(b))
-      return bad_input(what + ": expected FROM:TO:STEP or a comma list, got '" + s + "'");
-    for (int i = 0; a + i * step <= b + 1e-9 && i < 1000; ++i) out.push_back(std::round((a + i * step) * 1e6) / 1e6);
-  } else {
-    std::istringstream in(s);
-    std::string item;
-    while (std::getline(in, item, ',')) {
-      char* end = nullptr;
-      const double v = std::strtod(item.c_str(), &end);
-      if (item.empty() || *end || !std::isfinite(v)) return bad_input(what + ": '" + item + "' is not a number");
-      out.push_back(v);
-    }
-  }
-  if (out.empty()) return bad_input(what + ": no values");
-  return out;
-}
-
-struct Measured {
-  render::PassTimes median;  ///< its shaded_samples: the samples every frame shades
-  image::Image image;
-};
-
-class Bench {
- public:
-  Bench(const Args& a, render::Compositor& c, cli::Progress& p) : a_(a), comp_(c), progress_(p) {}
-
-  void tick() { progress_.update(++done_); }
-
-  Result<Measured> measure(const render::Scene& s, const render::FrameParams& f, int frames) {
-    std::vector<render::PassTimes> t;
-    for (int i = 0; i < a_.warmup + frames; ++i) {
-      render::FrameParams p = f;
-      p.pipeline = a_.pipeline_kind;
-      auto r = comp_.render(s, p);
-      if (!r) return r.error();
-      if (i >= a_.warmup) t.push_back(*r);
-    }
-    progress_.update(++done_);
-    Measured m;
-    m.median = render::median_pass_times(t);
-    m.image = comp_.read_image();
-    return m;
-  }
-
- private:
-  const Args& a_;
-  render::Compositor& comp_;
-  cli::Progress& progress_;
-  std::uint64_t done_ = 0;
-};
-
-render::FrameParams uniform_frame(Method m, double sigma, double fx, double fy, std::pair<double, double> fovea) {
-  render::FrameParams p = render::efr_frame(m, Eye::right, sigma, sigma, fx, fy);
-  for (auto& e : p.eyes) e.fovea_x = fovea.first, e.fovea_y = fovea.second;
-  return p;
-}
-
-image::MetricsOptions metric_options(const render::Compositor& c, std::pair<double, double> fovea) {
-  image::MetricsOptions o;
-  o.ppd = c.plan(Eye::left).pixels_per_degree();
-  o.fovea = {fovea.first, fovea.second};
-  o.fovea_right = o.fovea;
-  return o;
-}
-
-// `sweep`: the options that define the grid, which every shard of one sweep shares.
-int run(const Args& a, const std::string& sweep) {
-  auto fail = [](const Error& e) { return cli::report(e); };
-  if (a.out.empty()) return fail(bad_input("--out is required"));
-  std::vector<Method> methods;
-  {
-    std::istringstream in(a.methods);
-    std::string m;
-    while (std::getline(in, m, ',')) {
-      auto parsed = render::parse_method(m);
-      if (!parsed) return fail(parsed.error());
-      if (*parsed != Method::full) methods.push_back(*parsed);
-    }
-  }
-  auto sigmas = parse_range(a.sigmas, "--sigmas");
-  if (!sigmas) return fail(sigmas.error());
-  for (double s : *sigmas)
-    if (s < 1) return fail(bad_input("--sigmas: every level must be >= 1"));
-  auto fovea = cli::parse_point(a.fovea, "--fovea");
-  if (!fovea) return fail(fovea.error());
-  if (fovea->first < 0 || fovea->first > 1 || fovea->second < 0 || fovea->second > 1)
-    return fail(bad_input("--fovea: X and Y must lie in [0,1]"));
-  auto size = cli::parse_size(a.size, "--size");
-  if (!size) return fail(size.error());
-  if (size->first % 2) return fail(bad_input("--size: the width must be even"));
-  if (a.frames < 1) return fail(bad_input("--frames must be >= 1"));
-  auto grid = parse_range(a.grid_values, "--grid-values");
-  if (!grid) return fail(grid.error());
-  auto shard = bench::parse_shard(a.shard.empty() ? "1/1" : a.shard);
-  if (!shard) return fail(shard.error());
-  // Charts come after the sweep and a failed chart step writes nothing: find a missing
-  // matplotlib before the work, not after it.
-  if (!a.no_png && a.shard.empty())
-    if (Status s = bench::check_charts_can_run(); !s) return fail(s.error());
-  const std::vector<std::string> scenes = a.scenes.empty() ? std::vector<std::string>{default_scene()} : a.scenes;
-  FlickerOptions fo;
-  if (a.flicker) {
-    auto cameras = parse_camera_paths(a.camera_paths);
-    if (!cameras) return fail(cameras.error());
-    auto gazes = parse_flicker_gazes(a.flicker_gaze);
-    if (!gazes) return fail(gazes.error());
-    auto pipelines = parse_flicker_pipelines(a.flicker_pipelines, a.pipeline_kind);
-    if (!pipelines) return fail(pipelines.error());
-    if (a.flicker_sigma_nd && !(*a.flicker_sigma_nd >= 1 && std::isfinite(*a.flicker_sigma_nd)))
-      return fail(bad_input("--flicker-sigma-nd: the level must be a number >= 1, got " + num(*a.flicker_sigma_nd)));
-    if (a.camera_pivot && !(*a.camera_pivot > 0 && std::isfinite(*a.camera_pivot)))
-      return fail(bad_input("--camera-pivot: expected a distance in metres > 0, got " + num(*a.camera_pivot)));
-    fo = {.log = a.flicker_log, .frames = a.flicker_frames, .sigma = a.grid_sigma, .fx = a.fx, .fy = a.fy, .sigma_nd = a.flicker_sigma_nd.value_or(0),
-          .fovea = *fovea, .cameras = *cameras, .pivot_m = a.camera_pivot.value_or(0), .fill = a.camera_fill, .gazes = *gazes, .pipelines = *pipelines,
-          .own_reference = a.flicker_reference == "own"};
-  }
-  if (!a.gaze.logs.empty()) {
-    if (a.f_grid || a.rotation || a.stability || a.flicker)
-      return fail(bad_input("--gaze runs on its own: drop --f-grid, --rotation, --stability and --flicker"));
-    return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json, a.shard, sweep});
-  }
-
-  std::error_code ec;
-  std::filesystem::create_directories(a.out, ec);
-  if (ec) return fail(io_error(a.out + ": cannot create directory: " + ec.message()));
-  auto ctx = gl::EglContext::create();
-  if (!ctx) return fail(ctx.error());
-  render::CompositorOptions co;
-  co.width = size->first;
-  co.height = size->second;
-  auto comp = render::Compositor::create(co);
-  if (!comp) return fail(comp.error());
-
-  const std::uint64_t per_scene = 1 + methods.size() * sigmas->size() + (a.f_grid ? grid->size() * grid->size() + 1 : 0);
-  const std::uint64_t total = per_scene * scenes.size() + (a.rotation ? 19 * (1 + methods.size()) : 0) +
-                              (a.stability ? 1 + 22 * methods.size() : 0) + (a.flicker ? flicker_points(fo, methods.size()) * scenes.size() : 0);
-  cli::Progress progress("bench", total / static_cast<std::uint64_t>(shard->n), !a.json);
-  Bench bench(a, *comp, progress);
-
-  // Each point of the grid (scene × method × level, f-grid point, angle × method, ...)
-  // starts with rows.take(): a shard runs its points only, and renders a reference
-  // only where it runs a point that needs it.
-  bench::SweepRows rows(*shard);
-  rows.table("bench.csv", "scene,method,sigma,shaded_samples,cost,gpu_ms,cpu_ms,shadow_ms,gbuffer_ms,mapping_ms,lighting_ms,inverse_ms,psnr_db,ssim,fpsnr_db");
-  if (a.f_grid) rows.table("fgrid.csv", "scene,sigma,fx,fy,fpsnr_db,psnr_db,ssim");
-  if (a.rotation) rows.table("rotation.csv", "angle_deg,method,sigma,fpsnr_db,psnr_db,ssim");
-  if (a.stability) rows.table("stability.csv", "scene,path,t,fovea_x,fovea_y,method,sigma,patch_psnr_db,fpsnr_db");
-  if (a.flicker) rows.table("flicker.csv", kFlickerColumns);
-  const double full_samples = static_cast<double>(co.width) * co.height;
-  for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index) {
-    const std::string& spec = scenes[scene_index];
-    const std::string name = std::filesystem::path(spec).stem().string();
-    std::optional<render::Scene> scene;
-    std::optional<Measured> full;
-    image::MetricsOptions mo;  // the eye's pixels per degree are known once a frame is rendered
-    auto reference = [&]() -> Status {
-      if (full) return {};
-      auto s = render::load_scene(spec);
-      if (!s) return s.error();
-      for (const std::string& w : s->warnings) cli::warn(w);
-      scene = std::move(*s);
-      auto f = bench.measure(*scene, uniform_frame(Method::full, 1, a.fx, a.fy, *fovea), a.frames);
-      if (!f) return f.error();
-      full = std::move(*f);
-      mo = metric_options(*comp, *fovea);
-      return {};
-    };
-    auto add_row = [&](Method m, double sigma, const Measured& r) -> Status {
-      auto q = image::compute_stereo_metrics(full->image, r.image, mo);
-      if (!q) return q.error();
-      const auto& c = q->combined;
-      const render::PassTimes& t = r.median;
-      rows.add_line("bench.csv", name + "," + render::method_name(m) + "," + num(sigma) + "," + std::to_string(r.median.shaded_samples) + "," +
-                                     num(static_cast<double>(r.median.shaded_samples) / full_samples) + "," + num(t.gpu_total) + "," +
-                                     num(t.cpu) + "," + num(t.shadow) + "," + num(t.gbuffer) + "," + num(t.mapping) + "," +
-                                     num(t.lighting) + "," + num(t.inverse) + "," + num(c.psnr_db) + "," + num(c.ssim) + "," + num(c.fpsnr_db));
-      rows.add_item("rows", {{"scene", name}, {"method", render::method_name(m)}, {"sigma", sigma}, {"shaded_samples", r.median.shaded_samples},
-                             {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu},
-                             {"passes_ms", {{"shadow", t.shadow}, {"gbuffer", t.gbuffer}, {"mapping", t.mapping},
-                                            {"lighting", t.lighting}, {"inverse", t.inverse}}},
-                             {"psnr_db", bench::json_number(c.psnr_db)}, {"ssim", c.ssim}, {"fpsnr_db", bench::json_number(c.fpsnr_db)}});
-      return {};
-    };
-    if (rows.take()) {
-      if (Status s = reference(); !s) return fail(s.error());
-      if (Status s = add_row(Method::full, 1.0, *full); !s) return fail(s.error());
-    }
-    for (Method m : methods)
-      for (double sigma : *sigmas) {
-        if (!rows.take()) continue;
-        if (Status s = reference(); !s) return fail(s.error());
-        auto r = bench.measure(*scene, uniform_frame(m, sigma, a.fx, a.fy, *fovea), a.frames);
-        if (!r) return fail(r.error());
-        if (Status s = add_row(m, sigma, *r); !s) return fail(s.error());
-      }
-    if (a.f_grid) {
-      // The seed's Figure 6: RMFR's FPSNR over f_x × f_y at one level, and where the
-      // automatic estimate lands (against the grid's best: bench_outputs.cpp).
-      for (double fx : *grid)
-        for (double fy : *grid) {
-          if (!rows.take()) continue;
-          if (Status s = reference(); !s) return fail(s.error());
-          auto r = bench.measure(*scene, uniform_frame(Method::rmfr, a.grid_sigma, fx, fy, *fovea), 1);
-          if (!r) return fail(r.error());
-          // The grid search pays a render and a metric per point.
-          const auto t0 = std::chrono::steady_clock::now();
-          auto q = image::compute_stereo_metrics(full->image, r->image, mo);
-          if (!q) return fail(q.error());
-          const double ms = r->median.cpu + std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-          rows.add_line("fgrid.csv", name + "," + num(a.grid_sigma) + "," + num(fx) + "," + num(fy) + "," + num(q->combined.fpsnr_db) +
-                                         "," + num(q->combined.psnr_db) + "," + num(q->combined.ssim));
-          rows.add_item("fgrid_points", {{"scene_index", scene_index}, {"fx", fx}, {"fy", fy}, {"fpsnr_db", bench::json_number(q->combined.fpsnr_db)}, {"ms", ms}});
-        }
-      if (rows.take()) {
-        if (Status s = reference(); !s) return fail(s.error());
-        auto est = image::estimate_rmfr_f(full->image, a.grid_sigma, mo);
-        if (!est) return fail(est.error());
-        auto r = bench.measure(*scene, uniform_frame(Method::rmfr, a.grid_sigma, est->fx, est->fy, *fovea), 1);
-        if (!r) return fail(r.error());
-        auto q = image::compute_stereo_metrics(full->image, r->image, mo);
-        if (!q) return fail(q.error());
-        rows.add_item("auto_f", {{"scene_index", scene_index}, {"scene", name}, {"sigma", a.grid_sigma}, {"auto_fx", est->fx},
-                                 {"auto_fy", est->fy}, {"auto_fpsnr_db", bench::json_number(q->combined.fpsnr_db)}, {"auto_ms", est->ms},
-                                 {"auto_evaluations", est->evaluations}});
-      }
-    }
-  }
-
-  if (a.rotation) {
-    // The seed's Figure 12: vertical stripes rotated 0-180°, one level for every method.
-    const double sigma = a.grid_sigma;
-    for (int angle = 0; angle <= 180; angle += 10) {
-      std::optional<render::Scene> scene;
-      std::optional<Measured> full;
-      for (Method m : methods) {
-        if (!rows.take()) continue;
-        if (!full) {
-          auto s = render::load_scene("pattern:stripes-v@" + std::to_string(angle));
-          if (!s) return fail(s.error());
-          scene = std::move(*s);
-          auto f = bench.measure(*scene, uniform_frame(Method::full, 1, a.fx, a.fy, *fovea), 1);
-          if (!f) return fail(f.error());
-          full = std::move(*f);
-        }
-        auto r = bench.measure(*scene, uniform_frame(m, sigma, a.fx, a.fy, *fovea), 1);
-        if (!r) return fail(r.error());
-        auto q = image::compute_stereo_metrics(full->image, r->image, metric_options(*comp, *fovea));
-        if (!q) return fail(q.error());
-        rows.add_line("rotation.csv", std::to_string(angle) + "," + render::method_name(m) + "," + num(sigma) + "," +
-                                          num(q->combined.fpsnr_db) + "," + num(q->combined.psnr_db) + "," + num(q->combined.ssim));
-      }
-    }
-  }
-  if (a.stability) {
-    // Where methods break: the fovea walks from the centre to a corner and from the
-    // centre to the bottom border; the 64-pixel patch around it and the whole frame.
-    auto scene = render::load_scene("pattern:checker");
-    if (!scene) return fail(scene.error());
-    std::optional<Measured> full;
-    const int eye_w = co.width / 2, eye_h = co.height;
-    for (const char* path : {"diagonal", "vertical"})
-      for (int i = 0; i <= 10; ++i) {
-        const double t = i / 10.0;
-        const std::pair<double, double> fv = std::string(path) == "diagonal" ? std::make_pair(0.5 - 0.5 * t, 0.5 - 0.5 * t)
-                                                                             : std::make_pair(0.5, 0.5 + 0.5 * t);
-        const int cx = static_cast<int>(fv.first * eye_w), cy = static_cast<int>(fv.second * eye_h);
-        const image::Rect patch{std::clamp(cx - 32, 0, eye_w - 64), std::clamp(cy - 32, 0, eye_h - 64), 64, 64};
-        for (Method m : methods) {
-          if (!rows.take()) continue;
-          if (!full) {
-            auto f = bench.measure(*scene, uniform_frame(Method::full, 1, a.fx, a.fy, {0.5, 0.5}), 1);
-            if (!f) return fail(f.error());
-            full = std::move(*f);
-          }
-          auto r = bench.measure(*scene, uniform_frame(m, a.grid_sigma, a.fx, a.fy, fv), 1);
-          if (!r) return fail(r.error());
-          auto q = image::compute_stereo_metrics(full->image, r->image, metric_options(*comp, fv));
-          if (!q) return fail(q.error());
-          rows.add_line("stability.csv", std::string("pattern:checker,") + path + "," + num(t) + "," + num(fv.first) + "," + num(fv.second) +
-                                             "," + render::method_name(m) + "," + num(a.grid_sigma) + "," +
-                                             num(image::psnr(full->image, r->image, patch)) + "," + num(q->combined.fpsnr_db));
-        }
-      }
-  }
-  if (a.flicker)
-    for (const std::string& spec : scenes)
-      if (Status s = run_flicker(fo, *comp, methods, spec, rows, [&] { bench.tick(); }); !s) return fail(s.error());
-  progress.finish();
-
-  rusage ru{};
-  ::getrusage(RUSAGE_SELF, &ru);
-  const nlohmann::json summary = {{"renderer", comp->renderer()}, {"size", {co.width, co.height}}, {"frames", a.frames},
-                                  {"fovea", {fovea->first, fovea->second}}, {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
-  // --shard given (1/1 too): a part for `bench merge`.
-  if (!a.shard.empty()) return bench::write_shard(a.out, rows, summary, sweep, "bench", a.json);
-  return bench::write_outputs(a.out, rows, summary, "bench", !a.no_png, a.json);
+// --gaze and the options only a gaze-driven run has (bench_gaze.hpp).
+void add_gaze_options(CLI::App& sub, bench::GazeBenchOptions& g) {
+  CLI::Option* gaze = sub.add_option("--gaze", g.logs, "Gaze-driven evaluation on these native gaze logs (repeatable; docs/bench.md): "
+                                   "gaze.csv, gaze_frames.csv, gaze.json, gaze.png");
+  sub.add_option("--head", g.head, "Recorded (the log's head pose moves the camera) or static; default: recorded when the log has one")
+      ->check(CLI::IsMember({"recorded", "static"}))->needs(gaze);
+  sub.add_option("--display", g.display, "Display-model file or name under data/display (default: htc_vive_pro_eye); "
+                                         "the size follows it unless --size is given")->needs(gaze);
+  sub.add_option("--gaze-fps", g.fps, "Frame rate of the rendered stream (Hz)")->capture_default_str()->needs(gaze);
+  sub.add_option("--latency-ms", g.latency_ms, "Frame start to display (ms); default one frame period")->needs(gaze);
+  sub.add_option("--gaze-start", g.start_s, "First frame this many seconds into the log")->capture_default_str()->needs(gaze);
+  sub.add_option("--gaze-frames", g.frames, "Frames scored per log, spread evenly over it")->capture_default_str()->needs(gaze);
+  sub.add_option("--efr-ratio", g.efr_ratio, "Non-dominant (left) eye's level over the dominant's")
+      ->capture_default_str()->check(CLI::Range(1.0, 4.0))->needs(gaze);
+  sub.add_option("--patch-deg", g.patch_deg, "Side of the fovea patch around the true gaze (degrees)")
+      ->capture_default_str()->check(CLI::Range(0.1, 60.0))->needs(gaze);
+  sub.add_option("--patch-margin-db", g.patch_margin_db,
+                 "A frame's fovea patch is in error when its PSNR is this far below perfect tracking's (dB)")
+      ->capture_default_str()->check(CLI::Range(0.0, 100.0))->needs(gaze);
 }
 
 /// The options that define a sweep's grid, as CLI11 writes them (one `name=value` line
@@ -384,61 +60,76 @@ std::string sweep_options(const CLI::App& sub) {
 
 void add_bench(CLI::App& app, int& exit_code) {
   auto a = std::make_shared<Args>();
+  bench::BenchOptions& o = a->options;
   CLI::App* sub = app.add_subcommand("bench", "Every method at every level against full: time, shaded samples, PSNR/SSIM/FPSNR, charts");
-  sub->add_option("--scene", a->scenes, "Scenes (repeatable): glTF files or pattern:NAME; default: the bundled Dungeon");
-  sub->add_option("--methods", a->methods, "Comma list of methods (" + render::method_names_joined(", ") + ")")->capture_default_str();
+  sub->add_option("--scene", o.scenes, "Scenes (repeatable): glTF files or pattern:NAME; default: the bundled Dungeon");
+  sub->add_option("--methods", o.methods, "Comma list of methods (" + render::method_names_joined(", ") + ")")->capture_default_str();
   sub->add_option("--pipeline", a->pipeline, "gbuffer or visibility, for every frame including the full reference (docs/rmfr.md)")
       ->check(CLI::IsMember(render::pipeline_names()))
       ->capture_default_str();
-  sub->add_option("--sigmas", a->sigmas, "Levels: FROM:TO:STEP or a comma list")->capture_default_str();
-  sub->add_option("--fovea", a->fovea, "Fovea X,Y of both eyes in [0,1]")->capture_default_str();
-  sub->add_option("--size", a->size, "Side-by-side output WxH")->capture_default_str();
-  sub->add_option("--frames", a->frames, "Timed frames per point (median)")->capture_default_str();
-  sub->add_option("--warmup", a->warmup, "Untimed frames first")->capture_default_str()->check(CLI::Range(0, 100));
-  sub->add_option("--fx", a->fx, "RMFR f_x")->capture_default_str();
-  sub->add_option("--fy", a->fy, "RMFR f_y")->capture_default_str();
-  sub->add_flag("--f-grid", a->f_grid, "Also: RMFR FPSNR over an f_x × f_y grid and the automatic f against it");
-  sub->add_option("--grid-values", a->grid_values, "f values of the grid")->capture_default_str();
-  sub->add_option("--grid-sigma", a->grid_sigma, "Level of the grid and rotation experiments")->capture_default_str();
-  sub->add_flag("--rotation", a->rotation, "Also: rotated stripes 0-180 degrees, FPSNR per method");
-  CLI::Option* flicker = sub->add_flag("--flicker", a->flicker,
+  sub->add_option("--sigmas", o.sigmas, "Levels: FROM:TO:STEP or a comma list")->capture_default_str();
+  sub->add_option("--fovea", o.fovea, "Fovea X,Y of both eyes in [0,1]")->capture_default_str();
+  sub->add_option("--size", o.size, "Side-by-side output WxH")->capture_default_str();
+  sub->add_option("--frames", o.frames, "Timed frames per point (median)")->capture_default_str();
+  sub->add_option("--warmup", o.warmup, "Untimed frames first")->capture_default_str()->check(CLI::Range(0, 100));
+  sub->add_option("--fx", o.fx, "RMFR f_x")->capture_default_str();
+  sub->add_option("--fy", o.fy, "RMFR f_y")->capture_default_str();
+  sub->add_flag("--f-grid", o.f_grid, "Also: RMFR FPSNR over an f_x × f_y grid and the automatic f against it");
+  sub->add_option("--grid-values", o.grid_values, "f values of the grid")->capture_default_str();
+  sub->add_option("--grid-sigma", o.grid_sigma, "Level of the grid and rotation experiments")->capture_default_str();
+  sub->add_flag("--rotation", o.rotation, "Also: rotated stripes 0-180 degrees, FPSNR per method");
+  CLI::Option* flicker = sub->add_flag("--flicker", o.flicker,
                 "Also, on every scene: periphery flicker against the full reference, the fovea on real gaze (raw, filtered) or fixed, "
                 "the camera still or moving, per method and pipeline (docs/stability.md)");
-  for (CLI::Option* o : {
-      sub->add_option("--flicker-log", a->flicker_log, "Gaze log for --flicker (default: the bundled recording)"),
-      sub->add_option("--flicker-frames", a->flicker_frames, "Frames per flicker run (one per gaze sample)")->capture_default_str()->check(CLI::Range(2, 10000)),
-      sub->add_option("--flicker-sigma-nd", a->flicker_sigma_nd,
+  for (CLI::Option* opt : {
+      sub->add_option("--flicker-log", o.flicker_log, "Gaze log for --flicker (default: the bundled recording)"),
+      sub->add_option("--flicker-frames", o.flicker_frames, "Frames per flicker run (one per gaze sample)")->capture_default_str()->check(CLI::Range(2, 10000)),
+      sub->add_option("--flicker-sigma-nd", o.flicker_sigma_nd,
                       "EFR for --flicker: the left (non-dominant) eye's level; the right eye's is --grid-sigma (default: the same)"),
-      sub->add_option("--flicker-gaze", a->flicker_gaze, "Comma list: raw, filtered (the gaze filter's), fixed (at --fovea)")->capture_default_str(),
-      sub->add_option("--flicker-pipelines", a->flicker_pipelines, "Comma list of pipelines for --flicker (default: --pipeline)"),
-      sub->add_option("--flicker-reference", a->flicker_reference,
+      sub->add_option("--flicker-gaze", o.flicker_gaze, "Comma list: raw, filtered (the gaze filter's), fixed (at --fovea)")->capture_default_str(),
+      sub->add_option("--flicker-pipelines", o.flicker_pipelines, "Comma list of pipelines for --flicker (default: --pipeline)"),
+      sub->add_option("--flicker-reference", o.flicker_reference,
                       "shared: every pipeline against full through gbuffer; own: each against full through itself (what foveation adds)")
           ->check(CLI::IsMember({"shared", "own"}))
           ->capture_default_str(),
-      sub->add_option("--camera-path", a->camera_paths,
+      sub->add_option("--camera-path", o.camera_paths,
                       "Comma list: static, orbit[:DEG_PER_S] (about a pivot ahead, +-20 deg, default 30 deg/s), dolly[:M_PER_S] (towards the "
                       "pivot and back, half its distance, default a quarter of it per second), recorded (the log's head pose)")
           ->capture_default_str(),
-      sub->add_option("--camera-pivot", a->camera_pivot, "Pivot distance ahead of the head, metres (default: from the scene's bounds)"),
-      sub->add_flag("--camera-fill", a->camera_fill, "Start the camera where the scene's bounding sphere fills the view (object scenes)")})
-    o->needs(flicker);
-  sub->add_flag("--stability", a->stability, "Also: fovea from the centre to a corner and to a border, patch PSNR and FPSNR per method");
-  add_gaze_bench_options(*sub, a->gaze);
-  sub->add_option("--shard", a->shard, "Run only the K-th of N disjoint parts of the sweep (K/N); merge with `bench merge`");
-  sub->add_option("--out,-o", a->out, "Output directory (required)");
-  sub->add_flag("--no-png", a->no_png, "CSV and JSON only");
-  sub->add_flag("--json", a->json, "Print the results as JSON");
+      sub->add_option("--camera-pivot", o.camera_pivot, "Pivot distance ahead of the head, metres (default: from the scene's bounds)"),
+      sub->add_flag("--camera-fill", o.camera_fill, "Start the camera where the scene's bounding sphere fills the view (object scenes)")})
+    opt->needs(flicker);
+  sub->add_flag("--stability", o.stability, "Also: fovea from the centre to a corner and to a border, patch PSNR and FPSNR per method");
+  const CLI::Option* size = sub->get_option("--size");
+  add_gaze_options(*sub, o.gaze);
+  sub->add_option("--shard", o.shard, "Run only the K-th of N disjoint parts of the sweep (K/N); merge with `bench merge`");
+  sub->add_option("--out,-o", o.out, "Output directory (required)");
+  sub->add_flag("--no-png", o.no_png, "CSV and JSON only");
+  sub->add_flag("--json", o.json, "Print the results as JSON");
   add_bench_merge(*sub, exit_code);
-  sub->callback([a, sub, &exit_code] {
+  sub->callback([a, sub, size, &exit_code] {
     if (sub->got_subcommand("merge")) return;
     auto pipeline = render::parse_pipeline(a->pipeline);
     if (!pipeline) {
       exit_code = cli::report(pipeline.error());
       return;
     }
-    a->pipeline_kind = *pipeline;
-    exit_code = run(*a, sweep_options(*sub));
+    bench::BenchOptions o = a->options;
+    o.pipeline = *pipeline;
+    if (o.scenes.empty()) o.scenes = {default_scene()};
+    o.gaze.size_given = size->count() > 0;
+    exit_code = bench::run_bench(o, sweep_options(*sub));
   });
+}
+
+void add_bench_merge(CLI::App& bench_app, int& exit_code) {
+  auto a = std::make_shared<bench::MergeOptions>();
+  CLI::App* sub = bench_app.add_subcommand("merge", "Join the shards of a sweep (bench --shard K/N) into one run's bench.csv/json and charts");
+  sub->add_option("--out,-o", a->out, "Output directory")->required();
+  sub->add_option("shards", a->shards, "The shards' output directories, all N of them, in any order")->required();
+  sub->add_flag("--no-png", a->no_png, "CSV and JSON only");
+  sub->add_flag("--json", a->json, "Print the merged results as JSON");
+  sub->callback([a, &exit_code] { exit_code = bench::run_merge(*a); });
 }
 
 }  // namespace foveal::cmd

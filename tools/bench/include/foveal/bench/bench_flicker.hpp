@@ -10,12 +10,12 @@
 #include <utility>
 #include <vector>
 
-#include "bench_sweep.hpp"
-#include "camera_path.hpp"
+#include "foveal/bench/bench_sweep.hpp"
+#include "foveal/bench/camera_path.hpp"
 #include "foveal/core/error.hpp"
 #include "foveal/render/compositor.hpp"
 
-namespace foveal::cmd {
+namespace foveal::bench {
 
 /// Where the fovea is in a flicker run: each sample's raw gaze, the gaze filter's output,
 /// or fixed at --fovea.
@@ -56,4 +56,4 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
 /// flicker.csv's header.
 extern const char* const kFlickerColumns;
 
-}  // namespace foveal::cmd
+}  // namespace foveal::bench

@@ -1,4 +1,4 @@
-#include "bench_outputs.hpp"
+#include "foveal/bench/bench_outputs.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "bench_shard_file.hpp"
+#include "foveal/bench/bench_shard_file.hpp"
 
 #include <sys/stat.h>
 
@@ -12,7 +12,7 @@ namespace foveal::bench {
 namespace {
 
 const std::vector<Kind>& kinds() {
-  // The tables cmd_bench.cpp, bench_flicker.cpp and bench_gaze.cpp declare.
+  // The tables bench_run.cpp, bench_flicker.cpp and bench_gaze.cpp declare.
   static const std::vector<Kind> k = {
       {"bench", "bench.json", "tools/charts/bench_charts.py", {"bench.csv", "fgrid.csv", "rotation.csv", "stability.csv", "flicker.csv"}},
       {"gaze", "gaze.json", "tools/charts/gaze_charts.py", {"gaze.csv", "gaze_frames.csv"}},

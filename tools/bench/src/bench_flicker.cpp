@@ -1,4 +1,4 @@
-#include "bench_flicker.hpp"
+#include "foveal/bench/bench_flicker.hpp"
 
 #include <algorithm>
 #include <array>
@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "foveal/bench/bench_outputs.hpp"
 #include "foveal/core/data_paths.hpp"
 #include "foveal/core/display_model.hpp"
 #include "foveal/core/gaze_log.hpp"
@@ -20,9 +21,8 @@
 #include "foveal/render/scene.hpp"
 #include "foveal/render/stereo_camera.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
-#include "bench_outputs.hpp"
 
-namespace foveal::cmd {
+namespace foveal::bench {
 
 using render::Method;
 using render::Pipeline;
@@ -365,4 +365,4 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
   return {};
 }
 
-}  // namespace foveal::cmd
+}  // namespace foveal::bench

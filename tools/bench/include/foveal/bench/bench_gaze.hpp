@@ -6,11 +6,9 @@
 #include <utility>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "foveal/image/foveation_plan.hpp"
 
-namespace foveal::cmd {
+namespace foveal::bench {
 
 /// The options only a --gaze run has.
 struct GazeBenchOptions {
@@ -21,7 +19,7 @@ struct GazeBenchOptions {
   int frames = 24;
   double efr_ratio = 1.5;         ///< σ_nd / σ_d (dominant right eye)
   double patch_deg = 5.0, patch_margin_db = 3.0;
-  const CLI::Option* size_option = nullptr;  ///< the bench's --size: given or not
+  bool size_given = false;        ///< --size given: it replaces the model's pixels (its field of view stays)
 };
 
 /// What the bench's common options say.
@@ -38,9 +36,7 @@ struct GazeBenchSweep {
   std::string sweep;  ///< the options that define the sweep, for the shard file
 };
 
-/// Adds --gaze and its options to `foveal bench` (call after --size is added).
-void add_gaze_bench_options(CLI::App& bench, GazeBenchOptions& g);
 /// Runs the gaze-driven evaluation; returns the exit code.
 int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s);
 
-}  // namespace foveal::cmd
+}  // namespace foveal::bench

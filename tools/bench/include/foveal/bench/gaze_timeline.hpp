@@ -15,7 +15,7 @@
 #include "foveal/core/pose_source.hpp"
 #include "foveal/runtime/filter_config.hpp"
 
-namespace foveal::cmd {
+namespace foveal::bench {
 
 struct GazeTimelineOptions {
   double fps = 90;          ///< frame rate of the stream
@@ -49,4 +49,4 @@ struct GazeTimeline {
 Result<GazeTimeline> build_gaze_timeline(const std::vector<GazeSample>& samples, const DisplayModel& model,
                                          const FilterConfig& filter, const GazeTimelineOptions& o);
 
-}  // namespace foveal::cmd
+}  // namespace foveal::bench

@@ -1,4 +1,4 @@
-#include "camera_path.hpp"
+#include "foveal/bench/camera_path.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/geometric.hpp>
 
-namespace foveal::cmd {
+namespace foveal::bench {
 
 std::string CameraPath::text() const {
   std::ostringstream s;
@@ -92,4 +92,4 @@ Pose camera_pose(const CameraPath& path, double pivot_m, double t_s) {
   return p;
 }
 
-}  // namespace foveal::cmd
+}  // namespace foveal::bench

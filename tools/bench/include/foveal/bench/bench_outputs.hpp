@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench_shard_file.hpp"
-#include "bench_sweep.hpp"
+#include "foveal/bench/bench_shard_file.hpp"
+#include "foveal/bench/bench_sweep.hpp"
 #include "foveal/core/error.hpp"
 
 namespace foveal::bench {

@@ -1,4 +1,4 @@
-#include "bench_sweep.hpp"
+#include "foveal/bench/bench_sweep.hpp"
 
 #include <algorithm>
 #include <cassert>

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench_sweep.hpp"
+#include "foveal/bench/bench_sweep.hpp"
 #include "foveal/core/error.hpp"
 
 namespace foveal::bench {

@@ -14,7 +14,7 @@
 #include "foveal/core/error.hpp"
 #include "foveal/core/pose.hpp"
 
-namespace foveal::cmd {
+namespace foveal::bench {
 
 struct CameraPath {
   /// static: the scene's view; orbit: around the pivot, about the head's up axis, facing
@@ -75,4 +75,4 @@ Pose camera_pose(const CameraPath& path, double pivot_m, double t_s);
 /// falling to `lo`, and so on (lo <= 0 <= hi, hi > lo).
 double back_and_forth(double s, double lo, double hi);
 
-}  // namespace foveal::cmd
+}  // namespace foveal::bench

@@ -1,25 +1,14 @@
-// foveal bench merge --out DIR SHARD_DIR...: joins the shards of one sweep (each the
-// output of `foveal bench --shard K/N`) into the files a single run of the whole sweep
-// writes, from the same rows in the same order (docs/bench.md, "On a cluster").
+#include "foveal/bench/bench_merge.hpp"
+
 #include <algorithm>
-#include <memory>
 #include <sstream>
 
-#include <CLI/CLI.hpp>
-
-#include "bench_outputs.hpp"
-#include "commands.hpp"
+#include "foveal/bench/bench_outputs.hpp"
 #include "foveal/tools/cli.hpp"
 
-namespace foveal::cmd {
+namespace foveal::bench {
 
 namespace {
-
-struct MergeArgs {
-  std::string out;
-  std::vector<std::string> shards;
-  bool no_png = false, json = false;
-};
 
 // A value from a shard file, cut short: messages never print unbounded input.
 std::string shown(std::string s) {
@@ -41,7 +30,9 @@ std::string first_difference(const std::string& a, const std::string& b) {
   }
 }
 
-int merge(const MergeArgs& a) {
+}  // namespace
+
+int run_merge(const MergeOptions& a) {
   auto fail = [](const Error& e) { return cli::report(e); };
   std::vector<bench::ShardFile> files;
   for (const std::string& dir : a.shards) {
@@ -75,16 +66,4 @@ int merge(const MergeArgs& a) {
   return bench::write_outputs(a.out, *merged, summary, files.front().kind, !a.no_png, a.json);
 }
 
-}  // namespace
-
-void add_bench_merge(CLI::App& bench, int& exit_code) {
-  auto a = std::make_shared<MergeArgs>();
-  CLI::App* sub = bench.add_subcommand("merge", "Join the shards of a sweep (bench --shard K/N) into one run's bench.csv/json and charts");
-  sub->add_option("--out,-o", a->out, "Output directory")->required();
-  sub->add_option("shards", a->shards, "The shards' output directories, all N of them, in any order")->required();
-  sub->add_flag("--no-png", a->no_png, "CSV and JSON only");
-  sub->add_flag("--json", a->json, "Print the merged results as JSON");
-  sub->callback([a, &exit_code] { exit_code = merge(*a); });
-}
-
-}  // namespace foveal::cmd
+}  // namespace foveal::bench

@@ -1,4 +1,4 @@
-#include "bench_gaze.hpp"
+#include "foveal/bench/bench_gaze.hpp"
 
 #include <sys/resource.h>
 
@@ -11,6 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "foveal/bench/bench_outputs.hpp"
+#include "foveal/bench/bench_sweep.hpp"
+#include "foveal/bench/gaze_timeline.hpp"
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/data_paths.hpp"
 #include "foveal/core/gaze_log.hpp"
@@ -18,12 +21,9 @@
 #include "foveal/render/compositor.hpp"
 #include "foveal/render/egl_context.hpp"
 #include "foveal/render/scene.hpp"
-#include "bench_outputs.hpp"
-#include "bench_sweep.hpp"
 #include "foveal/tools/cli.hpp"
-#include "gaze_timeline.hpp"
 
-namespace foveal::cmd {
+namespace foveal::bench {
 
 namespace {
 
@@ -175,27 +175,6 @@ glm::dvec2 gl_point(glm::dvec2 p) { return {p.x, 1.0 - p.y}; }
 
 }  // namespace
 
-void add_gaze_bench_options(CLI::App& sub, GazeBenchOptions& g) {
-  g.size_option = sub.get_option_no_throw("--size");
-  CLI::Option* gaze = sub.add_option("--gaze", g.logs, "Gaze-driven evaluation on these native gaze logs (repeatable; docs/bench.md): "
-                                   "gaze.csv, gaze_frames.csv, gaze.json, gaze.png");
-  sub.add_option("--head", g.head, "Recorded (the log's head pose moves the camera) or static; default: recorded when the log has one")
-      ->check(CLI::IsMember({"recorded", "static"}))->needs(gaze);
-  sub.add_option("--display", g.display, "Display-model file or name under data/display (default: htc_vive_pro_eye); "
-                                         "the size follows it unless --size is given")->needs(gaze);
-  sub.add_option("--gaze-fps", g.fps, "Frame rate of the rendered stream (Hz)")->capture_default_str()->needs(gaze);
-  sub.add_option("--latency-ms", g.latency_ms, "Frame start to display (ms); default one frame period")->needs(gaze);
-  sub.add_option("--gaze-start", g.start_s, "First frame this many seconds into the log")->capture_default_str()->needs(gaze);
-  sub.add_option("--gaze-frames", g.frames, "Frames scored per log, spread evenly over it")->capture_default_str()->needs(gaze);
-  sub.add_option("--efr-ratio", g.efr_ratio, "Non-dominant (left) eye's level over the dominant's")
-      ->capture_default_str()->check(CLI::Range(1.0, 4.0))->needs(gaze);
-  sub.add_option("--patch-deg", g.patch_deg, "Side of the fovea patch around the true gaze (degrees)")
-      ->capture_default_str()->check(CLI::Range(0.1, 60.0))->needs(gaze);
-  sub.add_option("--patch-margin-db", g.patch_margin_db,
-                 "A frame's fovea patch is in error when its PSNR is this far below perfect tracking's (dB)")
-      ->capture_default_str()->check(CLI::Range(0.0, 100.0))->needs(gaze);
-}
-
 int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   auto fail = [](const Error& e) { return cli::report(e); };
   const auto started = std::chrono::steady_clock::now();
@@ -204,7 +183,7 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   auto model = load_model(g.display);
   if (!model) return fail(model.error());
   std::pair<int, int> size = s.size;
-  if (!g.size_option || g.size_option->count() == 0) size = {model->output_width(), model->output_height()};
+  if (!g.size_given) size = {model->output_width(), model->output_height()};
 
   GazeTimelineOptions to;
   to.fps = g.fps, to.latency_ms = g.latency_ms, to.start_s = g.start_s, to.frames = g.frames;
@@ -374,4 +353,4 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   return bench::write_outputs(s.out, rows, summary, "gaze", !s.no_png, s.json);
 }
 
-}  // namespace foveal::cmd
+}  // namespace foveal::bench

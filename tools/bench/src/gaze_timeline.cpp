@@ -1,4 +1,4 @@
-#include "gaze_timeline.hpp"
+#include "foveal/bench/gaze_timeline.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "foveal/core/pose_track.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
 
-namespace foveal::cmd {
+namespace foveal::bench {
 
 namespace {
 
@@ -85,4 +85,4 @@ Result<GazeTimeline> build_gaze_timeline(const std::vector<GazeSample>& samples,
   return tl;
 }
 
-}  // namespace foveal::cmd
+}  // namespace foveal::bench
