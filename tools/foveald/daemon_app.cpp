@@ -193,6 +193,12 @@ Status DaemonApp::setup_renderer() {
     ro.output.monitor = *c;
   }
   ro.distortion = o_.distortion;
+  ro.late_latch = o_.latch != "early";
+  const bool display = ro.output.kind != render::OutputOptions::Kind::headless;
+  auto pacing = parse_pacing(o_.pacing.empty() ? (display ? "jit" : "asap") : o_.pacing);
+  if (!pacing) return pacing.error();
+  if (*pacing == Pacing::jit && !display) return bad_input("--pacing jit needs a display (--window or --drm): headless frames have no refresh to meet");
+  ro.pacing = *pacing;
   if (!o_.size.empty()) {
     auto size = cli::parse_size(o_.size, "--size");
     if (!size) return size.error();
@@ -200,6 +206,9 @@ Status DaemonApp::setup_renderer() {
     ro.width = size->first;
     ro.height = size->second;
   }
+  // The refresh to pace to: a window's --fps or the display model's (direct mode's
+  // mode replaces it once open); none headless.
+  if (display) ro.refresh_hz = o_.fps > 0 ? o_.fps : (model_.refresh_hz > 0 ? model_.refresh_hz : 90.0);
   auto r = FrameRenderer::create(ro, model_, o_.out);
   if (!r) return r.error();
   renderer_ = std::move(*r);
@@ -224,19 +233,28 @@ int DaemonApp::render_loop() {
       sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
       continue;
     }
-    // The render thread takes the latest fovea and settings without waiting for anyone.
-    FoveaFrame f;
-    if (!loop_->latest().load(f)) f = FoveaFrame{};
+    // Just in time: sleep until the pacer's start, in steps so that a stop is seen.
+    const FramePlan plan = renderer_->plan_next_frame(monotonic_now_ns());
+    while (!stopping() && monotonic_now_ns() < plan.start_ns)
+      sleep_until_ns(std::min(plan.start_ns, monotonic_now_ns() + 10 * kNsPerMs));
+    // The render thread takes the latest fovea and settings without waiting for anyone;
+    // the fovea again at the latch.
+    const auto latest = [this] {
+      FoveaFrame f;
+      if (!loop_->latest().load(f)) f = FoveaFrame{};
+      return f;
+    };
     RenderSettings rs;
     (void)settings_.load(rs);
-    // Recorded: the head where it was when the frame's gaze sample was taken; a
-    // headset: where it will be when the frame is shown.
-    const PoseAt head = head_->for_frame(f.t_ns, refresh_hz);
-    if (Status s = renderer_->render(f, rs, model_, head); !s) return cli::report(s.error(), "foveald");
+    // Recorded: the head where it was when the newest gaze sample was taken; a headset:
+    // where it will be when the frame is shown. Fixed at the start: the first pass needs
+    // the camera.
+    const PoseAt head = head_->for_frame(latest().t_ns, refresh_hz);
+    if (Status s = renderer_->render(latest, rs, model_, head, plan); !s) return cli::report(s.error(), "foveald");
     const std::uint64_t frames = renderer_->frames();
     if (frames == kWarmupFrames) warm_rss_mb_ = current_rss_mb(), warm_fds_ = open_fds();
     if ((o_.frames > 0 && frames >= o_.frames) || renderer_->window_closed()) break;
-    if (o_.fps > 0) {
+    if (o_.fps > 0 && renderer_->pacing() == Pacing::asap) {  // jit paces itself, to the refresh
       next_frame += static_cast<TimeNs>(1e9 / o_.fps);
       // Sleep in steps so that a stop request is seen promptly.
       while (!stopping() && monotonic_now_ns() < next_frame)

@@ -15,6 +15,18 @@ namespace {
 
 constexpr std::size_t kRecentFrames = 128;
 
+// The fovea points a frame renders (the gaze pipeline decides what a lost eye shows; the
+// centre stands in only before the first sample).
+void set_fovea(std::array<render::EyeFoveation, 2>& eyes, const FoveaFrame& fovea, const DisplayModel& model) {
+  for (Eye e : kEyes) {
+    const FoveaPoint& fp = fovea.eye(e);
+    const bool known = std::isfinite(fp.px.x) && std::isfinite(fp.px.y) && model.eye_width > 0 && model.eye_height > 0;
+    auto& eye = eyes[static_cast<std::size_t>(e)];
+    eye.fovea_x = known ? double(fp.px.x) / model.eye_width : 0.5;
+    eye.fovea_y = known ? double(fp.px.y) / model.eye_height : 0.5;
+  }
+}
+
 }  // namespace
 
 Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions& o, const DisplayModel& model,
@@ -51,30 +63,33 @@ Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions
   if (!csv) return csv.error();
   r->csv_.emplace(std::move(*csv));
   r->csv_->write(
-      "frame,t_ns,generation,fovea_left_x,fovea_left_y,fovea_right_x,fovea_right_y,sigma_left,sigma_right,"
-      "buffer_left_w,buffer_left_h,buffer_right_w,buffer_right_h,f_x,f_y,shadow_ms,gbuffer_ms,mapping_ms,lighting_ms,"
-      "inverse_ms,gpu_ms,cpu_ms,head_x,head_y,head_z,head_qw,head_qx,head_qy,head_qz,head_t_ns\n");
+      std::string("frame,t_ns,generation,fovea_left_x,fovea_left_y,fovea_right_x,fovea_right_y,sigma_left,sigma_right,"
+                  "buffer_left_w,buffer_left_h,buffer_right_w,buffer_right_h,f_x,f_y,shadow_ms,gbuffer_ms,mapping_ms,"
+                  "lighting_ms,inverse_ms,gpu_ms,cpu_ms,head_x,head_y,head_z,head_qw,head_qx,head_qy,head_qz,head_t_ns,") +
+      FrameLatency::csv_header() + "\n");
+  const nlohmann::json& out = r->snap_.output;
+  const double mode_hz = out.contains("mode") ? out["mode"].value("refresh_hz", 0.0) : 0.0;
+  r->pacer_.emplace(o.pacing, mode_hz > 0 ? mode_hz : o.refresh_hz);
   return r;
 }
 
 FrameRenderer::~FrameRenderer() = default;
 
-Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, const DisplayModel& model,
-                             const PoseAt& head) {
+FramePlan FrameRenderer::plan_next_frame(TimeNs now) const { return pacer_->plan(now, last_shown_); }
+
+Status FrameRenderer::render(const std::function<FoveaFrame()>& latest, const RenderSettings& s,
+                             const DisplayModel& model, const PoseAt& head, const FramePlan& plan) {
+  FrameLatency lat;
+  lat.start_ns = monotonic_now_ns();
+  lat.display_target_ns = plan.display_target_ns;
   const Eye dominant = s.dominant_eye == 0 ? Eye::left : Eye::right;
   render::FrameParams p = render::efr_frame(method_, dominant, s.sigma_d, s.sigma_nd, s.f_x, s.f_y);
   p.pipeline = pipeline_;
   p.ipd_mm = s.ipd_mm;
   if (head.valid) p.head = head.relative;
-  for (Eye e : kEyes) {
-    // The gaze pipeline decides what a lost eye shows (docs/filtering.md); the centre
-    // stands in only before the first sample.
-    const FoveaPoint& fp = fovea.eye(e);
-    const bool known = std::isfinite(fp.px.x) && std::isfinite(fp.px.y) && model.eye_width > 0 && model.eye_height > 0;
-    auto& eye = p.eyes[static_cast<std::size_t>(e)];
-    eye.fovea_x = known ? double(fp.px.x) / model.eye_width : 0.5;
-    eye.fovea_y = known ? double(fp.px.y) / model.eye_height : 0.5;
-  }
+  FoveaFrame used = latest();
+  lat.latch_ns = monotonic_now_ns();
+  set_fovea(p.eyes, used, model);
   // f < 0 means automatic: estimated once per settings change (docs/methods.md).
   if ((s.f_x <= 0 || s.f_y <= 0) && auto_f_generation_ != s.generation) {
     if (Status st = estimate_f(p); !st) return st;
@@ -85,8 +100,18 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
     if (s.f_y <= 0) e.fy = auto_fy_;
   }
   const double fx = p.eyes[0].fx, fy = p.eyes[0].fy;
-  auto t = comp_->render(*scene_, p);
+  // Late latch: the newest fovea once the passes that do not need it are done.
+  const render::FoveaLatch latch = [&](std::array<render::EyeFoveation, 2>& eyes) {
+    used = latest();
+    lat.latch_ns = monotonic_now_ns();
+    set_fovea(eyes, used, model);
+  };
+  auto t = comp_->render(*scene_, p, o_.late_latch ? latch : render::FoveaLatch{});
   if (!t) return t.error();
+  lat.gpu_done_ns = t->gpu_done_ns;
+  lat.sample_t_ns = used.t_ns;
+  lat.sample_device_t_ns = used.device_t_ns;
+  lat.arrival_ns = used.arrival_ns;
   const bool generation_changed = frames_ > 0 && s.generation != last_generation_;
   last_generation_ = s.generation;
 
@@ -102,20 +127,21 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
   char line[768];
   std::snprintf(line, sizeof line,
                 "%" PRIu64 ",%" PRId64 ",%u,%.5f,%.5f,%.5f,%.5f,%.3f,%.3f,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,"
-                "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%" PRId64 "\n",
-                frames_, static_cast<std::int64_t>(fovea.t_ns), s.generation, p.eyes[0].fovea_x, p.eyes[0].fovea_y,
+                "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%" PRId64 ",",
+                frames_, static_cast<std::int64_t>(used.t_ns), s.generation, p.eyes[0].fovea_x, p.eyes[0].fovea_y,
                 p.eyes[1].fovea_x, p.eyes[1].fovea_y, p.eyes[0].sigma, p.eyes[1].sigma, bl[0], bl[1], br[0], br[1], fx, fy,
                 t->shadow, t->gbuffer, t->mapping, t->lighting, t->inverse, t->gpu_total, t->cpu, double(hp.position_m.x),
                 double(hp.position_m.y), double(hp.position_m.z), double(hp.orientation.w), double(hp.orientation.x),
                 double(hp.orientation.y), double(hp.orientation.z), static_cast<std::int64_t>(head.t_ns));
   if (Status st = output_->present(comp_->output_framebuffer(), comp_->width(), comp_->height()); !st) return st;
+  pending_.push_back({line, lat});
+  // Just in time needs this frame's refresh before it plans the next.
+  if (o_.pacing == Pacing::jit)
+    if (Status st = output_->finish(); !st) return st;
+  if (Status st = write_shown_rows(); !st) return st;
   {
-    // A row once the frame is on its way to the screen, readable in the temporary file
-    // while foveald runs.
     std::lock_guard lock(csv_mutex_);
     if (csv_closed_) return {};  // abandoned: this frame is not counted
-    csv_->write(line);
-    std::fflush(csv_->stream());
   }
   const bool save = frames_ == 0 || (o_.save_every > 0 && frames_ % static_cast<std::uint64_t>(o_.save_every) == 0);
   ++frames_;
@@ -133,8 +159,29 @@ Status FrameRenderer::render(const FoveaFrame& fovea, const RenderSettings& s, c
     if (auto_f_generation_) snap_.auto_f = {auto_fx_, auto_fy_};
     snap_.output = std::move(output);
     snap_.targets_mb = static_cast<double>(comp_->memory().total()) / (1024.0 * 1024.0);
+    snap_.latency = latency_.json(output_->shown_clock());
+    snap_.pacing = pacer_->json();
   }
   if (save) return save_frame();
+  return {};
+}
+
+Status FrameRenderer::write_shown_rows() {
+  std::vector<std::int64_t> shown = output_->take_shown();
+  std::lock_guard lock(csv_mutex_);
+  for (std::int64_t t : shown) {
+    if (pending_.empty()) break;  // the output's own first frames before any of ours: none
+    PendingRow row = std::move(pending_.front());
+    pending_.pop_front();
+    row.latency.shown_ns = t;
+    last_shown_ = t;
+    latency_.add(row.latency);
+    pacer_->shown(row.latency.start_ns, row.latency.gpu_done_ns, t, row.latency.display_target_ns);
+    // A row once the frame is on screen, readable in the temporary file while foveald runs.
+    if (csv_closed_) continue;
+    csv_->write(row.cells + row.latency.csv_cells() + "\n");
+    std::fflush(csv_->stream());
+  }
   return {};
 }
 
@@ -167,9 +214,12 @@ Status FrameRenderer::save_frame() {
 
 Status FrameRenderer::finish(bool save_last) {
   if (Status s = output_->finish(); !s) return s;
+  if (Status s = write_shown_rows(); !s) return s;
   {
     std::lock_guard lock(snapshot_mutex_);
     snap_.output = output_->json();
+    snap_.latency = latency_.json(output_->shown_clock());
+    snap_.pacing = pacer_->json();
   }
   if (save_last)
     if (Status s = save_frame(); !s) return s;
@@ -221,6 +271,9 @@ nlohmann::json FrameRenderer::stats_json() const {
                                 {"lighting", med.lighting}, {"inverse", med.inverse},
                                 {"gpu_total", med.gpu_total}, {"cpu_frame", med.cpu}}},
           {"targets_mb", snap_.targets_mb},
+          {"latch", o_.late_latch ? "late" : "early"},
+          {"gaze_to_photon", snap_.latency},
+          {"pacing", snap_.pacing},
           {"saved", snap_.saved}};
 }
 

@@ -4,6 +4,8 @@
 // gaze or control threads. Keeps per-frame stats (frames.csv), saves chosen frames as
 // PNG and publishes a snapshot of its stats that any thread may read (`status`,
 // summary.json) without waiting for a frame.
+#include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -18,6 +20,8 @@
 #include "foveal/render/output.hpp"
 #include "foveal/render/scene.hpp"
 #include "foveal/runtime/fovea.hpp"
+#include "frame_latency.hpp"
+#include "frame_pacer.hpp"
 #include "render_settings.hpp"
 
 namespace foveal::daemon {
@@ -30,6 +34,11 @@ struct RenderOptions {
   int save_every = 0;             ///< also save every Nth frame (0: first and last only)
   render::OutputOptions output;   ///< headless, window or direct mode
   bool distortion = true;         ///< the display model's lens distortion, if any
+  /// Read the fovea at the compositor's late latch (after the first full-resolution
+  /// pass); false: at the frame's start, as before the latch existed (docs/latency.md).
+  bool late_latch = true;
+  Pacing pacing = Pacing::asap;   ///< when frames start (frame_pacer.hpp)
+  double refresh_hz = 0;          ///< the display's, for pacing; 0: none (headless)
 };
 
 class FrameRenderer {
@@ -40,11 +49,18 @@ class FrameRenderer {
                                                        const std::string& out_dir);
   ~FrameRenderer();
 
-  /// Renders one frame for `fovea` (viewport pixels of `model`; the gaze pipeline has
-  /// already decided what a lost eye shows) with `settings`. Render thread.
-  /// `head`: the head pose at the fovea's time (invalid: the scene's own view); the
+  /// When the next frame should start and the refresh it is for (RenderOptions::pacing).
+  /// Render thread.
+  FramePlan plan_next_frame(TimeNs now) const;
+  /// Renders one frame with `settings`, started now for `plan`. `latest` gives the newest
+  /// fovea (viewport pixels of `model`; the gaze pipeline has already decided what a lost
+  /// eye shows) and is called at the latch (RenderOptions::late_latch), and once at the
+  /// start. `head`: the head pose for the frame (invalid: the scene's own view); the
   /// camera moves by its pose relative to the first one, and frames.csv records it.
-  Status render(const FoveaFrame& fovea, const RenderSettings& settings, const DisplayModel& model, const PoseAt& head);
+  /// frames.csv gets the frame's row once its shown time is known (docs/latency.md).
+  /// Render thread.
+  Status render(const std::function<FoveaFrame()>& latest, const RenderSettings& settings, const DisplayModel& model,
+                const PoseAt& head, const FramePlan& plan);
   /// Saves the last frame (if `save_last` and not yet saved: a 2880x1600 PNG takes about
   /// a second on llvmpipe, too long after SIGTERM), commits frames.csv. Render thread.
   Status finish(bool save_last);
@@ -57,6 +73,7 @@ class FrameRenderer {
   std::uint64_t frames() const;   ///< any thread
   std::size_t saved_frames() const;  ///< any thread
   const std::string& renderer() const { return renderer_name_; }
+  Pacing pacing() const { return o_.pacing; }
   /// Any thread: the stats as of the last completed frame.
   nlohmann::json stats_json() const;
 
@@ -64,6 +81,14 @@ class FrameRenderer {
   FrameRenderer() = default;
   Status save_frame();
   Status estimate_f(const render::FrameParams& p);
+  /// frames.csv rows of the frames whose shown time the output now knows.
+  Status write_shown_rows();
+
+  /// A presented frame waiting for its shown time: its row without the latency cells.
+  struct PendingRow {
+    std::string cells;
+    FrameLatency latency;
+  };
 
   /// What other threads may read, updated after each frame under snapshot_mutex_.
   struct Snapshot {
@@ -77,6 +102,7 @@ class FrameRenderer {
     nlohmann::json output;
     double targets_mb = 0;
     std::vector<std::string> saved;
+    nlohmann::json latency, pacing;
   };
 
   RenderOptions o_;
@@ -93,6 +119,10 @@ class FrameRenderer {
   bool csv_closed_ = false;
   std::uint64_t frames_ = 0, saved_frame_ = ~0ull;  ///< render thread
   std::uint32_t last_generation_ = 0;
+  std::deque<PendingRow> pending_;  ///< render thread; at most a frame or two
+  std::optional<TimeNs> last_shown_;
+  LatencyStats latency_;
+  std::optional<FramePacer> pacer_;
   // Automatic f: estimated from a full frame when the settings ask for it and change.
   std::optional<std::uint32_t> auto_f_generation_;
   double auto_fx_ = 0.3, auto_fy_ = 0.3;

@@ -53,6 +53,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(foveal::render::pipeline_names()))->capture_default_str();
   app.add_option("--method", o.method, "One of " + foveal::render::method_names_joined(", "))
       ->check(CLI::IsMember(foveal::render::method_names()))->capture_default_str();
+  app.add_option("--pacing", o.pacing, "When frames start: jit (just in time before each refresh) or asap (default: jit on a display, asap headless; docs/latency.md)")
+      ->check(CLI::IsMember({"asap", "jit"}));
+  app.add_option("--latch", o.latch, "When a frame reads the fovea: late (after the passes that do not need it) or early (at its start)")
+      ->check(CLI::IsMember({"late", "early"}))
+      ->capture_default_str();
   app.add_option("--size", o.size, "Side-by-side output WxH (default: the display model's, 2880x1600)");
   app.add_option("--save-every", o.save_every, "Also save every Nth frame as PNG (the first and last always)")->check(CLI::Range(0, 1000000));
   app.add_flag("--json", o.json, "Print the summary as JSON");

@@ -29,6 +29,8 @@ struct Options {
   std::string scene;          ///< empty: the bundled Dungeon
   std::string method = "rmfr";
   std::string pipeline = render::kDefaultPipelineName;  ///< gbuffer or visibility
+  std::string pacing;         ///< asap or jit; empty: jit on a display, asap headless
+  std::string latch = "late"; ///< late or early (docs/latency.md)
   std::string size;           ///< WxH; empty: the display model's
   int save_every = 0;         ///< save every Nth frame as PNG (first and last always)
   std::string monitor;        ///< window mode: fullscreen on this monitor

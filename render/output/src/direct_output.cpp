@@ -12,6 +12,8 @@ class DirectOutput final : public Output {
   const char* kind() const override { return "drm"; }
   Status present(GLuint framebuffer, int width, int height) override { return drm_.present(framebuffer, width, height); }
   Status finish() override { return drm_.finish(); }
+  std::vector<std::int64_t> take_shown() override { return drm_.take_shown(); }
+  const char* shown_clock() const override { return "page_flip"; }
   nlohmann::json json() const override {
     const KmsMode& m = drm_.mode();
     nlohmann::json connector = connector_json(drm_.connector());

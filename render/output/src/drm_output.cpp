@@ -253,6 +253,19 @@ std::string busy_message(const std::string& path) {
                "console with no compositor on this GPU, or stop it (docs/headset.md)";
 }
 
+// A display whose driver has no vblank still refreshes at its mode's rate: a flip waits
+// for the next refresh after the last one shown, so frames are not shown faster than
+// the display could and "shown" means the refresh it was flipped at.
+void sleep_until_next_refresh(std::int64_t last_ns, double refresh_hz) {
+  const auto period = static_cast<std::int64_t>(1e9 / refresh_hz);
+  const std::int64_t now = now_ns();
+  const std::int64_t periods = std::max<std::int64_t>(1, (now - last_ns + period - 1) / period);
+  const std::int64_t next = last_ns + periods * period;
+  timespec ts{static_cast<time_t>(next / 1000000000), static_cast<long>(next % 1000000000)};
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+  }
+}
+
 Status become_master(int fd, const std::string& path) {
   if (drmIsMaster(fd)) return {};
   if (drmSetMaster(fd) == 0) return {};
@@ -369,6 +382,7 @@ const std::string& DrmOutput::device() const { return impl_->path; }
 const KmsConnector& DrmOutput::connector() const { return impl_->connector; }
 const KmsMode& DrmOutput::mode() const { return impl_->mode; }
 const PresentStats& DrmOutput::stats() const { return impl_->stats; }
+std::vector<std::int64_t> DrmOutput::take_shown() { return impl_->stats.take_shown(); }
 
 Status DrmOutput::present(GLuint framebuffer, int width, int height) {
   Impl& o = *impl_;
@@ -405,6 +419,8 @@ Status DrmOutput::present(GLuint framebuffer, int width, int height) {
       return s;
     }
   }
+  const bool software_vblank = o.stats.fake_vblank() && o.mode.refresh_hz > 0;
+  if (software_vblank) sleep_until_next_refresh(*o.stats.last(), o.mode.refresh_hz);
   if (drmModePageFlip(o.fd, o.crtc, *fb, DRM_MODE_PAGE_FLIP_EVENT, &o) != 0) {
     const int e = errno;
     gbm_surface_release_buffer(o.surface, bo);
@@ -412,6 +428,7 @@ Status DrmOutput::present(GLuint framebuffer, int width, int height) {
     return Error{ErrorKind::device, o.path + ": page flip failed: " + errno_text(e)};
   }
   o.pending = bo;
+  if (software_vblank) return o.wait_flip(1000);  // completes at once: its time is the flip's
   return {};
 }
 

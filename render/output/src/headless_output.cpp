@@ -1,4 +1,5 @@
 // Headless: a surfaceless EGL context; frames stay in the compositor's framebuffer.
+#include "foveal/core/clock.hpp"
 #include "foveal/render/egl_context.hpp"
 #include "output_kinds.hpp"
 
@@ -10,11 +11,22 @@ class HeadlessOutput final : public Output {
  public:
   explicit HeadlessOutput(gl::EglContext ctx) : ctx_(std::move(ctx)) {}
   const char* kind() const override { return "headless"; }
-  Status present(GLuint, int, int) override { return {}; }
+  Status present(GLuint, int, int) override {
+    // The compositor waited for the GPU before: now is when the frame was done.
+    shown_.push_back(monotonic_now_ns());
+    return {};
+  }
+  std::vector<std::int64_t> take_shown() override {
+    std::vector<std::int64_t> t;
+    t.swap(shown_);
+    return t;
+  }
+  const char* shown_clock() const override { return "gpu_done"; }
   nlohmann::json json() const override { return {{"kind", kind()}}; }
 
  private:
   gl::EglContext ctx_;
+  std::vector<std::int64_t> shown_;
 };
 
 }  // namespace

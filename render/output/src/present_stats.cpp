@@ -26,8 +26,12 @@ void PresentStats::record(std::int64_t t_ns, std::optional<std::uint64_t> vblank
       ++counted_clock_;
     }
   }
+  if (vblank && last_vblank_ && *vblank <= *last_vblank_) fake_vblank_ = true;
   ++presented_;
   last_t_ = t_ns;
+  // Nobody taking them (a caller that does not record latency) must not grow memory.
+  if (untaken_.size() >= kIntervals) untaken_.erase(untaken_.begin());
+  untaken_.push_back(t_ns);
   last_vblank_ = vblank;
 }
 
@@ -50,6 +54,12 @@ nlohmann::json PresentStats::json() const {
     j["interval_ms"] = {{"median", at(0.5)}, {"p99", at(0.99)}, {"max", v.back()}};
   }
   return j;
+}
+
+std::vector<std::int64_t> PresentStats::take_shown() {
+  std::vector<std::int64_t> t;
+  t.swap(untaken_);
+  return t;
 }
 
 }  // namespace foveal::render

@@ -99,6 +99,7 @@ void Window::present(GLuint framebuffer, int width, int height) {
 }
 
 const PresentStats& Window::stats() const { return impl_->stats; }
+std::vector<std::int64_t> Window::take_shown() { return impl_->stats.take_shown(); }
 
 bool Window::should_close() const { return glfwWindowShouldClose(impl_->window) != 0; }
 

@@ -15,6 +15,8 @@ class WindowOutput final : public Output {
     return {};
   }
   bool closed() const override { return window_.should_close(); }
+  std::vector<std::int64_t> take_shown() override { return window_.take_shown(); }
+  const char* shown_clock() const override { return "swap"; }
   nlohmann::json json() const override { return {{"kind", kind()}, {"present", window_.stats().json()}}; }
 
  private:

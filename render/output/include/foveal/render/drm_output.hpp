@@ -43,8 +43,12 @@ class DrmOutput {
 
   /// Blits `framebuffer` (width×height) scaled to the mode, swaps, and queues a page flip
   /// of the new buffer; waits for the previous flip first, so one is pending at most and
-  /// the next frame renders while this one waits for vblank. Errors: the kernel refused
-  /// the flip (e.g. the master was lost on a VT switch) or no flip completed in 1 s.
+  /// the next frame renders while this one waits for vblank. A driver without vblank
+  /// events (PresentStats::fake_vblank: bochs completes a flip at once) is paced here
+  /// instead: the flip waits for the next refresh of the mode's period after the last
+  /// one, and completes before present() returns (docs/latency.md, "Clocks").
+  /// Errors: the kernel refused the flip (e.g. the master was lost on a VT switch) or no
+  /// flip completed in 1 s.
   Status present(GLuint framebuffer, int width, int height);
   /// Waits until the last queued frame is on screen, so that stats() counts it.
   Status finish();
@@ -53,6 +57,9 @@ class DrmOutput {
   const KmsConnector& connector() const;
   const KmsMode& mode() const;
   const PresentStats& stats() const;
+  /// The completed flips' timestamps since the last call (the kernel's, CLOCK_MONOTONIC;
+  /// the mode set's own time for the first frame), oldest first.
+  std::vector<std::int64_t> take_shown();
 
   /// Every /dev/dri/card* with its connectors (no master needed).
   static std::vector<DrmDeviceInfo> list_devices();

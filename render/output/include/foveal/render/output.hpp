@@ -5,8 +5,10 @@
 // open_output()).
 // Thread safety: create, use and destroy an output on one thread (the thread whose GL
 // context it made current; GLFW's rule makes that the main thread for windows).
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -28,6 +30,15 @@ class Output {
   virtual Status finish() { return {}; }
   /// The user closed the window.
   virtual bool closed() const { return false; }
+  /// When the frames presented since the last call reached the screen (CLOCK_MONOTONIC),
+  /// oldest first, each frame once; a frame whose time is not known yet (a page flip
+  /// still pending) comes in a later call, at the latest after finish(). How the time is
+  /// taken: shown_clock().
+  virtual std::vector<std::int64_t> take_shown() = 0;
+  /// "page_flip": the kernel's flip-completion timestamp (direct mode); "swap": when the
+  /// buffer swap returned (a window: GLFW has no presentation time); "gpu_done": when
+  /// present() was called after the GPU finished the frame (headless, a proxy).
+  virtual const char* shown_clock() const = 0;
   /// kind, and what was presented (PresentStats) and where, for status and summaries.
   virtual nlohmann::json json() const = 0;
 };

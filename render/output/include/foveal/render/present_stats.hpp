@@ -23,6 +23,14 @@ class PresentStats {
   void record(std::int64_t t_ns, std::optional<std::uint64_t> vblank = std::nullopt);
 
   std::uint64_t presented() const { return presented_; }
+  /// The times recorded since the last call, oldest first (the gaze-to-photon record
+  /// takes each frame's shown time from here).
+  std::vector<std::int64_t> take_shown();
+  /// The drivers' events carry no vblank counter that advances (bochs, other drivers
+  /// without vblank interrupts fake the event at commit): known after two frames.
+  bool fake_vblank() const { return fake_vblank_; }
+  /// The last recorded time; nullopt before the first frame.
+  std::optional<std::int64_t> last() const { return last_t_; }
   /// Refreshes between two presented frames that showed no new frame; nullopt when
   /// neither a vblank counter nor the refresh rate is known.
   std::optional<std::uint64_t> missed() const;
@@ -39,6 +47,8 @@ class PresentStats {
   std::optional<std::int64_t> last_t_;
   std::optional<std::uint64_t> last_vblank_;
   std::vector<double> intervals_ms_;  ///< ring of the last 1024
+  std::vector<std::int64_t> untaken_;  ///< take_shown()'s; bounded by kIntervals
+  bool fake_vblank_ = false;
 };
 
 }  // namespace foveal::render

@@ -34,6 +34,8 @@ class Window {
   /// Frames presented and refreshes missed, judged from the time each swap returned
   /// against the monitor's refresh rate (GLFW has no presentation timestamps).
   const PresentStats& stats() const;
+  /// The swaps' return times since the last call, oldest first.
+  std::vector<std::int64_t> take_shown();
   bool should_close() const;
   /// Keys pressed since the last call (GLFW key codes), for interactive tools.
   std::vector<int> take_keys();
