@@ -61,13 +61,13 @@ TEST(RmfrMapping, DensityAtFoveaAndEdgeMatchesTheDesignFormulas) {
 }
 
 TEST(RmfrMapping, SigmaOneIsTheIdentity) {
-  const double f = rmfr_effective_f(0.3, 1.0);
+  const double f = rmfr_effective_f(0.3, 1.0, 0.5);
   for (double c : kFoveae)
     for (int i = 0; i <= 100; ++i) {
       EXPECT_NEAR(rmfr_forward(i / 100.0, c, f), i / 100.0, 1e-12);
       EXPECT_NEAR(rmfr_inverse(i / 100.0, c, f), i / 100.0, 1e-12);
     }
-  EXPECT_EQ(rmfr_effective_f(0.3, 2.0), 0.3);
+  EXPECT_EQ(rmfr_effective_f(0.3, 2.0, 0.5), 0.3);
 }
 
 TEST(RmfrMapping, BufferSizesAndFoveaSanitising) {

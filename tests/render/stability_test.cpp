@@ -134,3 +134,27 @@ TEST_P(Stability, FoveaPatchWithinItsBoundOfTheCentredCase) {
     }
   }
 }
+
+// Issue 31's corner: σ 8, f 0.01, the fovea on a corner. The far edge was sampled at
+// 1/808 texels per pixel: two texel columns covered 63% of each eye's width, and at full
+// size (1440×800) 17% of Dungeon's pixels differed from full by more than 128. The plan's
+// periphery floor raises f to 1/7 there (tests/foveation/periphery_floor_test.cpp); the
+// GPU takes that f, and the picture stays: 0.43% (G-buffer) and 0.28% (visibility) of
+// pixels here, against 12.4% and 10.5% with the plan built without the floor.
+TEST_P(Stability, RmfrPeripheryFloorKeepsTheCornersPicture) {
+  ASSERT_TRUE(test::gl_ready());
+  render::Scene s = test::scene(test::source_path("data/scenes/Dungeon/dungeon_simplified.gltf"));
+  render::Compositor c = test::make_compositor(2 * 240, 270);
+  const image::Image full = test::render_frame(c, s, params(Method::full, 1, 0.3, 0.3, 0.5, 0.5));
+  const image::Image corner = test::render_frame(c, s, params(Method::rmfr, 8, 0.01, 0.01, 1, 1));
+  EXPECT_EQ(image::max_abs_diff(corner, test::render_frame(c, s, params(Method::rmfr, 8, 1.0 / 7, 1.0 / 7, 1, 1))), 0);
+  std::size_t far_off = 0;
+  for (int y = 0; y < full.height; ++y)
+    for (int x = 0; x < full.width; ++x)
+      for (int k = 0; k < 3; ++k)
+        if (std::abs(full.at(x, y)[k] - corner.at(x, y)[k]) > 128) {
+          ++far_off;
+          break;
+        }
+  EXPECT_LT(static_cast<double>(far_off) / (static_cast<double>(full.width) * full.height), 0.02);
+}

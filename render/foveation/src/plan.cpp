@@ -40,7 +40,7 @@ Result<Plan> plan_eye(const EyeParams& e) {
   p.sigma = e.sigma;
   p.fovea_x = sanitize_fovea(e.fovea.x);
   p.fovea_y = 1.0 - sanitize_fovea(e.fovea.y);  // top-left in, GL frame out
-  p.fx = rmfr_effective_f(e.fx, e.sigma), p.fy = rmfr_effective_f(e.fy, e.sigma);
+  p.fx = rmfr_effective_f(e.fx, e.sigma, p.fovea_x), p.fy = rmfr_effective_f(e.fy, e.sigma, p.fovea_y);
   p.frustum = e.frustum;
   return p;
 }

@@ -22,7 +22,7 @@ struct AxisMap {
 
 AxisMap axis_map(int screen, double sigma, double c, double f) {
   const int n = rmfr_buffer_size(screen, sigma);
-  const double fe = rmfr_effective_f(f, sigma);
+  const double fe = rmfr_effective_f(f, sigma, c);
   AxisMap m;
   m.source.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i)

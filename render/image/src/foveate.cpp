@@ -71,8 +71,8 @@ Result<FoveateResult> foveate(const Image& in, const FoveateParams& p) {
   if (!std::isfinite(p.fx) || !std::isfinite(p.fy) || p.fx <= 0 || p.fy <= 0)
     return bad_input("foveate: fx and fy must be numbers > 0");
   // sigma = 1 is the identity: no reduction, no warp (see docs/rmfr.md).
-  const double fx = rmfr_effective_f(p.fx, p.sigma), fy = rmfr_effective_f(p.fy, p.sigma);
   const double cx = sanitize_fovea(p.fovea_x), cy = sanitize_fovea(p.fovea_y);
+  const double fx = rmfr_effective_f(p.fx, p.sigma, cx), fy = rmfr_effective_f(p.fy, p.sigma, cy);
   const int w = rmfr_buffer_size(in.width, p.sigma), h = rmfr_buffer_size(in.height, p.sigma);
 
   FoveateResult r{Image(w, h), Image(in.width, in.height)};

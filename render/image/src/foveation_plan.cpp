@@ -193,7 +193,8 @@ Result<EyePlan> plan_eye(Method m, const EyeFoveation& e, int W, int H, const Ey
       p.buffer_w = rmfr::rmfr_buffer_size(W, e.sigma), p.buffer_h = rmfr::rmfr_buffer_size(H, e.sigma);
       // uniform: RMFR's buffer with the identity map, an even grid that the resolve upsamples.
       p.f = m == Method::uniform ? glm::dvec2(rmfr::kRmfrIdentityF)
-                                 : glm::dvec2(rmfr::rmfr_effective_f(e.fx, e.sigma), rmfr::rmfr_effective_f(e.fy, e.sigma));
+                                 : glm::dvec2(rmfr::rmfr_effective_f(e.fx, e.sigma, p.fovea.x),
+                                              rmfr::rmfr_effective_f(e.fy, e.sigma, p.fovea.y));
       break;
     case Method::kfr: {
       p.buffer_w = rmfr::rmfr_buffer_size(W, e.sigma), p.buffer_h = rmfr::rmfr_buffer_size(H, e.sigma);

@@ -62,7 +62,8 @@ struct Plan {
   int buffer_w = 0, buffer_h = 0;   ///< w×h of the reduced buffer
   double sigma = 1.0;
   double fovea_x = 0.5, fovea_y = 0.5;  ///< normalised, GL frame (origin bottom-left), sanitised
-  double fx = 0.3, fy = 0.3;        ///< effective f (1e30 at σ = 1: the identity, full rate)
+  double fx = 0.3, fy = 0.3;        ///< effective f: 1e30 at σ = 1 (the identity, full rate), else the
+                                    ///< asked f raised to rmfr_f_floor (the periphery floor) where below it
   Frustum frustum{};
 
   /// Samples the lighting pass shades (w·h).

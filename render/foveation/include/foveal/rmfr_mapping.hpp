@@ -40,9 +40,33 @@ inline double rmfr_inverse(double u, double c, double f) {
 /// f standing for "no warp": both formulas reduce to u = p (f + x == f in float and double).
 inline constexpr double kRmfrIdentityF = 1e30;
 
-/// The f the mapping uses at level σ: σ = 1 renders at full rate, so it does not warp
-/// (a warp at σ = 1 would oversample the fovea and undersample the periphery).
-inline double rmfr_effective_f(double f, double sigma) { return sigma > 1.0 ? f : kRmfrIdentityF; }
+/// The periphery's sampling floor, in reduced-buffer texels per screen pixel along an axis
+/// (docs/stability.md, "RMFR's periphery floor"). The far edge is sampled at f / ((f + D)·σ):
+/// as f -> 0 a handful of texels cover the far side, each showing whatever one sample hit.
+/// 1/48 lies just below the coarsest of the operating range (σ 4, f 0.1, the fovea on a
+/// border: 1/44), so nothing there changes.
+inline constexpr double kRmfrPeripheryFloor = 1.0 / 48;
+
+/// The smallest f that keeps the far edge of an axis (fovea c, D = max(c, 1 - c)) at
+/// min(kRmfrPeripheryFloor, 1/σ²) texels per pixel: f / (f + D) >= r for r = σ times that.
+/// The density at the fovea's far side times the one at its edge is 1/σ² for every f, so
+/// the 1/σ² cap (it binds above σ = √48 ≈ 6.9) never lowers the fovea below one texel per
+/// pixel: the floor only takes away samples that repeat the same pixel. It is at most
+/// 0.169 (σ = √48, c on a border), so f >= 0.17 is never raised. 0 at σ <= 1.
+inline double rmfr_f_floor(double sigma, double c) {
+  if (!(sigma > 1.0)) return 0.0;
+  const double D = std::max(c, 1.0 - c);
+  const double r = std::min(sigma * kRmfrPeripheryFloor, 1.0 / sigma);
+  return D * r / (1.0 - r);
+}
+
+/// The f the mapping uses at level σ with the fovea at c on that axis (sanitised, either
+/// frame): σ = 1 renders at full rate, so it does not warp (a warp at σ = 1 would
+/// oversample the fovea and undersample the periphery); above it, f no smaller than
+/// rmfr_f_floor.
+inline double rmfr_effective_f(double f, double sigma, double c) {
+  return sigma > 1.0 ? std::max(f, rmfr_f_floor(sigma, c)) : kRmfrIdentityF;
+}
 
 /// A fovea coordinate fit for the mapping: NaN or infinite -> centre, else clamped to [0, 1].
 inline double sanitize_fovea(double c) { return std::isfinite(c) ? std::clamp(c, 0.0, 1.0) : 0.5; }
