@@ -16,6 +16,7 @@ void add_profile(CLI::App& app, int& exit_code);
 void add_ctl(CLI::App& app, int& exit_code);
 void add_calibrate(CLI::App& app, int& exit_code);
 void add_replay(CLI::App& app, int& exit_code);
+void add_predict_eval(CLI::App& app, int& exit_code);
 void add_filter_chart(CLI::App& app, int& exit_code);
 void add_render(CLI::App& app, int& exit_code);
 void add_foveate(CLI::App& app, int& exit_code);

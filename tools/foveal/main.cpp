@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   foveal::cmd::add_ctl(app, exit_code);
   foveal::cmd::add_calibrate(app, exit_code);
   foveal::cmd::add_replay(app, exit_code);
+  foveal::cmd::add_predict_eval(app, exit_code);
   foveal::cmd::add_filter_chart(app, exit_code);
   foveal::cmd::add_render(app, exit_code);
   foveal::cmd::add_foveate(app, exit_code);

@@ -16,6 +16,7 @@ namespace foveal {
 /// What happened in one eye on the last update (for traces, charts and tests).
 struct EyeEvents {
   bool valid = false;            ///< the sample passed validation
+  bool smoothed = false;         ///< the output came from the 1€ (fixation or pursuit), not raw or a fallback
   bool saccade_onset = false;    ///< a saccade was confirmed on this sample ...
   TimeNs onset_t_ns = 0;         ///< ... and began at this sample's time
   double u = 0, v = 0;           ///< the output gaze on the tangent plane (x/-z, y/-z)
@@ -49,6 +50,12 @@ class GazePipeline {
     bool ever_valid = false;
     int deviating = 0, pursuit_count = 0;
     double out_u = 0, out_v = 0;      ///< output on the tangent plane
+    /// Velocity of the smoothed gaze (tangent units/s): the 1€ output's derivative,
+    /// low-passed; restarts at every snap. What predict_fovea extrapolates.
+    double vel_u = 0, vel_v = 0;
+    double vel_from_u = 0, vel_from_v = 0;  ///< the smoothed gaze it was last taken from
+    TimeNs vel_from_t = 0;
+    bool vel_known = false;
     FoveaState state = FoveaState::lost;
     float confidence = 0;
   };
@@ -56,7 +63,9 @@ class GazePipeline {
   bool validate(const EyeSample& e, Eye eye, glm::vec3& unit) const;
   void track_valid(EyeTrack& t, EyeEvents& ev, glm::vec3 d, TimeNs t_ns);
   void snap(EyeTrack& t, double u, double v, TimeNs t_ns);
+  void track_velocity(EyeTrack& t, TimeNs t_ns) const;
   FoveaPoint to_point(Eye e, double u, double v, FoveaState st, float conf) const;
+  glm::vec2 velocity_px(Eye e, const EyeTrack& t) const;
 
   DisplayModel model_;
   FilterConfig cfg_;

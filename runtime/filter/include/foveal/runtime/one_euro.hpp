@@ -36,6 +36,8 @@ class OneEuroFilter {
     double a = alpha(cutoff, dt);
     if (settle_k_ > 0) a = std::max(a, 1.0 / static_cast<double>(++settle_k_));  // settling: a running mean
     x_hat_ += a * (x - x_hat_);
+    last_a_ = a;
+    last_dt_ = dt;
     return x_hat_;
   }
   /// Starts over at `x` (a saccade's landing point): no memory of the old fixation.
@@ -47,10 +49,15 @@ class OneEuroFilter {
     dx_hat_ = 0.0;
     t_prev_ = t_s;
     settle_k_ = settle ? 1 : 0;
+    last_a_ = 0;
   }
   bool initialised() const { return init_; }
   double value() const { return x_hat_; }
   double speed() const { return dx_hat_; }  ///< filtered derivative, units per second
+  /// How far the output trails a steady ramp at the last step's weight a and interval
+  /// dt (seconds): the exponential smoother's steady-state lag, dt (1 - a) / a. 0 before
+  /// the first step after a start or reset.
+  double ramp_lag_s() const { return last_a_ > 0 ? last_dt_ * (1.0 - last_a_) / last_a_ : 0.0; }
   void set_params(const OneEuroParams& p) { p_ = p; }
 
   static double alpha(double cutoff_hz, double dt) {
@@ -63,6 +70,7 @@ class OneEuroFilter {
   bool init_ = false;
   double x_hat_ = 0, dx_hat_ = 0, t_prev_ = 0;
   int settle_k_ = 0;  ///< > 0 while settling after a reset
+  double last_a_ = 0, last_dt_ = 0;  ///< the last step's weight and interval (ramp_lag_s)
 };
 
 }  // namespace foveal

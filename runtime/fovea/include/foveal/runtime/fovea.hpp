@@ -17,6 +17,16 @@ struct FoveaPoint {
   glm::vec2 px{0.0f};  ///< viewport pixel (origin top-left, y down), always inside the viewport
   FoveaState state = FoveaState::lost;
   float confidence = 0.0f;  ///< 0..1
+  /// The gaze pipeline's velocity estimate for this eye (viewport px/s, y down) and its
+  /// verdict on extrapolating it (predict_fovea, foveal/runtime/fovea_prediction.hpp):
+  /// true in fixation and smooth pursuit on the eye's own valid sample; false in a
+  /// saccade (the point is the raw gaze and is held), a blink, a loss, or an eye filled
+  /// in from the other one. The velocity is 0 where predictable is false.
+  glm::vec2 velocity_px_s{0.0f};
+  /// How far px trails the gaze at t in a steady movement (px): the velocity times the
+  /// smoother's own lag; 0 where predictable is false. predict_fovea adds it when asked.
+  glm::vec2 lag_px{0.0f};
+  bool predictable = false;
 };
 
 struct FoveaFrame {

@@ -1,0 +1,149 @@
+// `foveal predict-eval`: angular error at display time with and without prediction
+// (docs/results/latency/prediction.md).
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+#include "commands.hpp"
+#include "foveal/core/gaze_log.hpp"
+#include "foveal/core/json_file.hpp"
+#include "foveal/core/shown_text.hpp"
+#include "foveal/runtime/profile.hpp"
+#include "foveal/tools/cli.hpp"
+#include "prediction_eval.hpp"
+
+namespace foveal::cmd {
+
+namespace {
+
+nlohmann::json results_json(const std::vector<LatencyResult>& rs) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const LatencyResult& r : rs) {
+    nlohmann::json by_truth;
+    for (Truth tr : kTruths) {
+      nlohmann::json by_phase;
+      for (Phase ph : kPhases) {
+        nlohmann::json by_shown;
+        for (Shown s : kShown) {
+          const ErrorStats& e = r.stats[static_cast<std::size_t>(tr)][static_cast<std::size_t>(ph)][static_cast<std::size_t>(s)];
+          by_shown[shown_name(s)] = {{"n", e.n}, {"p50_deg", e.p50}, {"p95_deg", e.p95}, {"p99_deg", e.p99}, {"mean_deg", e.mean}};
+        }
+        by_phase[phase_name(ph)] = by_shown;
+      }
+      by_truth[truth_name(tr)] = by_phase;
+    }
+    out.push_back({{"latency_ms", r.latency_ms}, {"truth", by_truth}});
+  }
+  return out;
+}
+
+void print_results(const std::vector<LatencyResult>& rs) {
+  for (Truth tr : kTruths) {
+    std::printf("truth: %s\n", tr == Truth::recorded ? "the recorded gaze at t+L (interpolated; its noise is in every column)"
+                                                     : "a centred 5-sample mean of the recorded gaze at t+L (no lag, blurs saccades)");
+    for (const LatencyResult& r : rs) {
+      std::printf("  L = %g ms, error p50/p95/p99 (deg)\n  %-14s %6s", r.latency_ms, "at t+L", "n");
+      for (Shown s : kShown) std::printf("  %-20s", shown_name(s));
+      std::printf("\n");
+      for (Phase ph : kPhases) {
+        const auto& row = r.stats[static_cast<std::size_t>(tr)][static_cast<std::size_t>(ph)];
+        std::printf("  %-14s %6zu", phase_name(ph), row[0].n);
+        for (const ErrorStats& e : row) std::printf("  %5.2f/%5.2f/%6.2f   ", e.p50, e.p95, e.p99);
+        std::printf("\n");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void add_predict_eval(CLI::App& app, int& exit_code) {
+  struct Args {
+    std::vector<std::string> logs;
+    std::string config, profile, display;
+    std::vector<double> latencies_ms{11, 22, 45};
+    double max_horizon_ms = -1;
+    bool json = false;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* sub = app.add_subcommand(
+      "predict-eval",
+      "Angular error at display time t+L against the recorded gaze at t+L: the raw sample, the filter, the filter "
+      "with predict_ms = L, and predict_fovea (docs/results/latency/prediction.md)");
+  sub->add_option("logs", a->logs, "Native gaze logs (several are pooled)")->required();
+  sub->add_option("--latency-ms", a->latencies_ms, "Latencies to evaluate, comma-separated (0 < L <= 200)")
+      ->delimiter(',')
+      ->capture_default_str();
+  sub->add_option("--config", a->config, "Filter settings JSON (keys of docs/filtering.md)");
+  sub->add_option("--profile", a->profile, "Take the filter settings from this profile");
+  sub->add_option("--display", a->display, "Display-model JSON (default: HTC Vive Pro Eye)");
+  sub->add_option("--max-horizon-ms", a->max_horizon_ms, "predict_fovea's horizon clamp (default: FoveaPrediction's)");
+  sub->add_flag("--json", a->json, "Print the figures as JSON (per log and pooled)");
+  sub->callback([a, &exit_code] {
+    auto fail = [&exit_code](const Error& e) { exit_code = cli::report(e); };
+    for (double L : a->latencies_ms)
+      if (!(L > 0 && L <= 200))
+        return fail(bad_input("predict-eval: --latency-ms: " + shown_number(L) + " is not in (0, 200]"));
+    FoveaPrediction pred;
+    if (a->max_horizon_ms != -1) {
+      if (!(a->max_horizon_ms >= 0 && a->max_horizon_ms <= 1000))
+        return fail(bad_input("predict-eval: --max-horizon-ms: " + shown_number(a->max_horizon_ms) +
+                              " is not in [0, 1000]"));
+      pred.max_horizon_ns = static_cast<TimeNs>(std::llround(a->max_horizon_ms * 1e6));
+    }
+    FilterConfig cfg;
+    if (!a->config.empty() && !a->profile.empty())
+      return fail(bad_input("predict-eval: give --config or --profile, not both"));
+    if (!a->config.empty()) {
+      auto j = read_json_file(a->config, "filter settings");
+      if (!j) return fail(j.error());
+      auto c = FilterConfig::from_json(*j, a->config);
+      if (!c) return fail(c.error());
+      cfg = *c;
+    } else if (!a->profile.empty()) {
+      auto p = ProfileStore::user().load(a->profile);
+      if (!p) return fail(p.error());
+      cfg = *FilterConfig::from_json(p->filter, "profile " + a->profile);  // validated at load
+    }
+    DisplayModel model = DisplayModel::vive_pro_eye();
+    if (!a->display.empty()) {
+      auto m = DisplayModel::load(a->display);
+      if (!m) return fail(m.error());
+      model = *m;
+    }
+    // Every log is read before anything is printed: a bad one leaves no partial output.
+    std::vector<std::vector<GazeSample>> logs;
+    for (const std::string& path : a->logs) {
+      auto s = read_gaze_log(path);
+      if (!s) return fail(s.error());
+      if (s->size() < 2) return fail(bad_input(path + ": fewer than 2 samples, nothing to evaluate"));
+      logs.push_back(std::move(*s));
+    }
+    PredictionEvaluator pooled(model, cfg, a->latencies_ms, pred);
+    nlohmann::json per_log = nlohmann::json::array();
+    for (std::size_t i = 0; i < logs.size(); ++i) {
+      pooled.add(logs[i]);
+      if (a->json)
+        per_log.push_back({{"log", a->logs[i]},
+                           {"samples", logs[i].size()},
+                           {"latencies", results_json(evaluate_prediction(logs[i], model, cfg, a->latencies_ms, pred))}});
+    }
+    const auto all = pooled.result();
+    if (a->json) {
+      cli::print_json({{"logs", per_log},
+                       {"pooled", results_json(all)},
+                       {"max_horizon_ms", static_cast<double>(pred.max_horizon_ns) / 1e6},
+                       {"display", model.name}});
+      return;
+    }
+    std::size_t samples = 0;
+    for (const auto& l : logs) samples += l.size();
+    std::printf("%zu log(s), %zu samples, both eyes pooled; predict_fovea max horizon %g ms\n", logs.size(), samples,
+                static_cast<double>(pred.max_horizon_ns) / 1e6);
+    print_results(all);
+  });
+}
+
+}  // namespace foveal::cmd
