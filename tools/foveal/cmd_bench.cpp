@@ -114,11 +114,11 @@ void add_bench(CLI::App& app, int& exit_code) {
       exit_code = cli::report(pipeline.error());
       return;
     }
-    bench::BenchOptions o = a->options;
-    o.pipeline = *pipeline;
-    if (o.scenes.empty()) o.scenes = {default_scene()};
-    o.gaze.size_given = size->count() > 0;
-    exit_code = bench::run_bench(o, sweep_options(*sub));
+    bench::BenchOptions run = a->options;
+    run.pipeline = *pipeline;
+    if (run.scenes.empty()) run.scenes = {default_scene()};
+    run.gaze.size_given = size->count() > 0;
+    exit_code = bench::run_bench(run, sweep_options(*sub));
   });
 }
 
