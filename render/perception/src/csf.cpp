@@ -9,6 +9,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
+#include <tuple>
 
 namespace foveal::perception {
 
@@ -154,6 +157,15 @@ float CsfTable::log2_sensitivity(float log2_rho, float log2_lum, float sqrt_ecc)
   const float a = v[0][0] * (1 - fr) + v[0][1] * fr;
   const float b = v[1][0] * (1 - fr) + v[1][1] * fr;
   return a * (1 - fl) + b * fl;
+}
+
+std::shared_ptr<const CsfTable> shared_csf_table(double omega, double sigma, double k_cm) {
+  static std::mutex mu;
+  static std::map<std::tuple<double, double, double>, std::shared_ptr<const CsfTable>> tables;
+  const std::lock_guard<std::mutex> lock(mu);
+  auto& t = tables[{omega, sigma, k_cm}];
+  if (!t) t = std::make_shared<const CsfTable>(omega, sigma, k_cm);
+  return t;
 }
 
 }  // namespace foveal::perception

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <thread>
 
 #include "foveal/perception/csf.hpp"
 #include "foveal/perception/pyramid.hpp"
@@ -29,6 +30,16 @@ struct BandGeometry {
   Plane log2_rho_off_axis;            ///< frequency scaled by the local pixels per degree
 };
 
+// fn(begin, end, part) over [0, n) in `threads` contiguous parts, part 0 on this thread.
+template <class F>
+void parallel_for(int threads, int n, F fn) {
+  const int t = std::max(1, std::min(threads, n));
+  std::vector<std::thread> pool;
+  for (int i = 1; i < t; ++i) pool.emplace_back([&, i] { fn(n * i / t, n * (i + 1) / t, i); });
+  fn(0, n / t, 0);
+  for (auto& th : pool) th.join();
+}
+
 }  // namespace
 
 struct JodMetric::Impl {
@@ -38,13 +49,15 @@ struct JodMetric::Impl {
   double ppd = 0;
   int bands = 0;                       ///< bands scored (the base band is not)
   std::vector<BandGeometry> band;
-  CsfTable csf_sustained, csf_transient;
+  std::shared_ptr<const CsfTable> csf_sustained, csf_transient;
   std::array<std::array<float, 256>, 3> lum_lut{};  ///< R, G, B code -> its share of Y (cd/m²)
-  float sensitivity_gain = 1, mask_gain = 1;
+  float log2_sensitivity_gain = 0, log2_mask_gain = 0;
+  int threads = 1;
 
-  Impl(EyeGeometry g, Photometry ph, Parameters par)
+  Impl(EyeGeometry g, Photometry ph, Parameters par, int n_threads)
       : geometry(g), photometry(ph), p(par), ppd(g.ppd()),
-        csf_sustained(0.0, par.csf_sigma, par.k_cm), csf_transient(par.transient_omega_hz, par.csf_sigma, par.k_cm) {
+        csf_sustained(shared_csf_table(0.0, par.csf_sigma, par.k_cm)),
+        csf_transient(shared_csf_table(par.transient_omega_hz, par.csf_sigma, par.k_cm)) {
     // Bands: the first at Nyquist, then 0.3228·Nyquist halving, down to 0.5 cpd and at
     // most log2(min size) - 1 of them.
     const int max_levels = static_cast<int>(std::floor(std::log2(std::min(g.width, g.height)))) - 1;
@@ -59,7 +72,8 @@ struct JodMetric::Impl {
       }
     bands = std::clamp(first_low + 1, 0, std::max(max_levels, 0));
     // Pixels per degree off axis relative to the centre (a pixel's angular size shrinks as
-    // tan grows): at visual angle a, (tan(a + δ) - tan a) / tan δ with δ half a pixel.
+    // tan grows): at visual angle a, (tan(a + δ) - tan a) / tan δ with δ half a pixel (the
+    // angle a is the length of the per-axis angles, as the reference takes it).
     const double half_px_deg = 0.5 / ppd;
     const double tan_half = std::tan(half_px_deg / kDeg);
     int w = g.width, h = g.height;
@@ -77,8 +91,9 @@ struct JodMetric::Impl {
         float* o = bg.log2_rho_off_axis.row(y);
         for (int x = 0; x < w; ++x) {
           const double ax = bg.angle_x[static_cast<std::size_t>(x)], ay = bg.angle_y[static_cast<std::size_t>(y)];
-          const double a = std::min(std::sqrt(ax * ax + ay * ay), 89.9) / kDeg;
-          const double mag = (std::tan(a + half_px_deg / kDeg) - std::tan(a)) / tan_half;
+          // (tan(a + δ) - tan a) / tan δ = (1 + tan² a) / (1 - tan a · tan δ): one tan.
+          const double ta = std::tan(std::min(std::sqrt(ax * ax + ay * ay), 89.9) / kDeg);
+          const double mag = (1.0 + ta * ta) / (1.0 - ta * tan_half);
           o[x] = static_cast<float>(std::log2(freq[static_cast<std::size_t>(b)] * mag));
         }
       }
@@ -91,8 +106,9 @@ struct JodMetric::Impl {
       for (int v = 0; v < 256; ++v)
         lum_lut[static_cast<std::size_t>(c)][static_cast<std::size_t>(v)] = static_cast<float>(
             luma[c] * ((ph.peak_cd_m2 - ph.black_cd_m2) * srgb_to_linear(v / 255.0) + ph.black_cd_m2));
-    sensitivity_gain = static_cast<float>(std::pow(10.0, p.sensitivity_correction_db / 20.0));
-    mask_gain = static_cast<float>(std::pow(10.0, p.mask_c));
+    log2_sensitivity_gain = static_cast<float>(p.sensitivity_correction_db / 20.0 * std::log2(10.0));
+    log2_mask_gain = static_cast<float>(p.mask_c * std::log2(10.0));
+    threads = std::max(1, n_threads);
   }
 
   Plane luminance(const image::Image& img) const {
@@ -109,62 +125,77 @@ struct JodMetric::Impl {
   // are (test, reference) pairs, sustained first; the first reference sets adaptation.
   void score_frame(const std::vector<const Plane*>& ch, const std::optional<Fixation>& fix,
                    std::vector<std::vector<double>>& q) const {
-    const std::size_t n = ch.size();
-    const std::size_t n_temporal = n / 2;
-    std::vector<std::vector<Plane>> gauss(n);
-    for (std::size_t c = 0; c < n; ++c) {
-      gauss[c].push_back(*ch[c]);
-      for (int b = 0; b < bands; ++b) gauss[c].push_back(pyramid_reduce(gauss[c].back()));
-    }
+    const int n = static_cast<int>(ch.size());
+    const std::size_t n_temporal = ch.size() / 2;
+    std::vector<std::vector<Plane>> gauss(static_cast<std::size_t>(n));
+    parallel_for(threads, n, [&](int c0, int c1, int) {
+      for (int c = c0; c < c1; ++c) {
+        auto& g = gauss[static_cast<std::size_t>(c)];
+        g.push_back(*ch[static_cast<std::size_t>(c)]);
+        for (int b = 0; b < bands; ++b) g.push_back(pyramid_reduce(g.back()));
+      }
+    });
     float gaze_x = 0, gaze_y = 0;
     if (fix) {
       gaze_x = static_cast<float>(std::atan((fix->x - geometry.cx) / geometry.focal_px) * kDeg);
       gaze_y = static_cast<float>(std::atan((fix->y - geometry.cy) / geometry.focal_px) * kDeg);
     }
     const float sqrt_ecc_max = static_cast<float>(std::sqrt(120.0));
+    const float log2_d_max = static_cast<float>(std::log2(1e4));
+    const float mask_p = static_cast<float>(p.mask_p), beta = static_cast<float>(p.beta);
+    const float mask_q[2] = {static_cast<float>(p.mask_q_sustained), static_cast<float>(p.mask_q_transient)};
     q.assign(n_temporal, std::vector<double>(static_cast<std::size_t>(bands), 0.0));
-    std::vector<Plane> expanded(n);
+    std::vector<Plane> expanded(static_cast<std::size_t>(n));
     for (int b = 0; b < bands; ++b) {
       const BandGeometry& bg = band[static_cast<std::size_t>(b)];
-      for (std::size_t c = 0; c < n; ++c)
-        expanded[c] = pyramid_expand(gauss[c][static_cast<std::size_t>(b) + 1], bg.width, bg.height);
+      parallel_for(threads, n, [&](int c0, int c1, int) {
+        for (int c = c0; c < c1; ++c)
+          expanded[static_cast<std::size_t>(c)] =
+              pyramid_expand(gauss[static_cast<std::size_t>(c)][static_cast<std::size_t>(b) + 1], bg.width, bg.height);
+      });
       // A Laplacian band's amplitude is half a grating's except in the finest band.
       const float mult = b == 0 ? 1.0f : 2.0f;
-      std::vector<double> acc(n_temporal, 0.0);
-      for (int y = 0; y < bg.height; ++y) {
-        const float ay = bg.angle_y[static_cast<std::size_t>(y)] - gaze_y;
-        const float* l_ref = expanded[1].row(y);
-        const float* rho_row = bg.log2_rho_off_axis.row(y);
-        std::vector<double> row_acc(n_temporal, 0.0);
-        for (int x = 0; x < bg.width; ++x) {
-          const float l_bkg = std::max(l_ref[x], 0.1f);
-          const float log2_l = std::log2(l_bkg);
-          float log2_rho = bg.log2_rho, sqrt_ecc = 0;
-          if (fix) {
-            const float ax = bg.angle_x[static_cast<std::size_t>(x)] - gaze_x;
-            sqrt_ecc = std::min(std::sqrt(std::sqrt(ax * ax + ay * ay)), sqrt_ecc_max);
-            log2_rho = rho_row[x];
+      std::vector<std::array<double, 2>> part(static_cast<std::size_t>(threads), {0.0, 0.0});
+      parallel_for(threads, bg.height, [&](int y0, int y1, int slot) {
+        std::array<double, 2> acc{0.0, 0.0};
+        for (int y = y0; y < y1; ++y) {
+          const float ay = bg.angle_y[static_cast<std::size_t>(y)] - gaze_y;
+          const float* l_ref = expanded[1].row(y);
+          const float* rho_row = bg.log2_rho_off_axis.row(y);
+          const std::size_t row0 = static_cast<std::size_t>(y) * static_cast<std::size_t>(bg.width);
+          std::array<double, 2> row_acc{0.0, 0.0};
+          for (int x = 0; x < bg.width; ++x) {
+            const float l_bkg = std::max(l_ref[x], 0.1f);
+            const float log2_l = std::log2(l_bkg);
+            float log2_rho = bg.log2_rho, sqrt_ecc = 0;
+            if (fix) {
+              const float ax = bg.angle_x[static_cast<std::size_t>(x)] - gaze_x;
+              sqrt_ecc = std::min(std::sqrt(std::sqrt(ax * ax + ay * ay)), sqrt_ecc_max);
+              log2_rho = rho_row[x];
+            }
+            const std::size_t i = row0 + static_cast<std::size_t>(x);
+            for (std::size_t t = 0; t < n_temporal; ++t) {
+              const CsfTable& csf = t == 0 ? *csf_sustained : *csf_transient;
+              const float log2_s = csf.log2_sensitivity(log2_rho, log2_l, sqrt_ecc) + log2_sensitivity_gain;
+              const float ct = std::min((gauss[2 * t][static_cast<std::size_t>(b)].v[i] - expanded[2 * t].v[i]) / l_bkg, 1000.0f) * mult;
+              const float cr = std::min((gauss[2 * t + 1][static_cast<std::size_t>(b)].v[i] - expanded[2 * t + 1].v[i]) / l_bkg, 1000.0f) * mult;
+              // In log2: D = |S (ct - cr)|^p / (1 + (g S min(|ct|, |cr|))^q), at most 1e4.
+              const float log2_m = std::log2(std::min(std::abs(ct), std::abs(cr))) + log2_s + log2_mask_gain;
+              float log2_d = mask_p * (std::log2(std::abs(ct - cr)) + log2_s) - std::log2(1.0f + std::exp2(mask_q[t] * log2_m));
+              log2_d = std::min(log2_d, log2_d_max);
+              row_acc[t] += static_cast<double>(std::exp2(beta * log2_d));
+            }
           }
-          const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(bg.width) + static_cast<std::size_t>(x);
-          for (std::size_t t = 0; t < n_temporal; ++t) {
-            const CsfTable& csf = t == 0 ? csf_sustained : csf_transient;
-            const float s = std::exp2(csf.log2_sensitivity(log2_rho, log2_l, sqrt_ecc)) * sensitivity_gain;
-            const Plane& gt = gauss[2 * t][static_cast<std::size_t>(b)];
-            const Plane& gr = gauss[2 * t + 1][static_cast<std::size_t>(b)];
-            const float ct = std::min((gt.v[i] - expanded[2 * t].v[i]) / l_bkg, 1000.0f) * mult * s;
-            const float cr = std::min((gr.v[i] - expanded[2 * t + 1].v[i]) / l_bkg, 1000.0f) * mult * s;
-            const double m = std::min(std::abs(ct), std::abs(cr)) * mask_gain;
-            const double qm = t == 0 ? p.mask_q_sustained : p.mask_q_transient;
-            double d = std::pow(std::abs(ct - cr), p.mask_p) / (1.0 + std::pow(m, qm));
-            d = std::min(d, 1e4);
-            row_acc[t] += std::pow(d, p.beta);
-          }
+          for (std::size_t t = 0; t < n_temporal; ++t) acc[t] += row_acc[t];
         }
-        for (std::size_t t = 0; t < n_temporal; ++t) acc[t] += row_acc[t];
-      }
+        part[static_cast<std::size_t>(slot)] = acc;
+      });
       const double count = static_cast<double>(bg.width) * bg.height;
-      for (std::size_t t = 0; t < n_temporal; ++t)
-        q[t][static_cast<std::size_t>(b)] = std::pow(acc[t] / count, 1.0 / p.beta);
+      for (std::size_t t = 0; t < n_temporal; ++t) {
+        double sum = 0;
+        for (const auto& a : part) sum += a[t];
+        q[t][static_cast<std::size_t>(b)] = std::pow(sum / count, 1.0 / p.beta);
+      }
     }
   }
 
@@ -222,8 +253,8 @@ double jod_from_q(double q, const Parameters& p) {
   return 10.0 + p.jod_a * std::pow(q, e);
 }
 
-JodMetric::JodMetric(EyeGeometry geometry, Photometry photometry, Parameters parameters)
-    : impl_(std::make_shared<const Impl>(geometry, photometry, parameters)) {}
+JodMetric::JodMetric(EyeGeometry geometry, Photometry photometry, Parameters parameters, int threads)
+    : impl_(std::make_shared<const Impl>(geometry, photometry, parameters, threads)) {}
 JodMetric::~JodMetric() = default;
 JodMetric::JodMetric(JodMetric&&) noexcept = default;
 JodMetric& JodMetric::operator=(JodMetric&&) noexcept = default;

@@ -125,7 +125,7 @@ Result<JodReport> run_jod(const JodRequest& rq) {
       report.width = w;
       report.height = h;
       for (int e = 0; e < n_eyes; ++e) {
-        metrics.emplace_back(eye_geometry(rq.display, e == 0 ? Eye::left : Eye::right, w, h), rq.photometry, rq.parameters);
+        metrics.emplace_back(eye_geometry(rq.display, e == 0 ? Eye::left : Eye::right, w, h), rq.photometry, rq.parameters, rq.threads);
         if (n > 1) {
           auto v = metrics.back().video(rq.fps);
           if (!v) return v.error();

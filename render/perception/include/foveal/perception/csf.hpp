@@ -4,6 +4,7 @@
 // size model, scaled in frequency and size by cortical magnification (Dougherty et al.
 // 2003) and in time by the Laird/Daly spatio-velocity CSF (docs/metrics.md, "JOD").
 #include <array>
+#include <memory>
 #include <vector>
 
 namespace foveal::perception {
@@ -28,5 +29,9 @@ class CsfTable {
   std::array<float, kN> rho_log_{}, lum_log_{}, ecc_sqrt_{};
   std::vector<float> s_log_;  ///< [lum][rho][ecc]
 };
+
+/// One table per (omega, sigma, k_cm) for the whole process (thread-safe): the metrics of
+/// both eyes and of every display share it.
+std::shared_ptr<const CsfTable> shared_csf_table(double omega, double sigma, double k_cm);
 
 }  // namespace foveal::perception

@@ -52,7 +52,8 @@ struct JodScore {
 
 class JodMetric {
  public:
-  JodMetric(EyeGeometry geometry, Photometry photometry, Parameters parameters = {});
+  /// `threads` (≥ 1) share each frame's pyramid and pooling.
+  JodMetric(EyeGeometry geometry, Photometry photometry, Parameters parameters = {}, int threads = 1);
   ~JodMetric();
   JodMetric(JodMetric&&) noexcept;
   JodMetric& operator=(JodMetric&&) noexcept;

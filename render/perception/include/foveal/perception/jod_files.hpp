@@ -29,6 +29,7 @@ struct JodRequest {
   std::optional<NormFovea> fovea_left, fovea_right;
   /// One line per frame, "X,Y" (both eyes) or "XL,YL,XR,YR"; overrides the foveae.
   std::string fovea_list;
+  int threads = 2;  ///< per eye, in turn
 };
 
 struct JodReport {
