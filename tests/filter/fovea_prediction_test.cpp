@@ -153,6 +153,12 @@ TEST(FoveaPrediction, StaysInsideTheViewport) {
   EXPECT_LT(q.eyes[0].px.x, 1440.0f);
   EXPECT_GE(q.eyes[0].px.x, 1439.0f);
   EXPECT_EQ(q.eyes[0].px.y, 0.0f);
+  // A velocity that carries the point beyond float's range still lands on the edge.
+  FoveaPrediction long_horizon;
+  long_horizon.max_horizon_ns = 1000 * kNsPerSec;
+  const FoveaFrame far =
+      predict_fovea(one_point({10, 10}, {3e38f, -3e38f}, true), f.t_ns + 100 * kNsPerSec, 1440, 1600, long_horizon);
+  EXPECT_EQ(far.eyes[0].px, glm::vec2(std::nextafter(1440.0f, 0.0f), 0.0f));
 }
 
 TEST(FoveaPrediction, NonFiniteInputLeavesTheEyeUnchanged) {

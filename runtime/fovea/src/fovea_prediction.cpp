@@ -19,8 +19,9 @@ FoveaFrame predict_fovea(const FoveaFrame& f, TimeNs display_t_ns, int eye_w, in
     const double x = static_cast<double>(e.px.x) + e.lag_px.x + static_cast<double>(e.velocity_px_s.x) * h;
     const double y = static_cast<double>(e.px.y) + e.lag_px.y + static_cast<double>(e.velocity_px_s.y) * h;
     if (!std::isfinite(x) || !std::isfinite(y)) continue;
-    e.px.x = std::clamp(static_cast<float>(x), 0.0f, std::nextafter(w, 0.0f));
-    e.px.y = std::clamp(static_cast<float>(y), 0.0f, std::nextafter(hh, 0.0f));
+    // Clamped before the cast: a double beyond float's range does not convert.
+    e.px.x = static_cast<float>(std::clamp(x, 0.0, static_cast<double>(std::nextafter(w, 0.0f))));
+    e.px.y = static_cast<float>(std::clamp(y, 0.0, static_cast<double>(std::nextafter(hh, 0.0f))));
   }
   return out;
 }
