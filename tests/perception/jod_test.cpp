@@ -102,5 +102,28 @@ TEST(Jod, WrongSizeIsRefusedWithTheSizes) {
   EXPECT_NE(s.error().message.find("258x160"), std::string::npos) << s.error().message;
 }
 
+TEST(Jod, VideoOfIdenticalFramesIsTenAndFlickerIsSeen) {
+  JodMetric m(window(kW, kH), Photometry{});
+  const image::Image ref = texture(kW, kH);
+  auto same = m.video(90);
+  auto flicker = m.video(90);
+  auto slow = m.video(2);  // one frame per 250 ms: the sustained channel alone
+  ASSERT_TRUE(same && flicker && slow);
+  for (int k = 0; k < 10; ++k) {
+    ASSERT_TRUE(same->push(ref, ref, Fixation{kW / 2.0, kH / 2.0}));
+    const image::Image t = noisy(ref, k % 2 ? 6.0 : 0.0);
+    ASSERT_TRUE(flicker->push(ref, t, Fixation{kW / 2.0, kH / 2.0}));
+    ASSERT_TRUE(slow->push(ref, t, std::nullopt));
+  }
+  EXPECT_DOUBLE_EQ(same->score()->jod, 10.0);
+  EXPECT_LT(flicker->score()->jod, 10.0);
+  EXPECT_LT(slow->score()->jod, 10.0);
+  EXPECT_EQ(flicker->score()->frames, 10);
+  EXPECT_FALSE(m.video(0));
+  EXPECT_FALSE(m.video(5000));
+  auto empty = m.video(30);
+  EXPECT_FALSE(empty->score());
+}
+
 }  // namespace
 }  // namespace foveal::perception

@@ -291,13 +291,17 @@ JodMetric::Video::~Video() = default;
 JodMetric::Video::Video(Video&&) noexcept = default;
 
 Result<JodMetric::Video> JodMetric::video(double fps) const {
-  if (!std::isfinite(fps) || fps <= 0) return bad_input("--fps: must be > 0, got " + std::to_string(fps));
+  // The ring holds ceil(fps / 4) frames of both videos: 1000 Hz is the most it takes.
+  if (!std::isfinite(fps) || fps <= 0 || fps > 1000)
+    return bad_input("--fps: must be in (0, 1000], got " + std::to_string(fps));
   auto s = std::make_unique<Video::State>();
   s->impl = impl_;
   // 250 ms of frames: a log-normal sustained response (peak 60 ms) and its derivative,
   // sampled on [0, n/fps] at n points.
-  const int n = std::max(2, static_cast<int>(std::ceil(250.0 / (1000.0 / fps))));
-  const double step = (static_cast<double>(n) / fps) / (n - 1);
+  // Below 4 fps one frame spans the 250 ms: the sustained channel is that frame and the
+  // transient one is empty (the reference fails there: it needs two taps).
+  const int n = std::max(1, static_cast<int>(std::ceil(250.0 / (1000.0 / fps))));
+  const double step = n > 1 ? (static_cast<double>(n) / fps) / (n - 1) : 1.0;
   const Parameters& p = impl_->p;
   std::vector<double> f(static_cast<std::size_t>(n));
   double sum = 0;
