@@ -1,5 +1,6 @@
 // foveal metrics: PSNR, SSIM and FPSNR of a test image against a reference, on a single
-// image or a side-by-side stereo frame (docs/metrics.md).
+// image or a side-by-side stereo frame; with --jod, FovVideoVDP's JOD of images and frame
+// sequences (docs/metrics.md).
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -170,7 +171,7 @@ int run(const Args& a) {
 
 void add_metrics(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<Args>();
-  CLI::App* sub = app.add_subcommand("metrics", "PSNR, SSIM and foveated PSNR of a test image against a reference");
+  CLI::App* sub = app.add_subcommand("metrics", "PSNR, SSIM and foveated PSNR of a test image against a reference, or with --jod FovVideoVDP's JOD of images or videos");
   sub->add_option("--ref,-r", args->ref, "Reference image (PNG, JPEG, BMP, TGA)")->required();
   sub->add_option("--test,-t", args->test, "Test image, same size")->required();
   sub->add_option("--fovea,--fovea-left", args->fovea,
