@@ -43,6 +43,8 @@ TEST(JodCli, StillsStereoAndNoFovea) {
   ASSERT_EQ(st.exit_code, 0) << st.err;
   auto j = nlohmann::json::parse(st.out);
   EXPECT_LT(j["left"]["jod"].get<double>(), 10.0);
+  EXPECT_EQ(j["left"]["foveated"].get<bool>(), true);
+  EXPECT_EQ(j["right"]["foveated"].get<bool>(), false);
   EXPECT_LT(j["jod"].get<double>(), 10.0);
   EXPECT_EQ(j["size"][0].get<int>(), 64);
 }

@@ -96,6 +96,10 @@ int run_jod(const Args& a) {
     if (a.stereo) {
       j["left"] = jod_json(rep->eyes[0]);
       j["right"] = jod_json(rep->eyes[1]);
+      if (a.fovea_list.empty()) {
+        j["left"]["foveated"] = rq.fovea_left.has_value();
+        j["right"]["foveated"] = rq.fovea_right.has_value();
+      }
     }
     cli::print_json(j);
   } else {

@@ -235,9 +235,8 @@ EyeGeometry eye_geometry(const DisplayModel& model, Eye e, int w, int h) {
   g.height = h;
   // Square pixels: one focal length, the horizontal one.
   g.focal_px = static_cast<double>(f.x) * sx;
-  (void)sy;
   g.cx = static_cast<double>(c.x) * sx;
-  g.cy = static_cast<double>(c.y) * static_cast<double>(h) / model.eye_height;
+  g.cy = static_cast<double>(c.y) * sy;
   return g;
 }
 
