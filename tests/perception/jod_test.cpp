@@ -125,5 +125,20 @@ TEST(Jod, VideoOfIdenticalFramesIsTenAndFlickerIsSeen) {
   EXPECT_FALSE(empty->score());
 }
 
+TEST(Jod, DegenerateInputsAreRefusedOrScoredWithoutBands) {
+  JodMetric m(window(kW, kH), Photometry{});
+  const image::Image ref = texture(kW, kH);
+  auto nan = m.still(ref, ref, Fixation{std::nan(""), 3});
+  ASSERT_FALSE(nan);
+  EXPECT_NE(nan.error().message.find("finite"), std::string::npos) << nan.error().message;
+  auto v = m.video(30);
+  EXPECT_FALSE(v->push(ref, ref, Fixation{1, INFINITY}));
+  JodMetric tiny(window(1, 1), Photometry{});
+  auto t = tiny.still(texture(1, 1), noisy(texture(1, 1), 30), std::nullopt);
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->bands, 0);
+  EXPECT_DOUBLE_EQ(t->jod, 10.0);
+}
+
 }  // namespace
 }  // namespace foveal::perception

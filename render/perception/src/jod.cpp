@@ -60,7 +60,10 @@ struct JodMetric::Impl {
         csf_transient(shared_csf_table(par.transient_omega_hz, par.csf_sigma, par.k_cm)) {
     // Bands: the first at Nyquist, then 0.3228·Nyquist halving, down to 0.5 cpd and at
     // most log2(min size) - 1 of them.
-    const int max_levels = static_cast<int>(std::floor(std::log2(std::min(g.width, g.height)))) - 1;
+    // Nothing to score on an image under 2×2 (or on a degenerate geometry).
+    const int min_side = std::min(g.width, g.height);
+    const int max_levels =
+        min_side >= 2 && std::isfinite(ppd) && ppd > 0 ? static_cast<int>(std::floor(std::log2(min_side))) - 1 : 0;
     std::vector<double> freq;
     freq.push_back(ppd / 2);
     for (int k = 0; k < kMaxBands; ++k) freq.push_back(0.3228 * std::pow(2.0, -k) * ppd / 2);
@@ -216,6 +219,12 @@ struct JodMetric::Impl {
     return std::pow(total, 1.0 / p.beta_tch);
   }
 
+  static Status check_fixation(const std::optional<Fixation>& f) {
+    if (f && (!std::isfinite(f->x) || !std::isfinite(f->y)))
+      return bad_input("fixation: must be finite, got " + std::to_string(f->x) + "," + std::to_string(f->y));
+    return {};
+  }
+
   Status check_size(const image::Image& img, const char* what) const {
     if (img.width != geometry.width || img.height != geometry.height)
       return bad_input(std::string(what) + ": size " + std::to_string(img.width) + "x" + std::to_string(img.height) +
@@ -263,6 +272,7 @@ Result<JodScore> JodMetric::still(const image::Image& reference, const image::Im
                                   const std::optional<Fixation>& fixation) const {
   if (auto s = impl_->check_size(reference, "reference"); !s) return s.error();
   if (auto s = impl_->check_size(test, "test"); !s) return s.error();
+  if (auto s = Impl::check_fixation(fixation); !s) return s.error();
   const Plane r = impl_->luminance(reference), t = impl_->luminance(test);
   std::vector<std::vector<double>> q;
   impl_->score_frame({&t, &r}, fixation, q);
@@ -327,6 +337,7 @@ Status JodMetric::Video::push(const image::Image& reference, const image::Image&
   const Impl& impl = *s.impl;
   if (auto st = impl.check_size(reference, "reference frame"); !st) return st;
   if (auto st = impl.check_size(test, "test frame"); !st) return st;
+  if (auto st = Impl::check_fixation(fixation); !st) return st;
   const std::size_t n = s.sustained.size();
   const std::size_t slot = static_cast<std::size_t>(s.frames) % n;
   s.ref_ring[slot] = impl.luminance(reference);
