@@ -133,6 +133,9 @@ TEST(Jod, DegenerateInputsAreRefusedOrScoredWithoutBands) {
   EXPECT_NE(nan.error().message.find("finite"), std::string::npos) << nan.error().message;
   auto v = m.video(30);
   EXPECT_FALSE(v->push(ref, ref, Fixation{1, INFINITY}));
+  JodMetric dark(window(kW, kH), Photometry{100, std::nan("")});
+  EXPECT_FALSE(dark.still(ref, ref, std::nullopt));
+  EXPECT_FALSE(dark.video(30));
   JodMetric tiny(window(1, 1), Photometry{});
   auto t = tiny.still(texture(1, 1), noisy(texture(1, 1), 30), std::nullopt);
   ASSERT_TRUE(t);

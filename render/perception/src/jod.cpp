@@ -273,6 +273,7 @@ Result<JodScore> JodMetric::still(const image::Image& reference, const image::Im
   if (auto s = impl_->check_size(reference, "reference"); !s) return s.error();
   if (auto s = impl_->check_size(test, "test"); !s) return s.error();
   if (auto s = Impl::check_fixation(fixation); !s) return s.error();
+  if (auto s = impl_->photometry.validate(); !s) return s.error();
   const Plane r = impl_->luminance(reference), t = impl_->luminance(test);
   std::vector<std::vector<double>> q;
   impl_->score_frame({&t, &r}, fixation, q);
@@ -301,6 +302,7 @@ JodMetric::Video::Video(Video&&) noexcept = default;
 
 Result<JodMetric::Video> JodMetric::video(double fps) const {
   // The ring holds ceil(fps / 4) frames of both videos: 1000 Hz is the most it takes.
+  if (auto st = impl_->photometry.validate(); !st) return st.error();
   if (!std::isfinite(fps) || fps <= 0 || fps > 1000)
     return bad_input("--fps: must be in (0, 1000], got " + std::to_string(fps));
   auto s = std::make_unique<Video::State>();
