@@ -80,6 +80,32 @@ TEST(FovealdLatency, EveryFrameNamesItsSampleAndItsPartsAddUp) {
   }
 }
 
+// Frames of one sample show one fovea without prediction; with it, each frame's own
+// display time moves it (the replay's eyes are seldom still).
+TEST(FovealdLatency, PredictionMovesTheFoveaToEachFramesDisplayTime) {
+  test::TempDir dir;
+  std::map<std::string, int> frames_of_a_sample_that_differ;
+  for (const char* predict : {"on", "off"}) {
+    const std::string out = dir.path(predict);
+    const test::RunResult r = test::run(test::bin("foveald") + " --scene pattern:checker --size 160x90 --frames 80"
+                                        " --no-control --no-shm -q --predict " + predict + " --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream csv(out + "/frames.csv");
+    std::string line;
+    std::getline(csv, line);
+    std::map<std::string, std::set<std::string>> fovea_of_sample;
+    while (std::getline(csv, line)) {
+      const auto c = cells_of(line);
+      fovea_of_sample[c[1]].insert(c[3] + "," + c[4]);
+    }
+    for (const auto& [t, foveae] : fovea_of_sample) frames_of_a_sample_that_differ[predict] += foveae.size() > 1;
+    const nlohmann::json s = nlohmann::json::parse(test::read_file(out + "/summary.json"));
+    EXPECT_EQ(s["render"]["prediction"], predict);
+  }
+  EXPECT_EQ(frames_of_a_sample_that_differ["off"], 0);
+  EXPECT_GT(frames_of_a_sample_that_differ["on"], 0);
+}
+
 TEST(FovealdLatency, JitWithoutADisplayIsRefusedNamed) {
   test::TempDir dir;
   const test::RunResult r = test::run(test::bin("foveald") + " --scene pattern:checker --size 64x32 --frames 1 --no-control"

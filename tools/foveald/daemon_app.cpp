@@ -194,6 +194,7 @@ Status DaemonApp::setup_renderer() {
   }
   ro.distortion = o_.distortion;
   ro.late_latch = o_.latch != "early";
+  ro.prediction.enabled = o_.predict != "off";
   const bool display = ro.output.kind != render::OutputOptions::Kind::headless;
   auto pacing = parse_pacing(o_.pacing.empty() ? (display ? "jit" : "asap") : o_.pacing);
   if (!pacing) return pacing.error();

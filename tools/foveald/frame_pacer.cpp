@@ -7,7 +7,8 @@ namespace foveal::daemon {
 namespace {
 
 constexpr std::size_t kRecentFrames = 16;
-// The margin starts at 2 ms, grows by 1 ms on each miss (to a period at most) and gives
+// The margin starts at 2 ms, grows on each miss by 1 ms more than the frame was late
+// (to a period at most) and gives
 // back 0.25 ms after 30 frames in a row on time, never below 1 ms: timer wake-ups and
 // the present's own copy live in it.
 constexpr TimeNs kStartMargin = 2 * kNsPerMs, kMinMargin = kNsPerMs, kGrow = kNsPerMs, kShrink = kNsPerMs / 4;
@@ -44,16 +45,17 @@ FramePlan FramePacer::plan(TimeNs now, std::optional<TimeNs> last_shown) const {
   return {std::max(now, target - lead), target};
 }
 
-void FramePacer::shown(TimeNs start, TimeNs gpu_done, TimeNs shown_at, TimeNs target) {
-  ++frames_;
-  recent_work_.push_back(std::max<TimeNs>(0, gpu_done - start));
+void FramePacer::shown(TimeNs start, TimeNs ready, TimeNs shown_at, TimeNs target) {
+  // The first frame compiles shaders and uploads the scene: not what the next ones cost.
+  if (++frames_ > 1) recent_work_.push_back(std::max<TimeNs>(0, ready - start));
   if (recent_work_.size() > kRecentFrames) recent_work_.pop_front();
   if (period_ns_ <= 0 || target <= 0) return;
   // Late by more than half a period: it was shown at a later refresh than planned.
   if (shown_at > target + period_ns_ / 2) {
     ++misses_;
     hits_in_a_row_ = 0;
-    if (pacing_ == Pacing::jit) margin_ns_ = std::min(period_ns_, margin_ns_ + kGrow);
+    // By what the frame lacked (ready after its refresh), at least 1 ms.
+    if (pacing_ == Pacing::jit) margin_ns_ = std::min(period_ns_, margin_ns_ + std::max(kGrow, ready - target + kGrow));
   } else if (++hits_in_a_row_ >= kHitsToShrink && pacing_ == Pacing::jit) {
     margin_ns_ = std::max(kMinMargin, margin_ns_ - kShrink);
     hits_in_a_row_ = 0;

@@ -1,7 +1,8 @@
 #pragma once
 // When each frame starts (docs/latency.md, "Pacing"): `asap` starts it as soon as the
 // last one was presented; `jit` (just in time) as late before a refresh as the recent
-// frames' work allows, plus a margin that grows on a missed refresh and shrinks slowly
+// frames' work allows, plus a margin that grows on a missed refresh by what the frame
+// lacked and shrinks slowly
 // while frames land, so the gaze is as young as possible when the frame is shown.
 // Render thread only.
 #include <cstdint>
@@ -34,9 +35,10 @@ class FramePacer {
   /// The next frame's plan, at `now`, after the last frame shown at `last_shown_ns`
   /// (nullopt before the first).
   FramePlan plan(TimeNs now, std::optional<TimeNs> last_shown_ns) const;
-  /// A frame's outcome: it started at `start`, the GPU finished at `gpu_done`, it was
-  /// shown at `shown` for the refresh `target`.
-  void shown(TimeNs start, TimeNs gpu_done, TimeNs shown, TimeNs target);
+  /// A frame's outcome: it started at `start`, was ready to show at `ready` (rendered
+  /// and copied to the display's buffer: Output::last_ready_ns), and was shown at
+  /// `shown` for the refresh `target`.
+  void shown(TimeNs start, TimeNs ready, TimeNs shown, TimeNs target);
 
   Pacing pacing() const { return pacing_; }
   double margin_ms() const { return static_cast<double>(margin_ns_) * 1e-6; }
@@ -45,7 +47,7 @@ class FramePacer {
   nlohmann::json json() const;
 
  private:
-  TimeNs work_estimate() const;  ///< the longest of the recent frames' start → GPU done
+  TimeNs work_estimate() const;  ///< the longest of the last 16 frames' start → ready, the first frame apart
   Pacing pacing_;
   TimeNs period_ns_;
   TimeNs margin_ns_;

@@ -87,9 +87,13 @@ Status FrameRenderer::render(const std::function<FoveaFrame()>& latest, const Re
   p.pipeline = pipeline_;
   p.ipd_mm = s.ipd_mm;
   if (head.valid) p.head = head.relative;
+  // What the frame shows: the newest fovea, predicted to when the frame is shown.
+  const auto shown_fovea = [&](const FoveaFrame& f) {
+    return predict_fovea(f, plan.display_target_ns, model.eye_width, model.eye_height, o_.prediction);
+  };
   FoveaFrame used = latest();
   lat.latch_ns = monotonic_now_ns();
-  set_fovea(p.eyes, used, model);
+  set_fovea(p.eyes, shown_fovea(used), model);
   // f < 0 means automatic: estimated once per settings change (docs/methods.md).
   if ((s.f_x <= 0 || s.f_y <= 0) && auto_f_generation_ != s.generation) {
     if (Status st = estimate_f(p); !st) return st;
@@ -104,7 +108,7 @@ Status FrameRenderer::render(const std::function<FoveaFrame()>& latest, const Re
   const render::FoveaLatch latch = [&](std::array<render::EyeFoveation, 2>& eyes) {
     used = latest();
     lat.latch_ns = monotonic_now_ns();
-    set_fovea(eyes, used, model);
+    set_fovea(eyes, shown_fovea(used), model);
   };
   auto t = comp_->render(*scene_, p, o_.late_latch ? latch : render::FoveaLatch{});
   if (!t) return t.error();
@@ -134,7 +138,7 @@ Status FrameRenderer::render(const std::function<FoveaFrame()>& latest, const Re
                 double(hp.position_m.y), double(hp.position_m.z), double(hp.orientation.w), double(hp.orientation.x),
                 double(hp.orientation.y), double(hp.orientation.z), static_cast<std::int64_t>(head.t_ns));
   if (Status st = output_->present(comp_->output_framebuffer(), comp_->width(), comp_->height()); !st) return st;
-  pending_.push_back({line, lat});
+  pending_.push_back({line, lat, output_->last_ready_ns()});
   // Just in time needs this frame's refresh before it plans the next.
   if (o_.pacing == Pacing::jit)
     if (Status st = output_->finish(); !st) return st;
@@ -176,7 +180,7 @@ Status FrameRenderer::write_shown_rows() {
     row.latency.shown_ns = t;
     last_shown_ = t;
     latency_.add(row.latency);
-    pacer_->shown(row.latency.start_ns, row.latency.gpu_done_ns, t, row.latency.display_target_ns);
+    pacer_->shown(row.latency.start_ns, row.ready_ns, t, row.latency.display_target_ns);
     // A row once the frame is on screen, readable in the temporary file while foveald runs.
     if (csv_closed_) continue;
     csv_->write(row.cells + row.latency.csv_cells() + "\n");
@@ -272,6 +276,7 @@ nlohmann::json FrameRenderer::stats_json() const {
                                 {"gpu_total", med.gpu_total}, {"cpu_frame", med.cpu}}},
           {"targets_mb", snap_.targets_mb},
           {"latch", o_.late_latch ? "late" : "early"},
+          {"prediction", o_.prediction.enabled ? "on" : "off"},
           {"gaze_to_photon", snap_.latency},
           {"pacing", snap_.pacing},
           {"saved", snap_.saved}};

@@ -20,6 +20,7 @@
 #include "foveal/render/output.hpp"
 #include "foveal/render/scene.hpp"
 #include "foveal/runtime/fovea.hpp"
+#include "foveal/runtime/fovea_prediction.hpp"
 #include "frame_latency.hpp"
 #include "frame_pacer.hpp"
 #include "render_settings.hpp"
@@ -38,6 +39,8 @@ struct RenderOptions {
   /// pass); false: at the frame's start, as before the latch existed (docs/latency.md).
   bool late_latch = true;
   Pacing pacing = Pacing::asap;   ///< when frames start (frame_pacer.hpp)
+  /// The latched fovea predicted to the frame's display target (fovea_prediction.hpp).
+  FoveaPrediction prediction;
   double refresh_hz = 0;          ///< the display's, for pacing; 0: none (headless)
 };
 
@@ -88,6 +91,7 @@ class FrameRenderer {
   struct PendingRow {
     std::string cells;
     FrameLatency latency;
+    TimeNs ready_ns = 0;  ///< Output::last_ready_ns: the frame's cost for pacing
   };
 
   /// What other threads may read, updated after each frame under snapshot_mutex_.

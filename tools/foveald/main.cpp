@@ -58,6 +58,9 @@ int main(int argc, char** argv) {
   app.add_option("--latch", o.latch, "When a frame reads the fovea: late (after the passes that do not need it) or early (at its start)")
       ->check(CLI::IsMember({"late", "early"}))
       ->capture_default_str();
+  app.add_option("--predict", o.predict, "Predict the fovea to each frame's display time: on or off (docs/filtering.md, \"Prediction\")")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   app.add_option("--size", o.size, "Side-by-side output WxH (default: the display model's, 2880x1600)");
   app.add_option("--save-every", o.save_every, "Also save every Nth frame as PNG (the first and last always)")->check(CLI::Range(0, 1000000));
   app.add_flag("--json", o.json, "Print the summary as JSON");

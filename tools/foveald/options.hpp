@@ -31,6 +31,7 @@ struct Options {
   std::string pipeline = render::kDefaultPipelineName;  ///< gbuffer or visibility
   std::string pacing;         ///< asap or jit; empty: jit on a display, asap headless
   std::string latch = "late"; ///< late or early (docs/latency.md)
+  std::string predict = "on"; ///< on or off: the fovea predicted to display time
   std::string size;           ///< WxH; empty: the display model's
   int save_every = 0;         ///< save every Nth frame as PNG (first and last always)
   std::string monitor;        ///< window mode: fullscreen on this monitor

@@ -118,7 +118,7 @@ ReadResult ReplaySource::next(std::chrono::nanoseconds timeout) {
   }
   r.status = ReadStatus::sample;
   r.sample = pending_;
-  r.device_t_ns = pending_.t_ns;
+  r.device_t_ns = window_last_;  // the row's own time, before any loop's offset
   r.sample.t_ns = due;
   have_pending_ = false;
   return r;

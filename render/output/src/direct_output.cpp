@@ -14,6 +14,7 @@ class DirectOutput final : public Output {
   Status finish() override { return drm_.finish(); }
   std::vector<std::int64_t> take_shown() override { return drm_.take_shown(); }
   const char* shown_clock() const override { return "page_flip"; }
+  std::int64_t last_ready_ns() const override { return drm_.last_ready_ns(); }
   nlohmann::json json() const override {
     const KmsMode& m = drm_.mode();
     nlohmann::json connector = connector_json(drm_.connector());

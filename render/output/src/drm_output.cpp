@@ -179,6 +179,7 @@ struct DrmOutput::Impl {
   gbm_bo* pending = nullptr;  // queued by a page flip
   bool mode_set = false;
   PresentStats stats;
+  std::int64_t ready_ns = 0;  // the last frame in its buffer
 
   Status make_gl();
 
@@ -383,6 +384,7 @@ const KmsConnector& DrmOutput::connector() const { return impl_->connector; }
 const KmsMode& DrmOutput::mode() const { return impl_->mode; }
 const PresentStats& DrmOutput::stats() const { return impl_->stats; }
 std::vector<std::int64_t> DrmOutput::take_shown() { return impl_->stats.take_shown(); }
+std::int64_t DrmOutput::last_ready_ns() const { return impl_->ready_ns; }
 
 Status DrmOutput::present(GLuint framebuffer, int width, int height) {
   Impl& o = *impl_;
@@ -393,6 +395,7 @@ Status DrmOutput::present(GLuint framebuffer, int width, int height) {
   if (!eglSwapBuffers(o.display, o.egl_surface)) return Error{ErrorKind::device, gl::egl_error("eglSwapBuffers (GBM)")};
   gbm_bo* bo = gbm_surface_lock_front_buffer(o.surface);
   if (!bo) return Error{ErrorKind::device, o.path + ": gbm_surface_lock_front_buffer failed"};
+  o.ready_ns = now_ns();
   auto fb = o.framebuffer(bo);
   if (!fb) {
     gbm_surface_release_buffer(o.surface, bo);

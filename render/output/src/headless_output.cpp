@@ -13,9 +13,11 @@ class HeadlessOutput final : public Output {
   const char* kind() const override { return "headless"; }
   Status present(GLuint, int, int) override {
     // The compositor waited for the GPU before: now is when the frame was done.
-    shown_.push_back(monotonic_now_ns());
+    ready_ = monotonic_now_ns();
+    shown_.push_back(ready_);
     return {};
   }
+  std::int64_t last_ready_ns() const override { return ready_; }
   std::vector<std::int64_t> take_shown() override {
     std::vector<std::int64_t> t;
     t.swap(shown_);
@@ -27,6 +29,7 @@ class HeadlessOutput final : public Output {
  private:
   gl::EglContext ctx_;
   std::vector<std::int64_t> shown_;
+  std::int64_t ready_ = 0;
 };
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "foveal/render/window.hpp"
 
+#include "foveal/core/clock.hpp"
+
 #define GLFW_INCLUDE_NONE  // GL comes from foveal/render/gl.hpp (core profile)
 #include <GLFW/glfw3.h>
 
@@ -28,6 +30,7 @@ struct Window::Impl {
   GLFWwindow* window = nullptr;
   std::vector<int> keys;
   PresentStats stats;
+  std::int64_t ready_ns = 0;
   ~Impl() {
     if (window) glfwDestroyWindow(window);
   }
@@ -92,6 +95,8 @@ void Window::present(GLuint framebuffer, int width, int height) {
   glfwGetFramebufferSize(impl_->window, &fw, &fh);
   glDisable(GL_FRAMEBUFFER_SRGB);  // copy the sRGB-encoded bytes as they are
   glBlitNamedFramebuffer(framebuffer, 0, 0, 0, width, height, 0, 0, fw, fh, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+  glFinish();  // the copy's cost belongs to the frame, not to the swap's wait
+  impl_->ready_ns = monotonic_now_ns();
   glfwSwapBuffers(impl_->window);
   impl_->stats.record(std::chrono::duration_cast<std::chrono::nanoseconds>(
                           std::chrono::steady_clock::now().time_since_epoch()).count());
@@ -100,6 +105,7 @@ void Window::present(GLuint framebuffer, int width, int height) {
 
 const PresentStats& Window::stats() const { return impl_->stats; }
 std::vector<std::int64_t> Window::take_shown() { return impl_->stats.take_shown(); }
+std::int64_t Window::last_ready_ns() const { return impl_->ready_ns; }
 
 bool Window::should_close() const { return glfwWindowShouldClose(impl_->window) != 0; }
 

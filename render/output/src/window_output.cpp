@@ -17,6 +17,7 @@ class WindowOutput final : public Output {
   bool closed() const override { return window_.should_close(); }
   std::vector<std::int64_t> take_shown() override { return window_.take_shown(); }
   const char* shown_clock() const override { return "swap"; }
+  std::int64_t last_ready_ns() const override { return window_.last_ready_ns(); }
   nlohmann::json json() const override { return {{"kind", kind()}, {"present", window_.stats().json()}}; }
 
  private:

@@ -60,6 +60,8 @@ class DrmOutput {
   /// The completed flips' timestamps since the last call (the kernel's, CLOCK_MONOTONIC;
   /// the mode set's own time for the first frame), oldest first.
   std::vector<std::int64_t> take_shown();
+  /// When the last frame was in its GBM buffer, before any wait for a flip or refresh.
+  std::int64_t last_ready_ns() const;
 
   /// Every /dev/dri/card* with its connectors (no master needed).
   static std::vector<DrmDeviceInfo> list_devices();

@@ -39,6 +39,10 @@ class Output {
   /// buffer swap returned (a window: GLFW has no presentation time); "gpu_done": when
   /// present() was called after the GPU finished the frame (headless, a proxy).
   virtual const char* shown_clock() const = 0;
+  /// When the last presented frame was ready to show (copied to the display's buffer and
+  /// swapped), before any wait for a refresh: what a frame costs until it can be shown,
+  /// for pacing. CLOCK_MONOTONIC; 0 before the first present.
+  virtual std::int64_t last_ready_ns() const = 0;
   /// kind, and what was presented (PresentStats) and where, for status and summaries.
   virtual nlohmann::json json() const = 0;
 };

@@ -36,6 +36,9 @@ class Window {
   const PresentStats& stats() const;
   /// The swaps' return times since the last call, oldest first.
   std::vector<std::int64_t> take_shown();
+  /// When the last frame was copied to the back buffer, before the swap (which may wait
+  /// for vsync).
+  std::int64_t last_ready_ns() const;
   bool should_close() const;
   /// Keys pressed since the last call (GLFW key codes), for interactive tools.
   std::vector<int> take_keys();
