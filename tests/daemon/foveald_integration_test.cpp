@@ -118,7 +118,12 @@ TEST_F(Foveald, StatusProfilesSettingsAndCleanSigterm) {
     }
     return r;
   };
-  EXPECT_EQ(rendered_generation(gen)["settings_generation"].get<int>(), gen);
+  const nlohmann::json rendered = rendered_generation(gen);
+  EXPECT_EQ(rendered["settings_generation"].get<int>(), gen);
+  // Gaze to photon, live (docs/latency.md): frames with a sample have been shown by now.
+  EXPECT_GT(rendered["gaze_to_photon"]["frames"].get<int>(), 0) << rendered.dump();
+  EXPECT_GT(rendered["gaze_to_photon"]["gaze_to_photon_ms"]["p50"].get<double>(), 0.0);
+  EXPECT_EQ(rendered["pacing"]["pacing"], "asap");
 
   auto set = ctl({{"cmd", "set"}, {"sigma_d", 2.8}, {"f_x", "auto"}});
   EXPECT_EQ(set["ok"], true);
