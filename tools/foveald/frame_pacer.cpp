@@ -46,8 +46,10 @@ FramePlan FramePacer::plan(TimeNs now, std::optional<TimeNs> last_shown) const {
 }
 
 void FramePacer::shown(TimeNs start, TimeNs ready, TimeNs shown_at, TimeNs target) {
-  // The first frame compiles shaders and uploads the scene: not what the next ones cost.
-  if (++frames_ > 1) recent_work_.push_back(std::max<TimeNs>(0, ready - start));
+  // The first frame compiles shaders and uploads the scene: neither its work nor its
+  // lateness says anything of the next frames.
+  if (++frames_ == 1) return;
+  recent_work_.push_back(std::max<TimeNs>(0, ready - start));
   if (recent_work_.size() > kRecentFrames) recent_work_.pop_front();
   if (period_ns_ <= 0 || target <= 0) return;
   // Late by more than half a period: it was shown at a later refresh than planned.

@@ -43,7 +43,8 @@ class FramePacer {
   Pacing pacing() const { return pacing_; }
   double margin_ms() const { return static_cast<double>(margin_ns_) * 1e-6; }
   std::uint64_t misses() const { return misses_; }
-  /// {"pacing", "refresh_hz", "margin_ms", "misses", "frames", "work_ms_max_recent"}.
+  /// {"pacing", "refresh_hz", "margin_ms", "misses", "frames", "work_ms_max_recent"};
+  /// the first frame (shader compilation) is in "frames" only.
   nlohmann::json json() const;
 
  private:
