@@ -47,6 +47,12 @@ TEST(JodCli, StillsStereoAndNoFovea) {
   EXPECT_EQ(j["right"]["foveated"].get<bool>(), false);
   EXPECT_LT(j["jod"].get<double>(), 10.0);
   EXPECT_EQ(j["size"][0].get<int>(), 64);
+  auto r10 = test::run(jod("--ref " + d.path("a.png") + " --test " + d.path("b.png") +
+                           " --stereo --fovea 0.2,0.5 --fovea-right none --jod-release 1.0 --json"));
+  ASSERT_EQ(r10.exit_code, 0) << r10.err;
+  auto j10 = nlohmann::json::parse(r10.out);
+  EXPECT_EQ(j10["release"].get<std::string>(), "1.0");
+  EXPECT_NE(j10["jod"].get<double>(), j["jod"].get<double>());
 }
 
 TEST(JodCli, FrameFoldersNeedAFrameRate) {

@@ -24,7 +24,7 @@ struct Args {
   bool stereo = false, json = false;
   // --jod (docs/metrics.md, "JOD")
   bool jod = false;
-  std::string display, fovea_list;
+  std::string display, fovea_list, jod_release = "1.2";
   double fps = 0, peak = 133.3, black = 0.1;
 };
 
@@ -64,6 +64,7 @@ int run_jod(const Args& a) {
   rq.fps = a.fps;
   rq.fovea_list = a.fovea_list;
   rq.photometry = {a.peak, a.black};
+  if (a.jod_release == "1.0") rq.parameters = perception::Parameters::release_1_0();
   if (!a.display.empty()) {
     auto m = DisplayModel::load(a.display);
     if (!m) return cli::report(bad_input("--display " + m.error().message));
@@ -89,7 +90,7 @@ int run_jod(const Args& a) {
   const auto& c = rep->combined;
   if (a.json) {
     nlohmann::json j = {{"ref", a.ref}, {"test", a.test}, {"size", {rep->width, rep->height}}, {"stereo", a.stereo},
-                        {"display", rq.display.name}, {"ppd", c.ppd}, {"peak_cd_m2", a.peak}, {"black_cd_m2", a.black},
+                        {"display", rq.display.name}, {"release", a.jod_release}, {"ppd", c.ppd}, {"peak_cd_m2", a.peak}, {"black_cd_m2", a.black},
                         {"frames", c.frames}, {"fps", a.fps}, {"bands", c.bands},
                         {"foveated", a.fovea_list.empty() ? nlohmann::json(rq.fovea_left.has_value()) : nlohmann::json("per frame")},
                         {"jod", c.jod}, {"q", c.q}};
@@ -193,6 +194,10 @@ void add_metrics(CLI::App& app, int& exit_code) {
   sub->add_option("--display", args->display, "--jod: display-model JSON (default: HTC Vive Pro Eye)");
   sub->add_option("--fps", args->fps, "--jod: frame rate of frame sequences");
   sub->add_option("--fovea-list", args->fovea_list, "--jod: a file with one fovea per frame (X,Y or XL,YL,XR,YR or none)");
+  sub->add_option("--jod-release", args->jod_release,
+                  "--jod: the calibration, FovVideoVDP release 1.2's or 1.0's (the paper's)")
+      ->check(CLI::IsMember({"1.2", "1.0"}))
+      ->capture_default_str();
   sub->add_option("--peak", args->peak, "--jod: the display's peak luminance, cd/m²")->capture_default_str();
   sub->add_option("--black", args->black, "--jod: the display's black level, cd/m²")->capture_default_str();
   sub->callback([args, &exit_code] { exit_code = run(*args); });

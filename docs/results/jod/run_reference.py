@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """Scores the JOD validation cases with the reference FovVideoVDP (docs/metrics.md, "JOD").
 
-usage: /usr/bin/python3 run_reference.py FVVDP_DIR CASES_DIR OUT.csv
+usage: /usr/bin/python3 run_reference.py FVVDP_DIR CASES_DIR OUT.csv [CSF_TABLES_DIR]
+
+With CSF_TABLES_DIR (what make_csf_table.py 0.405835 wrote), the reference runs release
+1.0's calibration (its own pyfvvdp/fvvdp_data/fvvdp_parameters_1_0.json) on those tables.
 
 FVVDP_DIR holds the reference's pyfvvdp package (github:gfxdisp/FovVideoVDP, release 1.2.3,
 commit 31254d0; CC BY-NC 4.0, run only, nothing of it is in foveal); CASES_DIR is what
@@ -15,7 +18,20 @@ lists never use) are stood in for. The display: FovVideoVDP's htc_vive_pro photo
 import csv, json, math, os, sys, types
 
 import imageio
+import shutil
+import tempfile
 sys.modules.setdefault('imageio.v2', imageio)
+if len(sys.argv) > 4:
+    # Release 1.0: its parameter file under the name the package looks for (FVVDP_PATH), and
+    # the tables it needs in ./csf_cache, the first place it looks.
+    _cfg = tempfile.mkdtemp()
+    shutil.copy(os.path.join(sys.argv[1], 'pyfvvdp', 'fvvdp_data', 'fvvdp_parameters_1_0.json'),
+                os.path.join(_cfg, 'fvvdp_parameters.json'))
+    os.environ['FVVDP_PATH'] = _cfg
+    _run = tempfile.mkdtemp()
+    shutil.copytree(sys.argv[4], os.path.join(_run, 'csf_cache'))
+    sys.argv[1:4] = [os.path.abspath(a) for a in sys.argv[1:4]]
+    os.chdir(_run)
 sys.modules.setdefault('ffmpeg', types.ModuleType('ffmpeg'))
 sys.path.insert(0, sys.argv[1])
 import numpy as np

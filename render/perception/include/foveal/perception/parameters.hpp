@@ -21,6 +21,21 @@ struct Parameters {
   double sustained_sigma = 0.5;     ///< log-normal sustained impulse response
   double sustained_beta_s = 0.06;   ///< its peak time, seconds
   double transient_omega_hz = 5.0;  ///< temporal frequency the transient channel's CSF is taken at
+
+  /// The calibration of the reference's release 1.0 (18/04/2021), the paper's release.
+  static Parameters release_1_0() {
+    Parameters p;
+    p.mask_c = -0.544583;
+    p.beta = 0.95753;
+    p.beta_tch = 0.684842;
+    p.sensitivity_correction_db = 10;
+    p.jod_a = -0.249449;
+    p.log_jod_exp = -0.4289;
+    p.mask_q_sustained = 3.23726;
+    p.mask_q_transient = 3.02625;
+    p.k_cm = 0.405835;
+    return p;
+  }
 };
 
 }  // namespace foveal::perception
