@@ -76,6 +76,14 @@ TEST(JodCli, FrameFoldersNeedAFrameRate) {
   auto short_list = test::run(jod(io + " --fps 90 --fovea-list " + d.path("fovea.txt")));
   EXPECT_EQ(short_list.exit_code, 2);
   EXPECT_NE(short_list.err.find("2 foveae for 3 frames"), std::string::npos) << short_list.err;
+  test::write_file(d.path("per_frame.txt"), "# x,y per frame\n0.5,0.5\nnone\n0.1,0.2,0.3,0.4\n");
+  auto per_frame = test::run(jod(io + " --fps 90 --fovea-list " + d.path("per_frame.txt") + " --json"));
+  ASSERT_EQ(per_frame.exit_code, 0) << per_frame.err;
+  EXPECT_EQ(nlohmann::json::parse(per_frame.out)["foveated"].get<std::string>(), "per frame");
+  test::write_file(d.path("bad.txt"), "0.5,0.5\n0.5;0.5\n0.1,0.1\n");
+  auto bad = test::run(jod(io + " --fps 90 --fovea-list " + d.path("bad.txt")));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("bad.txt:2: '0.5;0.5'"), std::string::npos) << bad.err;
 }
 
 TEST(JodCli, BadInputNamesWhatAndWhere) {
