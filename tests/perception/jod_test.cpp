@@ -143,5 +143,22 @@ TEST(Jod, DegenerateInputsAreRefusedOrScoredWithoutBands) {
   EXPECT_DOUBLE_EQ(t->jod, 10.0);
 }
 
+TEST(Jod, ThreadsGiveTheSameScore) {
+  const image::Image ref = texture(kW, kH);
+  const image::Image test = noisy(ref, 10);
+  const Fixation fix{100, 60};
+  auto one = JodMetric(window(kW, kH), Photometry{}, Parameters{}, 1).still(ref, test, fix);
+  auto three = JodMetric(window(kW, kH), Photometry{}, Parameters{}, 3).still(ref, test, fix);
+  ASSERT_TRUE(one && three);
+  EXPECT_NEAR(one->jod, three->jod, 1e-9);
+  auto v1 = JodMetric(window(kW, kH), Photometry{}, Parameters{}, 1).video(60);
+  auto v3 = JodMetric(window(kW, kH), Photometry{}, Parameters{}, 3).video(60);
+  for (int k = 0; k < 4; ++k) {
+    ASSERT_TRUE(v1->push(ref, k % 2 ? test : ref, fix));
+    ASSERT_TRUE(v3->push(ref, k % 2 ? test : ref, fix));
+  }
+  EXPECT_NEAR(v1->score()->jod, v3->score()->jod, 1e-9);
+}
+
 }  // namespace
 }  // namespace foveal::perception
