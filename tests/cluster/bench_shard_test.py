@@ -62,6 +62,10 @@ def main():
         diffs = bench_rows.differences(d("single"), d("merged"))
         check(not diffs, "the merge equals the single run row for row, all tables and bench.json (timing left out: " +
               ", ".join(bench_rows.timing_columns(d("single", "bench.csv"))) + ")" + "".join("\n      " + x for x in diffs[:10]))
+        # The JOD columns (docs/bench.md, "JOD") travel through the shards like the others.
+        merged = bench_rows.table(d("merged", "bench.csv"))
+        check(merged[0][-3:] == ["jod_left", "jod_right", "jod"] and all(0 < float(x) <= 10 for r in merged[1:] for x in r[-3:]),
+              "the merged bench.csv ends with jod_left, jod_right, jod, each in (0, 10]")
         for chart in ("pareto.png", "table.md", "fgrid.png", "rotation.png"):
             check(os.path.exists(d("merged", chart)), f"the merge draws {chart} as a single run does")
         # One part of one: a shard too (what an array of one task writes), merged alone.

@@ -175,10 +175,13 @@ def table(rows, out):
         return
     sigma = min(sigmas, key=lambda s: abs(s - 2.6))
     scenes = sorted({r["scene"] for r in rows})
-    lines = [f"Each method at σ = {sigma:g} (the same number of shaded samples, W·H/σ²), against full.", "",
-             "| scene | " + " | ".join(f"{m} FPSNR / SSIM" for m in methods) + " |",
+    jod = "jod" in rows[0]  # left out by bench --no-jod (and in runs before it)
+    lines = [f"Each method at σ = {sigma:g} (the same number of shaded samples, W·H/σ²), against full." +
+             (" JOD: FovVideoVDP, both eyes (docs/bench.md)." if jod else ""), "",
+             "| scene | " + " | ".join(f"{m} FPSNR / SSIM" + (" / JOD" if jod else "") for m in methods) + " |",
              "|---|" + "---|" * len(methods)]
-    sums = {m: [0.0, 0.0, 0] for m in methods}
+    sums = {m: [0.0, 0.0, 0, 0.0] for m in methods}
+    tail = lambda v: f" / {v:.2f}" if jod else ""  # noqa: E731
     for scene in scenes:
         cells = []
         for m in methods:
@@ -190,10 +193,13 @@ def table(rows, out):
             sums[m][0] += f
             sums[m][1] += s
             sums[m][2] += 1
-            cells.append(f"{f:.2f} / {s:.3f}")
+            j = num(r[0]["jod"]) if jod else 0.0
+            sums[m][3] += j
+            cells.append(f"{f:.2f} / {s:.3f}" + tail(j))
         lines.append(f"| {scene} | " + " | ".join(cells) + " |")
     lines.append("| **mean** | " + " | ".join(
-        f"**{sums[m][0] / sums[m][2]:.2f} / {sums[m][1] / sums[m][2]:.3f}**" if sums[m][2] else "—" for m in methods) + " |")
+        f"**{sums[m][0] / sums[m][2]:.2f} / {sums[m][1] / sums[m][2]:.3f}{tail(sums[m][3] / sums[m][2])}**" if sums[m][2] else "—"
+        for m in methods) + " |")
     chart_files.write_text(out, "\n".join(lines) + "\n")
 
 

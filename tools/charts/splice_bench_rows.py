@@ -30,7 +30,12 @@ def splice_csv(name, method, old_dir, new_dir):
         old = list(csv.DictReader(f))
         fields = list(old[0].keys())
     with open(os.path.join(new_dir, name), newline="") as f:
-        new = {key(r, KEYS[name]): r for r in csv.DictReader(f) if r["method"] == method}
+        reader = csv.DictReader(f)
+        new = {key(r, KEYS[name]): r for r in reader if r["method"] == method}
+        # A re-run with other columns (JOD, say, or --no-jod) would leave a column half filled.
+        if set(reader.fieldnames or []) != set(fields):
+            sys.exit(f"{name}: the re-run's columns differ from the run's ({', '.join(sorted(set(reader.fieldnames or []) ^ set(fields)))}): "
+                     "re-run with the same options (--no-jod where the run has no JOD columns)")
     out, used = [], 0
     for r in old:
         if r["method"] != method:

@@ -105,6 +105,7 @@ void add_bench(CLI::App& app, int& exit_code) {
   sub->add_option("--shard", o.shard, "Run only the K-th of N disjoint parts of the sweep (K/N); merge with `bench merge`");
   sub->add_option("--out,-o", o.out, "Output directory (required)");
   sub->add_flag("--no-png", o.no_png, "CSV and JSON only");
+  sub->add_flag("--no-jod", o.no_jod, "Leave out the JOD columns (FovVideoVDP, docs/metrics.md: about 0.3 s per 2880x1600 frame on 2 cores)");
   sub->add_flag("--json", o.json, "Print the results as JSON");
   add_bench_merge(*sub, exit_code);
   sub->callback([a, sub, size, &exit_code] {

@@ -3,8 +3,10 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -12,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "foveal/bench/bench_flicker.hpp"
+#include "foveal/bench/bench_jod.hpp"
 #include "foveal/bench/bench_outputs.hpp"
 #include "foveal/bench/bench_sweep.hpp"
 #include "foveal/image/auto_f.hpp"
@@ -100,9 +103,24 @@ image::MetricsOptions metric_options(const render::Compositor& c, std::pair<doub
   return o;
 }
 
+// bench.json's "jod": how the JOD columns were scored, and what they cost per frame.
+nlohmann::json jod_summary(const StereoJodScorer& j) {
+  return {{"release", "1.2"}, {"peak_cd_m2", j.photometry().peak_cd_m2}, {"black_cd_m2", j.photometry().black_cd_m2},
+          {"ppd", {j.ppd(Eye::left), j.ppd(Eye::right)}}, {"frames", j.scored()},
+          {"per_frame_ms", j.scored() ? j.total_ms() / j.scored() : 0.0}};
+}
+
+void print_jod_cost(const StereoJodScorer& j, std::chrono::steady_clock::time_point start) {
+  if (!j.scored()) return;
+  const double run_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fprintf(stderr, "bench: JOD added %.0f ms per frame (%d frames, %.1f s of the run's %.1f s; --no-jod leaves it out)\n",
+               j.total_ms() / j.scored(), j.scored(), j.total_ms() / 1000, run_s);
+}
+
 }  // namespace
 
 int run_bench(const BenchOptions& a, const std::string& sweep) {
+  const auto started = std::chrono::steady_clock::now();
   auto fail = [](const Error& e) { return cli::report(e); };
   if (a.out.empty()) return fail(bad_input("--out is required"));
   std::vector<Method> methods;
@@ -168,6 +186,12 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
   co.height = size->second;
   auto comp = render::Compositor::create(co);
   if (!comp) return fail(comp.error());
+  std::optional<StereoJodScorer> jod;  // each eye alone at the fovea, on the display model rendered for
+  if (!a.no_jod) {
+    auto j = StereoJodScorer::create(co.model, co.width, co.height);
+    if (!j) return fail(j.error());
+    jod.emplace(std::move(*j));
+  }
 
   const std::uint64_t per_scene = 1 + methods.size() * sigmas->size() + (a.f_grid ? grid->size() * grid->size() + 1 : 0);
   const std::uint64_t total = per_scene * scenes.size() + (a.rotation ? 19 * (1 + methods.size()) : 0) +
@@ -179,7 +203,8 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
   // starts with rows.take(): a shard runs its points only, and renders a reference
   // only where it runs a point that needs it.
   bench::SweepRows rows(*shard);
-  rows.table("bench.csv", "scene,method,sigma,shaded_samples,cost,gpu_ms,cpu_ms,shadow_ms,gbuffer_ms,mapping_ms,lighting_ms,inverse_ms,psnr_db,ssim,fpsnr_db");
+  rows.table("bench.csv", "scene,method,sigma,shaded_samples,cost,gpu_ms,cpu_ms,shadow_ms,gbuffer_ms,mapping_ms,lighting_ms,inverse_ms,psnr_db,ssim,fpsnr_db" +
+                             std::string(jod ? ",jod_left,jod_right,jod" : ""));
   if (a.f_grid) rows.table("fgrid.csv", "scene,sigma,fx,fy,fpsnr_db,psnr_db,ssim");
   if (a.rotation) rows.table("rotation.csv", "angle_deg,method,sigma,fpsnr_db,psnr_db,ssim");
   if (a.stability) rows.table("stability.csv", "scene,path,t,fovea_x,fovea_y,method,sigma,patch_psnr_db,fpsnr_db");
@@ -208,15 +233,29 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
       if (!q) return q.error();
       const auto& c = q->combined;
       const render::PassTimes& t = r.median;
+      std::optional<StereoJod> j;
+      const double jod_ms_before = jod ? jod->total_ms() : 0;
+      if (jod) {
+        const EyeFovea f = std::array<double, 2>{fovea->first, fovea->second};
+        auto s = jod->still(full->image, r.image, f, f);
+        if (!s) return s.error();
+        j = *s;
+      }
       rows.add_line("bench.csv", name + "," + render::method_name(m) + "," + num(sigma) + "," + std::to_string(r.median.shaded_samples) + "," +
                                      num(static_cast<double>(r.median.shaded_samples) / full_samples) + "," + num(t.gpu_total) + "," +
                                      num(t.cpu) + "," + num(t.shadow) + "," + num(t.gbuffer) + "," + num(t.mapping) + "," +
-                                     num(t.lighting) + "," + num(t.inverse) + "," + num(c.psnr_db) + "," + num(c.ssim) + "," + num(c.fpsnr_db));
-      rows.add_item("rows", {{"scene", name}, {"method", render::method_name(m)}, {"sigma", sigma}, {"shaded_samples", r.median.shaded_samples},
+                                     num(t.lighting) + "," + num(t.inverse) + "," + num(c.psnr_db) + "," + num(c.ssim) + "," + num(c.fpsnr_db) +
+                                     (j ? "," + num(j->left) + "," + num(j->right) + "," + num(j->combined) : ""));
+      nlohmann::json item = {{"scene", name}, {"method", render::method_name(m)}, {"sigma", sigma}, {"shaded_samples", r.median.shaded_samples},
                              {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu},
                              {"passes_ms", {{"shadow", t.shadow}, {"gbuffer", t.gbuffer}, {"mapping", t.mapping},
                                             {"lighting", t.lighting}, {"inverse", t.inverse}}},
-                             {"psnr_db", bench::json_number(c.psnr_db)}, {"ssim", c.ssim}, {"fpsnr_db", bench::json_number(c.fpsnr_db)}});
+                             {"psnr_db", bench::json_number(c.psnr_db)}, {"ssim", c.ssim}, {"fpsnr_db", bench::json_number(c.fpsnr_db)}};
+      if (j) {
+        item["jod_left"] = j->left, item["jod_right"] = j->right, item["jod"] = j->combined;
+        item["jod_ms"] = jod->total_ms() - jod_ms_before;
+      }
+      rows.add_item("rows", std::move(item));
       return {};
     };
     if (rows.take()) {
@@ -324,11 +363,13 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
     for (const std::string& spec : scenes)
       if (Status s = run_flicker(fo, *comp, methods, spec, rows, [&] { bench.tick(); }); !s) return fail(s.error());
   progress.finish();
+  if (jod && !a.json) print_jod_cost(*jod, started);
 
   rusage ru{};
   ::getrusage(RUSAGE_SELF, &ru);
-  const nlohmann::json summary = {{"renderer", comp->renderer()}, {"size", {co.width, co.height}}, {"frames", a.frames},
-                                  {"fovea", {fovea->first, fovea->second}}, {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
+  nlohmann::json summary = {{"renderer", comp->renderer()}, {"size", {co.width, co.height}}, {"frames", a.frames},
+                            {"fovea", {fovea->first, fovea->second}}, {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
+  if (jod) summary["jod"] = jod_summary(*jod);
   // --shard given (1/1 too): a part for `bench merge`.
   if (!a.shard.empty()) return bench::write_shard(a.out, rows, summary, sweep, "bench", a.json);
   return bench::write_outputs(a.out, rows, summary, "bench", !a.no_png, a.json);

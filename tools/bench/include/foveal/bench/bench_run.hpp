@@ -24,6 +24,7 @@ struct BenchOptions {
   int frames = 3, warmup = 1;
   double fx = 0.3, fy = 0.3;
   bool f_grid = false, rotation = false, stability = false, flicker = false, no_png = false, json = false;
+  bool no_jod = false;  ///< leave the JOD columns out (bench_jod.hpp: ~0.3 s a 2880x1600 frame on 2 cores)
   std::string flicker_log;  ///< empty: the bundled recording
   int flicker_frames = 48;
   std::string camera_paths = "static", flicker_gaze = "raw,filtered", flicker_pipelines;  ///< bench_flicker.hpp

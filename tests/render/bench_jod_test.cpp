@@ -1,0 +1,150 @@
+// JOD in foveal bench (docs/bench.md, "JOD"): the stereo scorer each eye alone at its own
+// fixation, and the bench.csv/bench.json columns from the command line, with --no-jod.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <nlohmann/json.hpp>
+
+#include "csv_rows.hpp"
+#include "foveal/bench/bench_jod.hpp"
+#include "test_support.hpp"
+
+using namespace foveal;
+
+namespace {
+
+const char* kHeader =
+    "scene,method,sigma,shaded_samples,cost,gpu_ms,cpu_ms,shadow_ms,gbuffer_ms,mapping_ms,lighting_ms,inverse_ms,psnr_db,ssim,fpsnr_db";
+
+image::Image grey_noise(int w, int h, unsigned seed) {
+  image::Image img(w, h);
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> v(60, 190);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint8_t* p = img.at(x, y);
+      p[0] = p[1] = p[2] = static_cast<std::uint8_t>(v(rng));
+      p[3] = 255;
+    }
+  return img;
+}
+
+// The same noise added at the same place of both eyes' images (x0 of each eye's width).
+image::Image damaged(const image::Image& ref, double x0, int eye_w) {
+  image::Image out = ref;
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> d(-40, 40);
+  const int r = eye_w / 20;
+  for (int e = 0; e < 2; ++e)
+    for (int y = ref.height / 2 - r; y < ref.height / 2 + r; ++y)
+      for (int x = static_cast<int>(x0 * eye_w) - r; x < static_cast<int>(x0 * eye_w) + r; ++x)
+        for (int c = 0; c < 3; ++c) {
+          std::uint8_t& p = out.at(e * eye_w + x, y)[c];
+          p = static_cast<std::uint8_t>(std::clamp(p + d(rng), 0, 255));
+        }
+  return out;
+}
+
+double cell(const test::CsvRow& r, const std::string& k) { return r.count(k) ? std::stod(r.at(k)) : NAN; }
+
+}  // namespace
+
+TEST(BenchJod, EachEyeIsScoredAloneAtItsOwnFixation) {
+  const int w = 1440, h = 800;  // the Vive's field of view at half its pixels: 6.6 ppd
+  auto scorer = bench::StereoJodScorer::create(DisplayModel::vive_pro_eye(), w, h, 1);
+  ASSERT_TRUE(scorer) << scorer.error().message;
+  const image::Image ref = grey_noise(w, h, 3);
+  auto same = scorer->still(ref, ref, std::array<double, 2>{0.5, 0.5}, std::nullopt);
+  ASSERT_TRUE(same) << same.error().message;
+  EXPECT_DOUBLE_EQ(same->left, 10);
+  EXPECT_DOUBLE_EQ(same->right, 10);
+  EXPECT_DOUBLE_EQ(same->combined, 10);
+
+  // Damage at x = 0.15 of both eyes: the left eye looks at it, the right one far away.
+  const image::Image test = damaged(ref, 0.15, w / 2);
+  const bench::EyeFovea on = std::array<double, 2>{0.15, 0.5}, off = std::array<double, 2>{0.85, 0.5};
+  auto s = scorer->still(ref, test, on, off);
+  ASSERT_TRUE(s) << s.error().message;
+  EXPECT_LT(s->left, s->right - 0.05);
+  EXPECT_GT(s->combined, s->left);
+  EXPECT_LT(s->combined, s->right);
+  // Swapped foveae swap which eye sees the damage (the Vive's eyes differ a little in
+  // their geometry, so the figures are not exchanged exactly).
+  auto swapped = scorer->still(ref, test, off, on);
+  ASSERT_TRUE(swapped);
+  EXPECT_LT(swapped->right, swapped->left - 0.05);
+  EXPECT_NEAR(swapped->right, s->left, 0.05);
+  EXPECT_EQ(scorer->scored(), 3);
+  EXPECT_DOUBLE_EQ(scorer->photometry().peak_cd_m2, 133.3);  // metrics --jod's defaults
+  EXPECT_DOUBLE_EQ(scorer->photometry().black_cd_m2, 0.1);
+
+  auto wrong = scorer->still(ref, image::Image(w, h + 2), on, on);
+  ASSERT_FALSE(wrong);
+  EXPECT_NE(wrong.error().message.find("made for 1440x800"), std::string::npos) << wrong.error().message;
+  EXPECT_FALSE(bench::StereoJodScorer::create(DisplayModel::vive_pro_eye(), 255, 128));
+}
+
+TEST(BenchJod, VideoOfIdenticalFramesScoresTenAndDamageScoresLower) {
+  const int w = 512, h = 256;
+  auto scorer = bench::StereoJodScorer::create(DisplayModel::vive_pro_eye(), w, h, 1);
+  ASSERT_TRUE(scorer);
+  auto same = scorer->video(90), hurt = scorer->video(90);
+  ASSERT_TRUE(same && hurt);
+  for (unsigned k = 0; k < 4; ++k) {
+    const image::Image ref = grey_noise(w, h, k);
+    const bench::EyeFovea c = std::array<double, 2>{0.5, 0.5};
+    ASSERT_TRUE(same->push(ref, ref, c, c));
+    ASSERT_TRUE(hurt->push(ref, k % 2 ? damaged(ref, 0.5, w / 2) : ref, c, c));  // flicker at the fovea
+  }
+  auto a = same->score(), b = hurt->score();
+  ASSERT_TRUE(a && b);
+  EXPECT_DOUBLE_EQ(a->combined, 10);
+  EXPECT_LT(b->combined, a->combined - 0.03);
+  EXPECT_EQ(scorer->scored(), 8);
+}
+
+TEST(BenchJod, BenchWritesJodPerEyeAfterTheOldColumnsAndNoJodLeavesThemOut) {
+  test::TempDir d;
+  const std::string common = test::bin("foveal") + " bench --scene pattern:checker --methods rmfr,uniform --sigmas 1.4,4"
+                             " --size 320x180 --frames 1 --warmup 0 --no-png --out ";
+  auto r = test::run(common + d.path("jod"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("JOD added"), std::string::npos) << r.err;  // its cost per frame
+  const std::string csv = test::read_file(d.path("jod/bench.csv"));
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), std::string(kHeader) + ",jod_left,jod_right,jod");
+  const auto rows = test::read_csv_rows(csv);
+  ASSERT_EQ(rows.size(), 5u);  // full, then each method at two levels
+  EXPECT_EQ(rows[0].at("method"), "full");
+  for (const char* k : {"jod_left", "jod_right", "jod"}) EXPECT_EQ(cell(rows[0], k), 10) << k;
+  for (const auto& row : rows)
+    for (const char* k : {"jod_left", "jod_right", "jod"}) {
+      EXPECT_GT(cell(row, k), 0) << k;
+      EXPECT_LE(cell(row, k), 10) << k;
+    }
+  auto at = [&](const std::string& m, const std::string& sigma) {
+    for (const auto& row : rows)
+      if (row.at("method") == m && row.at("sigma") == sigma) return row;
+    ADD_FAILURE() << m << " " << sigma;
+    return test::CsvRow{};
+  };
+  for (const char* m : {"rmfr", "uniform"}) {
+    EXPECT_GE(cell(at(m, "1.4"), "jod"), cell(at(m, "4"), "jod")) << m;  // fewer samples never look better
+    EXPECT_LT(cell(at(m, "4"), "jod"), 10) << m;
+  }
+  const auto j = nlohmann::json::parse(test::read_file(d.path("jod/bench.json")));
+  EXPECT_EQ(j["jod"]["peak_cd_m2"], 133.3);
+  EXPECT_EQ(j["jod"]["black_cd_m2"], 0.1);
+  EXPECT_EQ(j["jod"]["frames"], 5);
+  EXPECT_GT(j["jod"]["ppd"][0].get<double>(), 0);
+  EXPECT_EQ(j["rows"][0]["jod"], 10);
+  EXPECT_TRUE(j["rows"][1].contains("jod_left") && j["rows"][1].contains("jod_right") && j["rows"][1].contains("jod_ms"));
+
+  r = test::run(common + d.path("none") + " --no-jod");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("JOD"), std::string::npos) << r.err;
+  const std::string plain = test::read_file(d.path("none/bench.csv"));
+  EXPECT_EQ(plain.substr(0, plain.find('\n')), kHeader);
+  EXPECT_FALSE(nlohmann::json::parse(test::read_file(d.path("none/bench.json"))).contains("jod"));
+}
