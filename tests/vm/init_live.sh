@@ -9,7 +9,8 @@
 guest_boot
 foveald_guest_env
 # Small frames, ten a second: under emulation the renderer must leave CPU to the gaze side.
-RENDER="--size 64x36 --scene pattern:checker --fps 10 -q"
+# No prediction: each frame must show its trace row's fovea exactly (docs/latency.md).
+RENDER="--size 64x36 --scene pattern:checker --fps 10 --predict off -q"
 
 # The HID tracker; its feeder starts once the gadget is plugged in (/dev/hidg0 appears then).
 G=/sys/kernel/config/usb_gadget/tracker

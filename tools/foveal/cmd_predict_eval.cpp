@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "commands.hpp"
+#include "filter_args.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/core/json_file.hpp"
 #include "foveal/core/shown_text.hpp"
@@ -93,26 +94,12 @@ void add_predict_eval(CLI::App& app, int& exit_code) {
                               " is not in [0, 1000]"));
       pred.max_horizon_ns = static_cast<TimeNs>(std::llround(a->max_horizon_ms * 1e6));
     }
-    FilterConfig cfg;
-    if (!a->config.empty() && !a->profile.empty())
-      return fail(bad_input("predict-eval: give --config or --profile, not both"));
-    if (!a->config.empty()) {
-      auto j = read_json_file(a->config, "filter settings");
-      if (!j) return fail(j.error());
-      auto c = FilterConfig::from_json(*j, a->config);
-      if (!c) return fail(c.error());
-      cfg = *c;
-    } else if (!a->profile.empty()) {
-      auto p = ProfileStore::user().load(a->profile);
-      if (!p) return fail(p.error());
-      cfg = *FilterConfig::from_json(p->filter, "profile " + a->profile);  // validated at load
-    }
-    DisplayModel model = DisplayModel::vive_pro_eye();
-    if (!a->display.empty()) {
-      auto m = DisplayModel::load(a->display);
-      if (!m) return fail(m.error());
-      model = *m;
-    }
+    auto cfg_or = filter_config_from(a->config, a->profile, "predict-eval");
+    if (!cfg_or) return fail(cfg_or.error());
+    const FilterConfig cfg = *cfg_or;
+    auto model_or = display_model_from(a->display);
+    if (!model_or) return fail(model_or.error());
+    const DisplayModel model = *model_or;
     // Every log is read before anything is printed: a bad one leaves no partial output.
     std::vector<std::vector<GazeSample>> logs;
     for (const std::string& path : a->logs) {

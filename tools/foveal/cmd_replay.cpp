@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "filter_args.hpp"
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/core/json_file.hpp"
@@ -32,25 +33,12 @@ void add_replay(CLI::App& app, int& exit_code) {
   sub->add_flag("--json", a->json, "Print the summary as JSON");
   sub->callback([a, &exit_code] {
     auto fail = [&exit_code](const Error& e) { exit_code = cli::report(e); };
-    FilterConfig cfg;
-    if (!a->config.empty() && !a->profile.empty()) return fail(bad_input("replay: give --config or --profile, not both"));
-    if (!a->config.empty()) {
-      auto j = read_json_file(a->config, "filter settings");
-      if (!j) return fail(j.error());
-      auto c = FilterConfig::from_json(*j, a->config);
-      if (!c) return fail(c.error());
-      cfg = *c;
-    } else if (!a->profile.empty()) {
-      auto p = ProfileStore::user().load(a->profile);
-      if (!p) return fail(p.error());
-      cfg = *FilterConfig::from_json(p->filter, "profile " + a->profile);  // validated at load
-    }
-    DisplayModel model = DisplayModel::vive_pro_eye();
-    if (!a->display.empty()) {
-      auto m = DisplayModel::load(a->display);
-      if (!m) return fail(m.error());
-      model = *m;
-    }
+    auto cfg_or = filter_config_from(a->config, a->profile, "replay");
+    if (!cfg_or) return fail(cfg_or.error());
+    FilterConfig cfg = *cfg_or;
+    auto model_or = display_model_from(a->display);
+    if (!model_or) return fail(model_or.error());
+    const DisplayModel model = *model_or;
     auto reader = GazeLogReader::open(a->log);
     if (!reader) return fail(reader.error());
     std::optional<cli::FoveaTrace> trace;
