@@ -7,8 +7,7 @@ namespace foveal::daemon {
 namespace {
 
 constexpr std::size_t kRecentFrames = 16;
-// The margin starts at 2 ms, grows on each miss by 1 ms more than the frame was late
-// (to a period at most) and gives
+// The margin starts at 2 ms, grows by 1 ms on each miss (to a period at most) and gives
 // back 0.25 ms after 30 frames in a row on time, never below 1 ms: timer wake-ups and
 // the present's own copy live in it.
 constexpr TimeNs kStartMargin = 2 * kNsPerMs, kMinMargin = kNsPerMs, kGrow = kNsPerMs, kShrink = kNsPerMs / 4;
@@ -56,8 +55,9 @@ void FramePacer::shown(TimeNs start, TimeNs ready, TimeNs shown_at, TimeNs targe
   if (shown_at > target + period_ns_ / 2) {
     ++misses_;
     hits_in_a_row_ = 0;
-    // By what the frame lacked (ready after its refresh), at least 1 ms.
-    if (pacing_ == Pacing::jit) margin_ns_ = std::min(period_ns_, margin_ns_ + std::max(kGrow, ready - target + kGrow));
+    // A step, not what the frame lacked: the work estimate already follows slow frames,
+    // and one hitch must not cost every later frame its latency.
+    if (pacing_ == Pacing::jit) margin_ns_ = std::min(period_ns_, margin_ns_ + kGrow);
   } else if (++hits_in_a_row_ >= kHitsToShrink && pacing_ == Pacing::jit) {
     margin_ns_ = std::max(kMinMargin, margin_ns_ - kShrink);
     hits_in_a_row_ = 0;

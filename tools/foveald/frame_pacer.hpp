@@ -1,8 +1,7 @@
 #pragma once
 // When each frame starts (docs/latency.md, "Pacing"): `asap` starts it as soon as the
 // last one was presented; `jit` (just in time) as late before a refresh as the recent
-// frames' work allows, plus a margin that grows on a missed refresh by what the frame
-// lacked and shrinks slowly
+// frames' work allows, plus a margin that grows on a missed refresh and shrinks slowly
 // while frames land, so the gaze is as young as possible when the frame is shown.
 // Render thread only.
 #include <cstdint>
