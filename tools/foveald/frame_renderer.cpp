@@ -174,7 +174,7 @@ Status FrameRenderer::write_shown_rows() {
   std::vector<std::int64_t> shown = output_->take_shown();
   std::lock_guard lock(csv_mutex_);
   for (std::int64_t t : shown) {
-    if (pending_.empty()) break;  // the output's own first frames before any of ours: none
+    if (pending_.empty()) break;  // every shown time is a pending frame's; nothing is left over
     PendingRow row = std::move(pending_.front());
     pending_.pop_front();
     row.latency.shown_ns = t;
