@@ -90,6 +90,9 @@ def main():
         diffs = bench_rows.differences(d("gaze-single"), d("gaze-merged"))
         check(not diffs, "the --gaze merge equals the single run row for row (gaze.csv, gaze_frames.csv, gaze.json; "
               "timing left out)" + "".join("\n      " + x for x in diffs[:10]))
+        check(bench_rows.table(d("gaze-merged", "gaze_frames.csv"))[0][-3:] == ["jod_left", "jod_right", "jod"] and
+              bench_rows.table(d("gaze-merged", "gaze.csv"))[0][-3:] == ["jod_mean", "jod_p5", "jod_min"],
+              "the merged gaze_frames.csv and gaze.csv end with their JOD columns")
 
         # Bad input: exit 2, a message naming it, no output.
         r = run(a.foveal, ["bench"] + SWEEP[:2] + ["--sigmas", "3", "--size", "64x36", "--frames", "1", "--shard", "2/4",

@@ -3,6 +3,7 @@
 // is not, the latency model in the per-frame CSV, bad input (docs/bench.md).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -84,6 +85,29 @@ TEST(BenchGaze, ALaggedFoveaScoresWorseThanAnExactOneAtTheTrueGaze) {
   EXPECT_GT(value(oracle, "fpsnr_mean"), value(late, "fpsnr_mean"));
   // Every method shades the same samples at a level.
   for (const Row& r : exact.rows) EXPECT_EQ(r.at("shaded_samples"), on_time.at("shaded_samples")) << r.at("method");
+
+  // JOD per frame, each eye at its true gaze (docs/bench.md, "JOD"): after the old columns,
+  // within (0, 10], both eyes' figure between the two; gaze.csv's mean, p5 and min of them.
+  for (const GazeRun* run : {&exact, &lagged}) {
+    for (const Row& f : run->frames) {
+      ASSERT_TRUE(f.count("jod_left") && f.count("jod_right") && f.count("jod"));
+      for (const char* k : {"jod_left", "jod_right", "jod"}) {
+        EXPECT_GT(value(f, k), 0) << k;
+        EXPECT_LE(value(f, k), 10) << k;
+      }
+      EXPECT_GE(value(f, "jod"), std::min(value(f, "jod_left"), value(f, "jod_right")) - 1e-5);
+      EXPECT_LE(value(f, "jod"), std::max(value(f, "jod_left"), value(f, "jod_right")) + 1e-5);
+    }
+    for (const Row& r : run->rows) {
+      double sum = 0, n = 0;
+      for (const Row& f : run->frames)
+        if (f.at("method") == r.at("method") && f.at("gaze") == r.at("gaze")) sum += value(f, "jod"), ++n;
+      ASSERT_EQ(n, 16) << r.at("method");
+      EXPECT_NEAR(value(r, "jod_mean"), sum / n, 1e-4) << r.at("method");
+      EXPECT_LE(value(r, "jod_min"), value(r, "jod_p5"));
+      EXPECT_LE(value(r, "jod_p5"), value(r, "jod_mean"));
+    }
+  }
 
   // The latency model: display = frame start + latency, the fovea from a sample no later
   // than the frame start; fixed and uniform at the optical centre whatever the gaze.

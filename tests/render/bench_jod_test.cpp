@@ -148,3 +148,30 @@ TEST(BenchJod, BenchWritesJodPerEyeAfterTheOldColumnsAndNoJodLeavesThemOut) {
   EXPECT_EQ(plain.substr(0, plain.find('\n')), kHeader);
   EXPECT_FALSE(nlohmann::json::parse(test::read_file(d.path("none/bench.json"))).contains("jod"));
 }
+
+TEST(BenchJod, GazeBenchAppendsJodColumnsAndNoJodLeavesThemOut) {
+  test::TempDir d;
+  ASSERT_EQ(test::run(test::bin("foveal") + " synth --seed 2 --duration 3 --out " + d.path("g.csv")).exit_code, 0);
+  const std::string common = test::bin("foveal") + " bench --gaze " + d.path("g.csv") +
+                             " --scene pattern:noise --methods rmfr,uniform --sigmas 2 --size 128x64 --gaze-frames 2 --frames 1"
+                             " --warmup 0 --no-png --out ";
+  auto r = test::run(common + d.path("jod"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("bench --gaze: JOD added"), std::string::npos) << r.err;
+  auto header = [&](const std::string& file) {
+    const std::string text = test::read_file(d.path(file));
+    return text.substr(0, text.find('\n'));
+  };
+  const std::string summary = header("jod/gaze.csv"), frames = header("jod/gaze_frames.csv");
+  EXPECT_TRUE(summary.ends_with(",fovea_error_deg_mean,jod_mean,jod_p5,jod_min")) << summary;
+  EXPECT_TRUE(frames.ends_with(",patch_psnr_db,exceeds,jod_left,jod_right,jod")) << frames;
+  const auto j = nlohmann::json::parse(test::read_file(d.path("jod/gaze.json")));
+  EXPECT_EQ(j["jod"]["frames"], 2 * 3);  // two frames × the oracle, rmfr and uniform
+  EXPECT_TRUE(j["rows"][0].contains("jod_mean"));
+
+  r = test::run(common + d.path("none") + " --no-jod");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(header("none/gaze.csv") + ",jod_mean,jod_p5,jod_min", summary);
+  EXPECT_EQ(header("none/gaze_frames.csv") + ",jod_left,jod_right,jod", frames);
+  EXPECT_FALSE(nlohmann::json::parse(test::read_file(d.path("none/gaze.json"))).contains("jod"));
+}

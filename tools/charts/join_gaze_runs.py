@@ -42,6 +42,9 @@ def main():
         for i, r in enumerate(runs):
             with open(os.path.join(r, name)) as f:
                 rows = f.read().splitlines()
+            # Runs with and without JOD (--no-jod, or from before it) have other columns.
+            if i > 0 and rows[:1] != lines[:1]:
+                sys.exit(f"{r}/{name}: other columns than {runs[0]}'s (with and without JOD?): not joinable")
             lines += rows if i == 0 else rows[1:]
         write(os.path.join(out, name), "\n".join(lines) + "\n")
     write(os.path.join(out, "gaze.json"), json.dumps(joined, indent=2) + "\n")

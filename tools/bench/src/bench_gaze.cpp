@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "foveal/bench/bench_jod.hpp"
 #include "foveal/bench/bench_outputs.hpp"
 #include "foveal/bench/bench_sweep.hpp"
 #include "foveal/bench/gaze_timeline.hpp"
@@ -67,6 +68,7 @@ struct LogInput {
 /// One method × level's frames on one scene and log.
 struct Series {
   std::vector<double> fpsnr, ssim, psnr, patch, error_deg;
+  std::vector<double> jod;  ///< both eyes' (StereoJod::combined); empty with --no-jod
   std::size_t exceed = 0;
 };
 
@@ -84,6 +86,14 @@ const std::vector<std::string> kSummaryColumns = {
     "scene", "log", "display", "method", "gaze", "sigma_d", "sigma_nd", "shaded_samples", "cost", "gpu_ms", "cpu_ms",
     "frames", "blink_frames", "fpsnr_mean", "fpsnr_p5", "fpsnr_min", "ssim_mean", "ssim_p5", "ssim_min", "psnr_mean",
     "patch_psnr_mean", "patch_psnr_p5", "patch_exceed_share", "fovea_error_deg_mean"};
+// Appended to gaze.csv unless --no-jod, so that readers by position still find the rest.
+const std::vector<std::string> kJodSummaryColumns = {"jod_mean", "jod_p5", "jod_min"};
+
+std::vector<std::string> summary_columns(bool jod) {
+  std::vector<std::string> c = kSummaryColumns;
+  if (jod) c.insert(c.end(), kJodSummaryColumns.begin(), kJodSummaryColumns.end());
+  return c;
+}
 
 /// One CSV line of `row`'s values in `columns` order; the header line for a null row.
 std::string csv_line(const nlohmann::json& row, const std::vector<std::string>& columns) {
@@ -99,10 +109,11 @@ std::string csv_line(const nlohmann::json& row, const std::vector<std::string>& 
 }
 
 /// A method × level's figures over the frames of one scene and log.
-nlohmann::json summary_row(const Point& p, const Series& se, const render::PassTimes& t, double efr_ratio, double full_samples) {
+nlohmann::json summary_row(const Point& p, const Series& se, const render::PassTimes& t, double efr_ratio, double full_samples,
+                           bool jod) {
   const std::size_t n = se.fpsnr.size();
   auto lowest = [n](const std::vector<double>& v) { return n ? *std::min_element(v.begin(), v.end()) : NAN; };
-  return {{"method", render::method_name(p.method)}, {"gaze", p.gaze()}, {"sigma_d", p.sigma},
+  nlohmann::json row = {{"method", render::method_name(p.method)}, {"gaze", p.gaze()}, {"sigma_d", p.sigma},
           {"sigma_nd", p.sigma * efr_ratio}, {"shaded_samples", t.shaded_samples},
           {"cost", static_cast<double>(t.shaded_samples) / full_samples}, {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu},
           {"frames", n}, {"fpsnr_mean", jnum(mean(se.fpsnr))}, {"fpsnr_p5", jnum(quantile(se.fpsnr, 0.05))},
@@ -111,6 +122,8 @@ nlohmann::json summary_row(const Point& p, const Series& se, const render::PassT
           {"patch_psnr_p5", jnum(quantile(se.patch, 0.05))},
           {"patch_exceed_share", jnum(n ? static_cast<double>(se.exceed) / static_cast<double>(n) : NAN)},
           {"fovea_error_deg_mean", jnum(mean(se.error_deg))}};
+  if (jod) row.update({{"jod_mean", jnum(mean(se.jod))}, {"jod_p5", jnum(quantile(se.jod, 0.05))}, {"jod_min", jnum(lowest(se.jod))}});
+  return row;
 }
 
 class GazeBench {
@@ -213,6 +226,13 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   co.model = *model;
   auto comp = render::Compositor::create(co);
   if (!comp) return fail(comp.error());
+  std::optional<StereoJodScorer> jod;  // each eye alone at its true gaze, on the model rendered for
+  if (s.jod) {
+    auto j = StereoJodScorer::create(co.model, co.width, co.height);
+    if (!j) return fail(j.error());
+    jod.emplace(std::move(*j));
+  }
+  const std::vector<std::string> columns = summary_columns(s.jod);
 
   // Level by level, the oracle first: each frame's patch bound comes from it.
   std::vector<Point> points;
@@ -235,10 +255,11 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   // levels again and again, so a shard takes its points first and tags the rows with them.
   auto chomp = [](std::string line) { return line.substr(0, line.size() - 1); };
   bench::SweepRows rows(*shard);
-  rows.table("gaze.csv", chomp(csv_line(nullptr, kSummaryColumns)));
+  rows.table("gaze.csv", chomp(csv_line(nullptr, columns)));
   rows.table("gaze_frames.csv",
              "scene,log,frame,t_render_s,t_display_s,t_sample_s,true_l_x,true_l_y,true_r_x,true_r_y,method,gaze,sigma_d,fovea_l_x,"
-             "fovea_l_y,fovea_r_x,fovea_r_y,error_l_deg,error_r_deg,fpsnr_db,ssim,psnr_db,patch_psnr_db,exceeds");
+             "fovea_l_y,fovea_r_x,fovea_r_y,error_l_deg,error_r_deg,fpsnr_db,ssim,psnr_db,patch_psnr_db,exceeds" +
+                 std::string(jod ? ",jod_left,jod_right,jod" : ""));
   const std::size_t per_level = 1 + s.methods.size();
   for (const std::string& spec : s.scenes) {
     // owned[log][level]: the point, where this shard runs it.
@@ -305,6 +326,13 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
             err[i] = render::eccentricity_deg(plan.frustum, plan.fovea, gl_point(f.truth[i]));
             patch = std::min({patch, image::psnr(*ref, *img, bench.patch(e, f.truth[i])), kPatchCeilingDb});
           }
+          std::string jod_cells;
+          if (jod) {
+            auto j = jod->still(*ref, *img, std::array<double, 2>{f.truth[0].x, f.truth[0].y}, std::array<double, 2>{f.truth[1].x, f.truth[1].y});
+            if (!j) return fail(j.error());
+            series[k].jod.push_back(j->combined);
+            jod_cells = "," + fmt(j->left) + "," + fmt(j->right) + "," + fmt(j->combined);
+          }
           if (p.oracle) bound = patch - g.patch_margin_db;
           const bool exceeds = patch < bound;
           Series& se = series[k];
@@ -318,20 +346,21 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
                         frame_head + "," + render::method_name(p.method) + "," + p.gaze() + "," + fmt(p.sigma) + "," + fmt(used[0].x) +
                             "," + fmt(used[0].y) + "," + fmt(used[1].x) + "," + fmt(used[1].y) + "," + fmt(err[0]) + "," +
                             fmt(err[1]) + "," + fmt(q->combined.fpsnr_db) + "," + fmt(q->combined.ssim) + "," +
-                            fmt(q->combined.psnr_db) + "," + fmt(patch) + "," + (exceeds ? "1" : "0"),
+                            fmt(q->combined.psnr_db) + "," + fmt(patch) + "," + (exceeds ? "1" : "0") + jod_cells,
                         *mine[k / per_level]);
         }
       }
       for (std::size_t k = 0; k < points.size(); ++k) {
         if (!mine[k / per_level]) continue;
-        nlohmann::json row = summary_row(points[k], series[k], times[k], g.efr_ratio, full_samples);
+        nlohmann::json row = summary_row(points[k], series[k], times[k], g.efr_ratio, full_samples, s.jod);
         row.update({{"scene", scene_name}, {"log", log.name}, {"display", model->name}, {"blink_frames", blinks}});
-        rows.add_line("gaze.csv", chomp(csv_line(row, kSummaryColumns)), *mine[k / per_level]);
+        rows.add_line("gaze.csv", chomp(csv_line(row, columns)), *mine[k / per_level]);
         rows.add_item("rows", std::move(row), *mine[k / per_level]);
       }
     }
   }
   progress.finish();
+  if (jod && !s.json) print_jod_cost(*jod, "bench --gaze", started);
 
   rusage ru{};
   ::getrusage(RUSAGE_SELF, &ru);
@@ -340,7 +369,7 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
     log_info.push_back({{"path", l.path}, {"name", l.name}, {"head", l.head_recorded ? "recorded" : "static"},
                         {"stream_frames", l.timeline.stream_frames}, {"stride", l.timeline.stride},
                         {"scored_frames", l.timeline.frames.size()}});
-  const nlohmann::json summary = {
+  nlohmann::json summary = {
       {"renderer", comp->renderer()}, {"display", model->name}, {"size", {co.width, co.height}},
       {"ppd", bench.ppd()}, {"fps", g.fps}, {"latency_ms", logs.front().timeline.latency_ms},
       {"start_s", g.start_s}, {"efr_ratio", g.efr_ratio}, {"dominant", "right"}, {"fx", s.fx}, {"fy", s.fy},
@@ -348,6 +377,7 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
       {"timed_frames", s.timed_frames}, {"logs", log_info},
       {"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()},
       {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
+  if (jod) summary["jod"] = jod_settings(*jod);
   // --shard given (1/1 too): a part for `bench merge`.
   if (!s.shard.empty()) return bench::write_shard(s.out, rows, summary, s.sweep, "gaze", s.json);
   return bench::write_outputs(s.out, rows, summary, "gaze", !s.no_png, s.json);

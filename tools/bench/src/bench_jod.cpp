@@ -1,6 +1,7 @@
 #include "foveal/bench/bench_jod.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <string>
 
 namespace foveal::bench {
@@ -93,6 +94,19 @@ Result<StereoJod> StereoJodScorer::Video::score() const {
     score[static_cast<std::size_t>(e)] = *s;
   }
   return owner_->combine(score[0], score[1]);
+}
+
+nlohmann::json jod_settings(const StereoJodScorer& j) {
+  return {{"release", "1.2"}, {"peak_cd_m2", j.photometry().peak_cd_m2}, {"black_cd_m2", j.photometry().black_cd_m2},
+          {"ppd", {j.ppd(Eye::left), j.ppd(Eye::right)}}, {"frames", j.scored()},
+          {"per_frame_ms", j.scored() ? j.total_ms() / j.scored() : 0.0}};
+}
+
+void print_jod_cost(const StereoJodScorer& j, const char* label, std::chrono::steady_clock::time_point start) {
+  if (!j.scored()) return;
+  const double run_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fprintf(stderr, "%s: JOD added %.0f ms per frame (%d frames, %.1f s of the run's %.1f s; --no-jod leaves it out)\n", label,
+               j.total_ms() / j.scored(), j.scored(), j.total_ms() / 1000, run_s);
 }
 
 }  // namespace foveal::bench

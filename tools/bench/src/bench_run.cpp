@@ -103,20 +103,6 @@ image::MetricsOptions metric_options(const render::Compositor& c, std::pair<doub
   return o;
 }
 
-// bench.json's "jod": how the JOD columns were scored, and what they cost per frame.
-nlohmann::json jod_summary(const StereoJodScorer& j) {
-  return {{"release", "1.2"}, {"peak_cd_m2", j.photometry().peak_cd_m2}, {"black_cd_m2", j.photometry().black_cd_m2},
-          {"ppd", {j.ppd(Eye::left), j.ppd(Eye::right)}}, {"frames", j.scored()},
-          {"per_frame_ms", j.scored() ? j.total_ms() / j.scored() : 0.0}};
-}
-
-void print_jod_cost(const StereoJodScorer& j, std::chrono::steady_clock::time_point start) {
-  if (!j.scored()) return;
-  const double run_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::fprintf(stderr, "bench: JOD added %.0f ms per frame (%d frames, %.1f s of the run's %.1f s; --no-jod leaves it out)\n",
-               j.total_ms() / j.scored(), j.scored(), j.total_ms() / 1000, run_s);
-}
-
 }  // namespace
 
 int run_bench(const BenchOptions& a, const std::string& sweep) {
@@ -173,7 +159,7 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
   if (!a.gaze.logs.empty()) {
     if (a.f_grid || a.rotation || a.stability || a.flicker)
       return fail(bad_input("--gaze runs on its own: drop --f-grid, --rotation, --stability and --flicker"));
-    return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json, a.shard, sweep});
+    return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json, a.shard, sweep, !a.no_jod});
   }
 
   std::error_code ec;
@@ -363,13 +349,13 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
     for (const std::string& spec : scenes)
       if (Status s = run_flicker(fo, *comp, methods, spec, rows, [&] { bench.tick(); }); !s) return fail(s.error());
   progress.finish();
-  if (jod && !a.json) print_jod_cost(*jod, started);
+  if (jod && !a.json) print_jod_cost(*jod, "bench", started);
 
   rusage ru{};
   ::getrusage(RUSAGE_SELF, &ru);
   nlohmann::json summary = {{"renderer", comp->renderer()}, {"size", {co.width, co.height}}, {"frames", a.frames},
                             {"fovea", {fovea->first, fovea->second}}, {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
-  if (jod) summary["jod"] = jod_summary(*jod);
+  if (jod) summary["jod"] = jod_settings(*jod);
   // --shard given (1/1 too): a part for `bench merge`.
   if (!a.shard.empty()) return bench::write_shard(a.out, rows, summary, sweep, "bench", a.json);
   return bench::write_outputs(a.out, rows, summary, "bench", !a.no_png, a.json);

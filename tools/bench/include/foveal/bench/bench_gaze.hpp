@@ -34,6 +34,7 @@ struct GazeBenchSweep {
   bool no_png = false, json = false;
   std::string shard;  ///< --shard K/N (empty: the whole sweep; bench_sweep.hpp)
   std::string sweep;  ///< the options that define the sweep, for the shard file
+  bool jod = true;    ///< JOD per frame at the true gaze (bench_jod.hpp); false: --no-jod
 };
 
 /// Runs the gaze-driven evaluation; returns the exit code.

@@ -3,8 +3,11 @@
 // scored alone as its eye of the display model, at its own fixation, like the bench's
 // FPSNR (docs/bench.md, "JOD"). The panel's light is `foveal metrics --jod`'s default.
 #include <array>
+#include <chrono>
 #include <optional>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "foveal/core/display_model.hpp"
 #include "foveal/core/error.hpp"
@@ -64,5 +67,10 @@ class StereoJodScorer {
   int scored_ = 0;
   double total_ms_ = 0;
 };
+
+/// bench.json's (gaze.json's) "jod": how the JOD columns were scored, and their cost.
+nlohmann::json jod_settings(const StereoJodScorer& j);
+/// After the progress bar: what JOD added per frame, of the run's time since `start`.
+void print_jod_cost(const StereoJodScorer& j, const char* label, std::chrono::steady_clock::time_point start);
 
 }  // namespace foveal::bench
