@@ -66,6 +66,8 @@ def main():
         merged = bench_rows.table(d("merged", "bench.csv"))
         check(merged[0][-3:] == ["jod_left", "jod_right", "jod"] and all(0 < float(x) <= 10 for r in merged[1:] for x in r[-3:]),
               "the merged bench.csv ends with jod_left, jod_right, jod, each in (0, 10]")
+        check(bench_rows.table(d("merged", "flicker.csv"))[0][-3:] == ["jod_left", "jod_right", "jod"],
+              "the merged flicker.csv ends with jod_left, jod_right, jod")
         for chart in ("pareto.png", "table.md", "fgrid.png", "rotation.png"):
             check(os.path.exists(d("merged", chart)), f"the merge draws {chart} as a single run does")
         # One part of one: a shard too (what an array of one task writes), merged alone.

@@ -53,6 +53,14 @@ TEST(BenchFlicker, RmfrFlickersLessWithTheGazeFilter) {
   EXPECT_GT(raw, 0.0);
   EXPECT_LT(filtered, raw);
   EXPECT_EQ(value(find(rows, "visibility", "static", "full", "raw"), "flicker"), 0.0);  // a static scene at full rate does not flicker
+  // JOD as a video along the path, each eye at its recorded gaze: full's frames are the
+  // reference's (10), and the filter's steadier fovea looks better than the raw gaze's.
+  for (const char* gaze : {"raw", "filtered"}) EXPECT_EQ(value(find(rows, "visibility", "static", "full", gaze), "jod"), 10) << gaze;
+  const Row& raw_row = find(rows, "visibility", "static", "rmfr", "raw");
+  EXPECT_GT(value(find(rows, "visibility", "static", "rmfr", "filtered"), "jod"), value(raw_row, "jod"));
+  EXPECT_LT(value(raw_row, "jod"), 10);
+  EXPECT_GT(value(raw_row, "jod_left"), 0);
+  EXPECT_GT(value(raw_row, "jod_right"), 0);
   for (const Row& row : rows) {
     // A still camera: the reference never changes, so flicker is the frames' own change.
     EXPECT_EQ(value(row, "reference_change"), 0.0);

@@ -175,3 +175,24 @@ TEST(BenchJod, GazeBenchAppendsJodColumnsAndNoJodLeavesThemOut) {
   EXPECT_EQ(header("none/gaze_frames.csv") + ",jod_left,jod_right,jod", frames);
   EXPECT_FALSE(nlohmann::json::parse(test::read_file(d.path("none/gaze.json"))).contains("jod"));
 }
+
+TEST(BenchJod, FlickerAppendsVideoJodColumnsAndNoJodLeavesThemOut) {
+  test::TempDir d;
+  const std::string common = test::bin("foveal") + " bench --scene pattern:noise --methods rmfr --sigmas 2 --size 64x36 --frames 1"
+                             " --warmup 0 --flicker --flicker-frames 3 --flicker-gaze fixed --no-png --out ";
+  auto r = test::run(common + d.path("jod"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = test::run(common + d.path("none") + " --no-jod");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto header = [&](const std::string& file) {
+    const std::string text = test::read_file(d.path(file));
+    return text.substr(0, text.find('\n'));
+  };
+  EXPECT_EQ(header("jod/flicker.csv"), header("none/flicker.csv") + ",jod_left,jod_right,jod");
+  EXPECT_TRUE(header("none/flicker.csv").ends_with(",prefiltered_flicker,reference"));
+  const auto rows = test::read_csv_rows(test::read_file(d.path("jod/flicker.csv")));
+  ASSERT_EQ(rows.size(), 2u);  // full and rmfr
+  EXPECT_EQ(rows[0].at("jod"), "10");
+  const auto j = nlohmann::json::parse(test::read_file(d.path("jod/bench.json")));
+  EXPECT_NEAR(j["flicker"][1]["jod"].get<double>(), std::stod(rows[1].at("jod")), 1e-4);  // the CSV has 6 digits
+}

@@ -85,6 +85,7 @@ struct GazeWindow {
   std::vector<Foveae> raw, filtered;
   std::vector<double> t_s;               ///< since the window's first sample
   std::vector<std::optional<Pose>> head;  ///< the log's pose, relative to the window's first valid one
+  double fps = 0;                         ///< frames per second: the samples' mean rate over the window
 };
 
 Result<GazeWindow> read_window(const std::string& log, int frames) {
@@ -120,6 +121,10 @@ Result<GazeWindow> read_window(const std::string& log, int frames) {
     if (g.head.valid && !anchor) anchor = g.head.pose;
     w.head.push_back(g.head.valid ? std::optional<Pose>(relative_to(*anchor, g.head.pose)) : std::nullopt);
   }
+  w.fps = static_cast<double>(w.t_s.size() - 1) / w.t_s.back();
+  if (!(std::isfinite(w.fps) && w.fps > 0 && w.fps <= 1000))
+    return bad_input(path + ": the samples of the --flicker window span " + std::to_string(w.t_s.back()) +
+                     " s: no frame rate in (0, 1000] Hz for JOD");
   return w;
 }
 
@@ -223,7 +228,7 @@ std::size_t flicker_points(const FlickerOptions& o, std::size_t methods_without_
 }
 
 Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std::vector<Method>& methods_without_full,
-                   const std::string& spec, bench::SweepRows& rows, const std::function<void()>& tick) {
+                   const std::string& spec, bench::SweepRows& rows, const std::function<void()>& tick, StereoJodScorer* jod) {
   std::optional<render::Scene> scene;  // loaded by the first point this shard runs
   std::optional<GazeWindow> window;
   auto load = [&]() -> Status {
@@ -264,6 +269,7 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
 
   struct References {
     std::vector<Samples> frames;              // per frame; one for a still camera (the same every frame)
+    std::vector<image::Image> images;         // the same frames whole, for JOD (empty without)
     std::vector<std::vector<Samples>> ideal;  // per gaze, per frame: RMFR's prefiltered reference
   };
   for (const CameraPath& given : o.cameras) {
@@ -300,6 +306,7 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
           if (!r) return r.error();
           img = std::move(*r);
           out.frames.push_back(sample(img));
+          if (jod) out.images.push_back(img);
         }
         for (std::size_t gi = 0; has_rmfr && gi < o.gazes.size(); ++gi) {
           auto p = prefiltered(img, frame(Method::rmfr, rp, foveae[gi][k], heads[k]));
@@ -321,6 +328,7 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
           if (!refs) return refs.error();
           const References& refset = **refs;
           auto ref = [&](std::size_t k) -> const Samples& { return refset.frames[std::min(k, refset.frames.size() - 1)]; };
+          auto ref_image = [&](std::size_t k) -> const image::Image& { return refset.images[std::min(k, refset.images.size() - 1)]; };
           const std::size_t n = heads.size();
           const std::vector<Foveae> foveae = foveae_of(gaze);
           static const Samples none;
@@ -331,17 +339,38 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
           const bool is_reference = m == Method::full && pipeline == rp;
           Sums sums;
           Samples prev;
+          // JOD as a video at the log's rate, each eye at its recorded (raw) gaze: where the
+          // viewer looked, whichever fovea the frame was rendered with.
+          std::optional<StereoJodScorer::Video> video;
+          if (jod) {
+            auto v = jod->video(window->fps);
+            if (!v) return v.error();
+            video.emplace(std::move(*v));
+          }
           for (std::size_t k = 0; k < n; ++k) {
             Samples cur;
-            if (is_reference) cur = ref(k);
-            else {
+            const EyeFovea gaze_l = std::array<double, 2>{window->raw[k][0].x, window->raw[k][0].y};
+            const EyeFovea gaze_r = std::array<double, 2>{window->raw[k][1].x, window->raw[k][1].y};
+            if (is_reference) {
+              cur = ref(k);
+              if (video)
+                if (Status st = video->push(ref_image(k), ref_image(k), gaze_l, gaze_r); !st) return st;
+            } else {
               auto r = render_image(frame(m, pipeline, foveae[k], heads[k]));
               if (!r) return r.error();
               cur = sample(*r);
+              if (video)
+                if (Status st = video->push(ref_image(k), *r, gaze_l, gaze_r); !st) return st;
             }
             if (k > 0)
               accumulate({&prev, &ref(k - 1), &ideal_at(k - 1)}, {&cur, &ref(k), &ideal_at(k)}, foveae[k - 1], foveae[k], eye_w, eye_h, f_px, sums);
             prev = std::move(cur);
+          }
+          std::optional<StereoJod> jv;
+          if (video) {
+            auto sc = video->score();
+            if (!sc) return sc.error();
+            jv = *sc;
           }
           tick();
           const double values = sums.values ? static_cast<double>(sums.values) : 1.0;
@@ -352,14 +381,17 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
                                            "," + num(sums.reference_change / values) + "," + num(sums.error / values) + "," +
                                            num(sums.change / values) + "," + num(sums.flicker / values) + "," +
                                            (m == Method::rmfr ? num(sums.prefiltered_flicker / values) : std::string()) + "," +
-                                           render::pipeline_name(rp));
-          rows.add_item("flicker", {{"scene", scene_name}, {"pipeline", render::pipeline_name(pipeline)}, {"camera", path.text()},
+                                           render::pipeline_name(rp) +
+                                           (jv ? "," + num(jv->left) + "," + num(jv->right) + "," + num(jv->combined) : ""));
+          nlohmann::json item = {{"scene", scene_name}, {"pipeline", render::pipeline_name(pipeline)}, {"camera", path.text()},
                                     {"method", render::method_name(m)}, {"sigma", sigma}, {"sigma_nd", sigma_nd}, {"gaze", flicker_gaze_name(gaze)},
                                     {"frames", n}, {"fovea_step_px", step}, {"reference_change", sums.reference_change / values},
                                     {"periphery_error", sums.error / values}, {"periphery_change", sums.change / values},
                                     {"flicker", sums.flicker / values},
                                     {"prefiltered_flicker", m == Method::rmfr ? nlohmann::json(sums.prefiltered_flicker / values) : nlohmann::json()},
-                                    {"reference", render::pipeline_name(rp)}});
+                                    {"reference", render::pipeline_name(rp)}};
+          if (jv) item.update({{"jod_left", jv->left}, {"jod_right", jv->right}, {"jod", jv->combined}});
+          rows.add_item("flicker", std::move(item));
         }
   }
   return {};

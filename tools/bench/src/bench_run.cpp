@@ -194,7 +194,7 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
   if (a.f_grid) rows.table("fgrid.csv", "scene,sigma,fx,fy,fpsnr_db,psnr_db,ssim");
   if (a.rotation) rows.table("rotation.csv", "angle_deg,method,sigma,fpsnr_db,psnr_db,ssim");
   if (a.stability) rows.table("stability.csv", "scene,path,t,fovea_x,fovea_y,method,sigma,patch_psnr_db,fpsnr_db");
-  if (a.flicker) rows.table("flicker.csv", kFlickerColumns);
+  if (a.flicker) rows.table("flicker.csv", std::string(kFlickerColumns) + (jod ? kFlickerJodColumns : ""));
   const double full_samples = static_cast<double>(co.width) * co.height;
   for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index) {
     const std::string& spec = scenes[scene_index];
@@ -347,7 +347,7 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
   }
   if (a.flicker)
     for (const std::string& spec : scenes)
-      if (Status s = run_flicker(fo, *comp, methods, spec, rows, [&] { bench.tick(); }); !s) return fail(s.error());
+      if (Status s = run_flicker(fo, *comp, methods, spec, rows, [&] { bench.tick(); }, jod ? &*jod : nullptr); !s) return fail(s.error());
   progress.finish();
   if (jod && !a.json) print_jod_cost(*jod, "bench", started);
 

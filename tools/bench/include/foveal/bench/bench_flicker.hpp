@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "foveal/bench/bench_jod.hpp"
 #include "foveal/bench/bench_sweep.hpp"
 #include "foveal/bench/camera_path.hpp"
 #include "foveal/core/error.hpp"
@@ -49,11 +50,14 @@ Result<std::vector<render::Pipeline>> parse_flicker_pipelines(const std::string&
 std::size_t flicker_points(const FlickerOptions& o, std::size_t methods_without_full);
 
 /// Renders every point on the scene `spec` and adds its rows (flicker.csv and the list
-/// "flicker") through `rows`; `tick` after each point.
+/// "flicker") through `rows`; `tick` after each point. With `jod`, each point's frames
+/// are also scored as a video (the columns kFlickerJodColumns), which keeps the
+/// reference's frames whole in memory (W·H·4 bytes each).
 Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std::vector<render::Method>& methods_without_full,
-                   const std::string& spec, bench::SweepRows& rows, const std::function<void()>& tick);
+                   const std::string& spec, bench::SweepRows& rows, const std::function<void()>& tick, StereoJodScorer* jod = nullptr);
 
-/// flicker.csv's header.
+/// flicker.csv's header; with JOD, kFlickerJodColumns follow.
 extern const char* const kFlickerColumns;
+inline constexpr const char* kFlickerJodColumns = ",jod_left,jod_right,jod";
 
 }  // namespace foveal::bench
