@@ -45,7 +45,7 @@ if manifest=$(scripts/build_monado.sh); then
 else
   rc=$?
   ((rc == 3)) || exit "$rc"
-  echo "bootstrap: no Monado snapshot: the openxr tests will be reported as not run"
+  echo "bootstrap: no Monado snapshot and no cached build: the openxr tests will be reported as not run"
 fi
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${openxr[@]}" "$@"
