@@ -16,16 +16,11 @@
 #include <filesystem>
 
 #include "../../gl/src/egl_util.hpp"
+#include "foveal/core/clock.hpp"
 
 namespace foveal::render {
 
 namespace {
-
-std::int64_t now_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t(ts.tv_sec) * 1000000000 + ts.tv_nsec;
-}
 
 std::string errno_text(int e) { return std::strerror(e); }
 
@@ -234,9 +229,9 @@ struct DrmOutput::Impl {
       self->shown = self->pending;
       self->pending = nullptr;
     };
-    const std::int64_t deadline = now_ns() + std::int64_t(timeout_ms) * 1000000;
+    const std::int64_t deadline = monotonic_now_ns() + std::int64_t(timeout_ms) * 1000000;
     while (pending) {
-      const int left = int(std::max<std::int64_t>(0, (deadline - now_ns()) / 1000000));
+      const int left = int(std::max<std::int64_t>(0, (deadline - monotonic_now_ns()) / 1000000));
       pollfd p{fd, POLLIN, 0};
       const int r = ::poll(&p, 1, left);
       if (r < 0 && errno == EINTR) continue;
@@ -259,12 +254,8 @@ std::string busy_message(const std::string& path) {
 // the display could and "shown" means the refresh it was flipped at.
 void sleep_until_next_refresh(std::int64_t last_ns, double refresh_hz) {
   const auto period = static_cast<std::int64_t>(1e9 / refresh_hz);
-  const std::int64_t now = now_ns();
-  const std::int64_t periods = std::max<std::int64_t>(1, (now - last_ns + period - 1) / period);
-  const std::int64_t next = last_ns + periods * period;
-  timespec ts{static_cast<time_t>(next / 1000000000), static_cast<long>(next % 1000000000)};
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-  }
+  const std::int64_t periods = std::max<std::int64_t>(1, (monotonic_now_ns() - last_ns + period - 1) / period);
+  sleep_until_ns(last_ns + periods * period);
 }
 
 Status become_master(int fd, const std::string& path) {
@@ -395,7 +386,7 @@ Status DrmOutput::present(GLuint framebuffer, int width, int height) {
   if (!eglSwapBuffers(o.display, o.egl_surface)) return Error{ErrorKind::device, gl::egl_error("eglSwapBuffers (GBM)")};
   gbm_bo* bo = gbm_surface_lock_front_buffer(o.surface);
   if (!bo) return Error{ErrorKind::device, o.path + ": gbm_surface_lock_front_buffer failed"};
-  o.ready_ns = now_ns();
+  o.ready_ns = monotonic_now_ns();
   auto fb = o.framebuffer(bo);
   if (!fb) {
     gbm_surface_release_buffer(o.surface, bo);
@@ -413,7 +404,7 @@ Status DrmOutput::present(GLuint framebuffer, int width, int height) {
     }
     o.mode_set = true;
     o.shown = bo;
-    o.stats.record(now_ns());
+    o.stats.record(monotonic_now_ns());
     return {};
   }
   if (o.pending) {

@@ -5,7 +5,6 @@
 #define GLFW_INCLUDE_NONE  // GL comes from foveal/render/gl.hpp (core profile)
 #include <GLFW/glfw3.h>
 
-#include <chrono>
 
 namespace foveal::render {
 
@@ -98,8 +97,7 @@ void Window::present(GLuint framebuffer, int width, int height) {
   glFinish();  // the copy's cost belongs to the frame, not to the swap's wait
   impl_->ready_ns = monotonic_now_ns();
   glfwSwapBuffers(impl_->window);
-  impl_->stats.record(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                          std::chrono::steady_clock::now().time_since_epoch()).count());
+  impl_->stats.record(monotonic_now_ns());
   glfwPollEvents();
 }
 
