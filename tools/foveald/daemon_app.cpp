@@ -113,11 +113,9 @@ Status DaemonApp::setup_head(const probe::SourceOptions& so) {
 }
 
 double DaemonApp::output_refresh_hz() const {
-  // Direct mode knows the mode's rate; otherwise --fps, the display model's, or 90 Hz.
-  if (renderer_) {
-    const nlohmann::json out = renderer_->stats_json().value("output", nlohmann::json::object());
-    if (out.contains("mode") && out["mode"].value("refresh_hz", 0.0) > 0) return out["mode"]["refresh_hz"].get<double>();
-  }
+  // The display's (direct mode knows its mode's rate); otherwise --fps, the display
+  // model's, or 90 Hz.
+  if (renderer_ && renderer_->refresh_hz() > 0) return renderer_->refresh_hz();
   if (o_.fps > 0) return o_.fps;
   return model_.refresh_hz > 0 ? model_.refresh_hz : 90.0;
 }
@@ -207,9 +205,8 @@ Status DaemonApp::setup_renderer() {
     ro.width = size->first;
     ro.height = size->second;
   }
-  // The refresh to pace to: a window's --fps or the display model's (direct mode's
-  // mode replaces it once open); none headless.
-  if (display) ro.refresh_hz = o_.fps > 0 ? o_.fps : (model_.refresh_hz > 0 ? model_.refresh_hz : 90.0);
+  // The refresh to pace to (direct mode's mode replaces it once open); none headless.
+  if (display) ro.refresh_hz = output_refresh_hz();
   auto r = FrameRenderer::create(ro, model_, o_.out);
   if (!r) return r.error();
   renderer_ = std::move(*r);

@@ -43,7 +43,7 @@ class DaemonApp {
   Status setup(const Profile& startup_profile);
   Status setup_source();
   Status setup_head(const probe::SourceOptions& so);
-  double output_refresh_hz() const;  // for the pose prediction's horizon
+  double output_refresh_hz() const;  // the display's refresh: pacing and the pose prediction's horizon
   Status setup_renderer();
   Result<Profile> load_startup_profile() const;
   Status apply_profile(const Profile& p, const char* why);  // main, then control thread

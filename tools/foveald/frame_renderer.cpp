@@ -67,9 +67,11 @@ Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions
                   "buffer_left_w,buffer_left_h,buffer_right_w,buffer_right_h,f_x,f_y,shadow_ms,gbuffer_ms,mapping_ms,"
                   "lighting_ms,inverse_ms,gpu_ms,cpu_ms,head_x,head_y,head_z,head_qw,head_qx,head_qy,head_qz,head_t_ns,") +
       FrameLatency::csv_header() + "\n");
+  // Direct mode paces to its mode's refresh, known now that the output is open.
   const nlohmann::json& out = r->snap_.output;
   const double mode_hz = out.contains("mode") ? out["mode"].value("refresh_hz", 0.0) : 0.0;
-  r->pacer_.emplace(o.pacing, mode_hz > 0 ? mode_hz : o.refresh_hz);
+  r->refresh_hz_ = mode_hz > 0 ? mode_hz : o.refresh_hz;
+  r->pacer_.emplace(o.pacing, r->refresh_hz_);
   return r;
 }
 

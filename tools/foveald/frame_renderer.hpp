@@ -77,6 +77,9 @@ class FrameRenderer {
   std::size_t saved_frames() const;  ///< any thread
   const std::string& renderer() const { return renderer_name_; }
   Pacing pacing() const { return o_.pacing; }
+  /// The display's refresh the frames are paced to (direct mode: its mode's; a window:
+  /// RenderOptions::refresh_hz); 0 headless.
+  double refresh_hz() const { return refresh_hz_; }
   /// Any thread: the stats as of the last completed frame.
   nlohmann::json stats_json() const;
 
@@ -113,6 +116,7 @@ class FrameRenderer {
   std::string out_dir_;
   std::string renderer_name_, scene_name_;
   std::array<int, 2> size_{};  ///< the output's width and height
+  double refresh_hz_ = 0;
   std::unique_ptr<render::Output> output_;
   std::optional<render::Scene> scene_;
   std::optional<render::Compositor> comp_;
