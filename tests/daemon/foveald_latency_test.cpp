@@ -6,22 +6,14 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "csv_rows.hpp"
 #include "test_support.hpp"
 
 namespace foveal {
 namespace {
-
-std::vector<std::string> cells_of(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream in(line);
-  for (std::string c; std::getline(in, c, ',');) cells.push_back(c);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
 
 std::set<std::string> log_times(const std::string& path) {
   std::set<std::string> t;
@@ -44,7 +36,7 @@ TEST(FovealdLatency, EveryFrameNamesItsSampleAndItsPartsAddUp) {
     std::string header;
     ASSERT_TRUE(std::getline(csv, header));
     std::map<std::string, std::size_t> col;
-    const auto names = cells_of(header);
+    const auto names = test::csv_cells(header);
     for (std::size_t i = 0; i < names.size(); ++i) col[names[i]] = i;
     for (const char* name : {"sample_device_t_ns", "gaze_to_photon_ms", "tracker_to_host_ms", "host_to_latch_ms",
                              "latch_to_gpu_ms", "gpu_to_shown_ms", "shown_ns", "latch_ns", "frame_start_ns"})
@@ -52,7 +44,7 @@ TEST(FovealdLatency, EveryFrameNamesItsSampleAndItsPartsAddUp) {
     const std::set<std::string> rows = log_times(log);
     int frames = 0;
     for (std::string line; std::getline(csv, line);) {
-      const auto c = cells_of(line);
+      const auto c = test::csv_cells(line);
       ASSERT_EQ(c.size(), names.size()) << line;
       if (c[col["gaze_to_photon_ms"]].empty()) continue;  // before the first sample
       ++frames;
@@ -98,7 +90,7 @@ TEST(FovealdLatency, PredictionMovesTheFoveaToEachFramesDisplayTime) {
     std::getline(csv, line);
     std::map<std::string, std::set<std::string>> fovea_of_sample;
     while (std::getline(csv, line)) {
-      const auto c = cells_of(line);
+      const auto c = test::csv_cells(line);
       fovea_of_sample[c[1]].insert(c[3] + "," + c[4]);
     }
     for (const auto& [t, foveae] : fovea_of_sample) frames_of_a_sample_that_differ[predict] += foveae.size() > 1;

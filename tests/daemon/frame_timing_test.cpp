@@ -1,10 +1,10 @@
 // foveald's frame pacing and gaze-to-photon record, without GL (docs/latency.md).
 #include <gtest/gtest.h>
 
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "csv_rows.hpp"
 #include "frame_latency.hpp"
 #include "frame_pacer.hpp"
 
@@ -12,14 +12,6 @@ namespace foveal::daemon {
 namespace {
 
 constexpr TimeNs kPeriod = 11'111'111;  // 90 Hz
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> cells;
-  std::stringstream in(s);
-  for (std::string c; std::getline(in, c, ',');) cells.push_back(c);
-  if (!s.empty() && s.back() == ',') cells.emplace_back();
-  return cells;
-}
 
 TEST(FramePacer, AsapStartsAtOnceAndTargetsTheNextRefreshItCanMake) {
   FramePacer p(Pacing::asap, 90);
@@ -83,8 +75,8 @@ TEST(FrameLatency, ThePartsAddUpToGazeToPhotonInTheCsv) {
   f.gpu_done_ns = 1'009'999'999;
   f.shown_ns = 1'011'111'111;
   f.display_target_ns = 1'011'111'111;
-  const std::vector<std::string> cells = split(f.csv_cells());
-  ASSERT_EQ(cells.size(), split(FrameLatency::csv_header()).size());
+  const std::vector<std::string> cells = test::csv_cells(f.csv_cells());
+  ASSERT_EQ(cells.size(), test::csv_cells(FrameLatency::csv_header()).size());
   EXPECT_EQ(cells[0], "8333333");
   const double total = std::stod(cells[7]);
   double parts = 0;
@@ -101,8 +93,8 @@ TEST(FrameLatency, ThePartsAddUpToGazeToPhotonInTheCsv) {
 TEST(FrameLatency, AFrameWithoutASampleHasEmptySampleCellsAndIsNotCounted) {
   FrameLatency f;
   f.start_ns = 5, f.latch_ns = 6, f.gpu_done_ns = 7, f.shown_ns = 8;
-  const std::vector<std::string> cells = split(f.csv_cells());
-  ASSERT_EQ(cells.size(), split(FrameLatency::csv_header()).size());
+  const std::vector<std::string> cells = test::csv_cells(f.csv_cells());
+  ASSERT_EQ(cells.size(), test::csv_cells(FrameLatency::csv_header()).size());
   EXPECT_EQ(cells[0], "");
   EXPECT_EQ(cells[5], "8");
   EXPECT_EQ(cells[7], "");

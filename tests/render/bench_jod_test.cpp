@@ -49,6 +49,8 @@ image::Image damaged(const image::Image& ref, double x0, int eye_w) {
 
 double cell(const test::CsvRow& r, const std::string& k) { return r.count(k) ? std::stod(r.at(k)) : NAN; }
 
+std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
+
 }  // namespace
 
 TEST(BenchJod, EachEyeIsScoredAloneAtItsOwnFixation) {
@@ -113,7 +115,7 @@ TEST(BenchJod, BenchWritesJodPerEyeAfterTheOldColumnsAndNoJodLeavesThemOut) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("JOD added"), std::string::npos) << r.err;  // its cost per frame
   const std::string csv = test::read_file(d.path("jod/bench.csv"));
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), std::string(kHeader) + ",jod_left,jod_right,jod");
+  EXPECT_EQ(first_line(csv), std::string(kHeader) + ",jod_left,jod_right,jod");
   const auto rows = test::read_csv_rows(csv);
   ASSERT_EQ(rows.size(), 5u);  // full, then each method at two levels
   EXPECT_EQ(rows[0].at("method"), "full");
@@ -145,7 +147,7 @@ TEST(BenchJod, BenchWritesJodPerEyeAfterTheOldColumnsAndNoJodLeavesThemOut) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("JOD"), std::string::npos) << r.err;
   const std::string plain = test::read_file(d.path("none/bench.csv"));
-  EXPECT_EQ(plain.substr(0, plain.find('\n')), kHeader);
+  EXPECT_EQ(first_line(plain), kHeader);
   EXPECT_FALSE(nlohmann::json::parse(test::read_file(d.path("none/bench.json"))).contains("jod"));
 }
 
@@ -158,10 +160,7 @@ TEST(BenchJod, GazeBenchAppendsJodColumnsAndNoJodLeavesThemOut) {
   auto r = test::run(common + d.path("jod"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("bench --gaze: JOD added"), std::string::npos) << r.err;
-  auto header = [&](const std::string& file) {
-    const std::string text = test::read_file(d.path(file));
-    return text.substr(0, text.find('\n'));
-  };
+  auto header = [&](const std::string& file) { return first_line(test::read_file(d.path(file))); };
   const std::string summary = header("jod/gaze.csv"), frames = header("jod/gaze_frames.csv");
   EXPECT_TRUE(summary.ends_with(",fovea_error_deg_mean,jod_mean,jod_p5,jod_min")) << summary;
   EXPECT_TRUE(frames.ends_with(",patch_psnr_db,exceeds,jod_left,jod_right,jod")) << frames;
@@ -184,10 +183,7 @@ TEST(BenchJod, FlickerAppendsVideoJodColumnsAndNoJodLeavesThemOut) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = test::run(common + d.path("none") + " --no-jod");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  auto header = [&](const std::string& file) {
-    const std::string text = test::read_file(d.path(file));
-    return text.substr(0, text.find('\n'));
-  };
+  auto header = [&](const std::string& file) { return first_line(test::read_file(d.path(file))); };
   EXPECT_EQ(header("jod/flicker.csv"), header("none/flicker.csv") + ",jod_left,jod_right,jod");
   EXPECT_TRUE(header("none/flicker.csv").ends_with(",prefiltered_flicker,reference"));
   const auto rows = test::read_csv_rows(test::read_file(d.path("jod/flicker.csv")));

@@ -11,16 +11,22 @@ namespace foveal::test {
 
 using CsvRow = std::map<std::string, std::string>;
 
+/// One line's cells, an empty last cell kept.
+inline std::vector<std::string> csv_cells(const std::string& line) {
+  std::vector<std::string> cells;
+  std::istringstream l(line);
+  for (std::string c; std::getline(l, c, ',');) cells.push_back(c);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
 inline std::vector<CsvRow> read_csv_rows(const std::string& text) {
   std::istringstream in(text);
   std::string line;
   std::vector<std::string> header;
   std::vector<CsvRow> rows;
   while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::istringstream l(line);
-    for (std::string c; std::getline(l, c, ',');) cells.push_back(c);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
+    const std::vector<std::string> cells = csv_cells(line);
     if (header.empty()) {
       header = cells;
       continue;
