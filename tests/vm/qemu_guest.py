@@ -21,6 +21,11 @@ MULTIARCH = "/usr/lib/x86_64-linux-gnu"
 MESA_FILES = [f"{MULTIARCH}/libEGL_mesa.so.0", "/usr/share/glvnd/egl_vendor.d/50_mesa.json",
               f"{MULTIARCH}/libgbm.so.1", f"{MULTIARCH}/libglapi.so.0", f"{MULTIARCH}/dri/kms_swrast_dri.so"]
 BUSYBOX = "/bin/busybox"
+# The direct-mode guests' display: bochs on QEMU's standard VGA, and what it needs, in
+# load order. No fbdev emulation: no fbcon drawing on the console under emulation, no
+# framebuffer pinned in VRAM.
+BOCHS_MODULES = ["bochs"]
+BOCHS_MODULE_PARAMS = {"drm_kms_helper.ko": "fbdev_emulation=0"}
 HERE = os.path.dirname(os.path.abspath(__file__))
 KERNEL_ARGS = "console=ttyS0 panic=-1 quiet loglevel=3"
 

@@ -21,12 +21,8 @@ import time
 import zlib
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
-from qemu_guest import HERE, Initramfs, host_ready, qemu_command, run_console, verdicts
+from qemu_guest import BOCHS_MODULE_PARAMS, BOCHS_MODULES, HERE, Initramfs, host_ready, qemu_command, run_console, verdicts
 
-# bochs and what it needs, in load order. No fbdev emulation: no fbcon drawing on a
-# 2880x1600 console under emulation, no framebuffer pinned in VRAM.
-MODULES = ["bochs"]
-MODULE_PARAMS = {"drm_kms_helper.ko": "fbdev_emulation=0"}
 # The standard VGA with an EDID that offers 2880x1600 at the Vive Pro Eye's 90 Hz.
 # bochs accepts a mode when two framebuffers of it fit in VRAM (2 x 17.6 MiB).
 VGA = "VGA,vgamem_mb=64,edid=on,xres=2880,yres=1600,refresh_rate=90000"
@@ -89,7 +85,7 @@ def qmp_screendump(sock_path, filename):
 
 def build_initramfs(a, kver, guest_args, guest_out, work):
     img = Initramfs(os.path.join(HERE, "init_drm.sh"))
-    img.add_modules(kver, MODULES, MODULE_PARAMS)
+    img.add_modules(kver, BOCHS_MODULES, BOCHS_MODULE_PARAMS)
     img.add_binaries([a.foveald], img.add_mesa(a.source_dir))
     img.add_tree("/foveal/data/gaze", os.path.join(a.source_dir, "data", "gaze"))
     for spec in a.extra_file:

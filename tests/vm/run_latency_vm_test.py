@@ -22,7 +22,7 @@ import sys
 import time
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
-from qemu_guest import HERE, Initramfs, host_ready, qemu_command, run_console, verdicts
+from qemu_guest import BOCHS_MODULE_PARAMS, BOCHS_MODULES, HERE, Initramfs, host_ready, qemu_command, run_console, verdicts
 
 CONFIGS = ["asap:late", "jit:late", "asap:early", "jit:early"]
 PARTS = ["tracker_to_host_ms", "host_to_latch_ms", "latch_to_gpu_ms", "gpu_to_shown_ms"]
@@ -116,7 +116,7 @@ def main():
     h, hz = h_hz.split("@", 1)
 
     img = Initramfs(os.path.join(HERE, "init_latency.sh"))
-    img.add_modules(kver, ["bochs"], {"drm_kms_helper.ko": "fbdev_emulation=0"})
+    img.add_modules(kver, BOCHS_MODULES, BOCHS_MODULE_PARAMS)
     img.add_binaries([a.foveald], img.add_mesa(a.source_dir))
     img.add_tree("/foveal/data/gaze", os.path.join(a.source_dir, "data", "gaze"))
     q = shlex.quote
