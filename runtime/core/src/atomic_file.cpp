@@ -1,10 +1,12 @@
 #include "foveal/core/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <utility>
 
@@ -42,10 +44,19 @@ Result<AtomicFile> AtomicFile::create(const std::string& path) {
   atomic_temps::remove_stale(path);
   AtomicFile f;
   f.path_ = path;
+  // SIGINT and SIGTERM wait while the temporary exists but is not yet registered for
+  // removal: delivered in between, they would kill the writer and leave it behind.
+  sigset_t cleanup_signals, before;
+  sigemptyset(&cleanup_signals);
+  sigaddset(&cleanup_signals, SIGINT);
+  sigaddset(&cleanup_signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &cleanup_signals, &before);
   const int fd = atomic_temps::create_locked(path, keep_mode ? 0600 : *mode, f.tmp_path_);
-  if (fd < 0) return io_error(path + ": cannot create: " + std::strerror(errno));
+  const int create_errno = errno;
+  if (fd >= 0) f.signal_slot_ = atomic_temps::register_for_signals(f.tmp_path_);
+  pthread_sigmask(SIG_SETMASK, &before, nullptr);
+  if (fd < 0) return io_error(path + ": cannot create: " + std::strerror(create_errno));
   if (keep_mode) ::fchmod(fd, *mode);  // exactly the old bits, whatever the umask
-  f.signal_slot_ = atomic_temps::register_for_signals(f.tmp_path_);
   f.file_ = ::fdopen(fd, "w");
   if (!f.file_) {
     ::close(fd);
