@@ -15,6 +15,12 @@
 namespace foveal {
 namespace {
 
+// foveald's profile store and runtime folder in the test's own directory, so that no
+// other test (or the machine's user) changes the profile it renders with.
+std::string isolated(test::TempDir& dir) {
+  return "XDG_CONFIG_HOME=" + dir.path("config") + " XDG_RUNTIME_DIR=" + dir.path("run") + " ";
+}
+
 std::set<std::string> log_times(const std::string& path) {
   std::set<std::string> t;
   std::ifstream in(path);
@@ -28,7 +34,7 @@ TEST(FovealdLatency, EveryFrameNamesItsSampleAndItsPartsAddUp) {
   const std::string log = test::source_path("data/gaze/vive_pro_eye_TESTNA01.csv");
   for (const char* latch : {"late", "early"}) {
     const std::string out = dir.path(latch);
-    const test::RunResult r = test::run(test::bin("foveald") + " --replay " + log +
+    const test::RunResult r = test::run(isolated(dir) + test::bin("foveald") + " --replay " + log +
                                         " --scene pattern:checker --size 320x180 --frames 30 --no-control --no-shm -q"
                                         " --latch " + latch + " --out " + out + " --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -82,7 +88,7 @@ TEST(FovealdLatency, PredictionMovesTheFoveaToEachFramesDisplayTime) {
   std::map<std::string, int> frames_of_a_sample_that_differ;
   for (const char* predict : {"on", "off"}) {
     const std::string out = dir.path(predict);
-    const test::RunResult r = test::run(test::bin("foveald") + " --scene pattern:checker --size 160x90 --frames 80"
+    const test::RunResult r = test::run(isolated(dir) + test::bin("foveald") + " --scene pattern:checker --size 160x90 --frames 80"
                                         " --speed 0.1 --no-control --no-shm -q --predict " + predict + " --out " + out);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     std::ifstream csv(out + "/frames.csv");
@@ -103,7 +109,7 @@ TEST(FovealdLatency, PredictionMovesTheFoveaToEachFramesDisplayTime) {
 
 TEST(FovealdLatency, JitWithoutADisplayIsRefusedNamed) {
   test::TempDir dir;
-  const test::RunResult r = test::run(test::bin("foveald") + " --scene pattern:checker --size 64x32 --frames 1 --no-control"
+  const test::RunResult r = test::run(isolated(dir) + test::bin("foveald") + " --scene pattern:checker --size 64x32 --frames 1 --no-control"
                                       " --no-shm --pacing jit --out " + dir.path("o"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--pacing jit needs a display"), std::string::npos) << r.err;
