@@ -2,7 +2,8 @@
 """Charts and the Table-1-style summary of a `foveal bench` run (docs/bench.md).
 
 Reads DIR/bench.csv (and fgrid.csv, rotation.csv, bench.json when present); writes
-pareto.png, fgrid.png, rotation.png and table.md into DIR.
+pareto.png, quality_cost.png, jod_cost.png (when bench.csv has JOD columns), fgrid.png,
+rotation.png and table.md into DIR.
 """
 import csv
 import json
@@ -38,25 +39,41 @@ def scene_axes(n, width, height):
     return fig, flat
 
 
-def pareto(rows, out, x_key="gpu_ms", x_label="GPU frame time (ms, median)", title="quality against frame time"):
+def series(rows, scene, y_key):
+    """(method, costs or times, values) per method of one scene, levels in order of σ
+    (timings are noisy, the level order is not); rows without `y_key` are left out."""
+    out = []
+    srows = [r for r in rows if r["scene"] == scene and r.get(y_key) not in (None, "")]
+    for method in COLORS:
+        m = sorted((r for r in srows if r["method"] == method), key=lambda r: -num(r["sigma"]))
+        if m:
+            out.append((method, m))
+    return out
+
+
+# What a chart's y axis shows: the column, its label, the value ∞ is drawn at, the
+# reference's label, and a threshold line (JOD 9.5: issue 28's "a viewer cannot tell").
+FPSNR = ("fpsnr_db", "FPSNR (dB)", 60.0, "full (reference, ∞ dB shown at 60)", None)
+JOD = ("jod", "JOD (FovVideoVDP, both eyes; 10 = no visible difference)", 10.0, "full (reference, 10)", 9.5)
+
+
+def pareto(rows, out, x_key="gpu_ms", x_label="GPU frame time (ms, median)", title="quality against frame time", y=FPSNR):
+    y_key, y_label, ceiling, full_label, threshold = y
     scenes = sorted({r["scene"] for r in rows})
     fig, flat = scene_axes(len(scenes), 5.5, 4.5)
     for ax, scene in zip(flat, scenes):
-        srows = [r for r in rows if r["scene"] == scene]
-        for method in COLORS:
-            # Levels in order of σ: timings are noisy, the level order is not.
-            m = sorted((r for r in srows if r["method"] == method), key=lambda r: -num(r["sigma"]))
-            if not m:
-                continue
+        for method, m in series(rows, scene, y_key):
             xs = [num(r[x_key]) for r in m]
-            ys = [min(num(r["fpsnr_db"]), 60.0) for r in m]
+            ys = [min(num(r[y_key]), ceiling) for r in m]
             if method == "full":
-                ax.scatter(xs, ys, marker="*", s=120, color=COLORS[method], label="full (reference, ∞ dB shown at 60)")
+                ax.scatter(xs, ys, marker="*", s=120, color=COLORS[method], label=full_label)
             else:
                 ax.plot(xs, ys, "o-", color=COLORS[method], label=method, markersize=4)
+        if threshold is not None:
+            ax.axhline(threshold, color="black", linestyle=":", linewidth=1, label=f"JOD {threshold:g}")
         ax.set_title(f"{scene}: {title}")
         ax.set_xlabel(x_label)
-        ax.set_ylabel("FPSNR (dB)")
+        ax.set_ylabel(y_label)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     fig.tight_layout()
@@ -208,6 +225,8 @@ def main():
     rows = read(os.path.join(d, "bench.csv"))
     pareto(rows, os.path.join(d, "pareto.png"))
     pareto(rows, os.path.join(d, "quality_cost.png"), "cost", "shaded samples / full (theoretical cost)", "quality against shading cost")
+    if rows and "jod" in rows[0]:  # left out by bench --no-jod (and in runs before it)
+        pareto(rows, os.path.join(d, "jod_cost.png"), "cost", "shaded samples / full (theoretical cost)", "JOD against shading cost", JOD)
     table(rows, os.path.join(d, "table.md"))
     autos = []
     if os.path.exists(os.path.join(d, "bench.json")):
