@@ -31,7 +31,12 @@ void add_gaze_options(CLI::App& sub, bench::GazeBenchOptions& g) {
   sub.add_option("--gaze-fps", g.fps, "Frame rate of the rendered stream (Hz)")->capture_default_str()->needs(gaze);
   sub.add_option("--latency-ms", g.latency_ms, "Frame start to display (ms); default one frame period")->needs(gaze);
   sub.add_option("--gaze-start", g.start_s, "First frame this many seconds into the log")->capture_default_str()->needs(gaze);
-  sub.add_option("--gaze-frames", g.frames, "Frames scored per log, spread evenly over it")->capture_default_str()->needs(gaze);
+  sub.add_option("--gaze-frames", g.frames, "Frames scored per log (at most), picked by --gaze-pick")->capture_default_str()->needs(gaze);
+  sub.add_option("--gaze-pick", g.pick, "even: spread evenly over the log's time; spread: true gazes spread evenly in "
+                                        "eccentricity from the optical centre up to --gaze-spread-max (one frame per bin)")
+      ->capture_default_str()->check(CLI::IsMember({"even", "spread"}))->needs(gaze);
+  sub.add_option("--gaze-spread-max", g.spread_max_deg, "Largest eccentricity of --gaze-pick spread (degrees)")
+      ->capture_default_str()->check(CLI::Range(0.5, 90.0))->needs(gaze);
   sub.add_option("--efr-ratio", g.efr_ratio, "Non-dominant (left) eye's level over the dominant's")
       ->capture_default_str()->check(CLI::Range(1.0, 4.0))->needs(gaze);
   sub.add_option("--patch-deg", g.patch_deg, "Side of the fovea patch around the true gaze (degrees)")

@@ -1,11 +1,15 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
+#include "foveal/core/display_model.hpp"
+#include "foveal/core/shown_text.hpp"
+#include "foveal/runtime/jod_levels.hpp"
 #include "foveal/runtime/profile.hpp"
 #include "foveal/tools/cli.hpp"
 
@@ -21,15 +25,37 @@ struct ProfileArgs {
   bool json = false, force = false;
 };
 
+/// The levels a profile's `quality` chooses, as `profile show` prints them.
+nlohmann::json chosen_levels(const Profile& p) {
+  JodLevels l;
+  auto applied = apply_quality(p, display_model_path(p.display_model), &l);
+  if (!applied) return {{"error", applied.error().message}};
+  auto jnum = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  return {{"quality", p.quality}, {"sigma_d", l.sigma_d}, {"sigma_nd", l.sigma_nd}, {"f_x", l.f}, {"f_y", l.f},
+          {"predicted_jod_dominant", jnum(l.jod_d)}, {"predicted_jod_non_dominant", jnum(l.jod_nd)}, {"table", l.table}};
+}
+
 void print_profile(const Profile& p, bool active, bool json) {
   nlohmann::json j = p.to_json();
   j["name"] = p.name;
   j["active"] = active;
+  if (!p.quality.empty()) j["levels"] = chosen_levels(p);
   if (json) {
     cli::print_json(j);
     return;
   }
   std::printf("%s%s\n%s\n", p.name.c_str(), active ? " (active)" : "", p.to_json().dump(2).c_str());
+  if (p.quality.empty()) return;
+  const nlohmann::json& l = j["levels"];
+  if (l.contains("error")) {
+    std::printf("levels: %s cannot be applied: %s\n", p.quality.c_str(), l["error"].get<std::string>().c_str());
+    return;
+  }
+  auto shown = [](const nlohmann::json& v) { return v.is_null() ? std::string("past the table") : shown_number(v.get<double>()); };
+  std::printf("levels (%s, from %s): sigma_d %s, sigma_nd %s, f %s; predicted JOD %s dominant, %s non-dominant\n",
+              p.quality.c_str(), l["table"].get<std::string>().c_str(), shown_number(l["sigma_d"].get<double>()).c_str(),
+              shown_number(l["sigma_nd"].get<double>()).c_str(), shown_number(l["f_x"].get<double>()).c_str(),
+              shown(l["predicted_jod_dominant"]).c_str(), shown(l["predicted_jod_non_dominant"]).c_str());
 }
 
 }  // namespace
@@ -116,8 +142,8 @@ void add_profile(CLI::App& app, int& exit_code) {
 
   CLI::App* set = prof->add_subcommand("set", "Set one key of a profile, e.g. 'set alice sigma_nd 3.2'");
   set->add_option("name", a->name, "Profile name")->required();
-  set->add_option("key", a->key, "dominant_eye, sigma_d, sigma_nd, f_x, f_y, ipd_mm, display_model, filter")->required();
-  set->add_option("value", a->value, "New value (f_x/f_y accept auto; filter takes a JSON object)")->required();
+  set->add_option("key", a->key, "dominant_eye, sigma_d, sigma_nd, f_x, f_y, ipd_mm, display_model, filter, quality")->required();
+  set->add_option("value", a->value, "New value (f_x/f_y accept auto; filter takes a JSON object; quality: jod:T or off)")->required();
   set->add_flag("--json", a->json, "Print the profile as JSON");
   set->callback([a, fail] {
     const ProfileStore store = ProfileStore::user();
@@ -126,6 +152,8 @@ void add_profile(CLI::App& app, int& exit_code) {
     auto p = store.load(a->name);
     if (!p) return fail(p.error());
     if (Status s = p->set(a->key, a->value); !s) return fail(s.error());
+    // A quality the display model has no table for is refused here, not at foveald's start.
+    if (auto applied = apply_quality(*p, display_model_path(p->display_model)); !applied) return fail(applied.error());
     auto active = store.active();  // before the save: a refusal leaves nothing written
     if (!active) return fail(active.error());
     if (Status s = store.save(*p); !s) return fail(s.error());

@@ -10,6 +10,7 @@
 #include "foveal/core/data_paths.hpp"
 #include "foveal/core/shown_text.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
+#include "foveal/runtime/jod_levels.hpp"
 #include "foveal/tools/args.hpp"
 #include "foveal/tools/cli.hpp"
 #include "foveal/tools/log.hpp"
@@ -37,12 +38,19 @@ FoveaShmSettings shm_settings(const RenderSettings& r) {
 }  // namespace
 
 Result<Profile> DaemonApp::load_startup_profile() const {
-  if (!o_.profile.empty()) return store_.load(o_.profile);
-  auto active = store_.active();
-  if (!active) return active.error();
-  if (store_.exists(*active)) return store_.load(*active);
-  Profile p;  // no profile yet: the built-in defaults (EFR seed pair)
-  p.name = "default";
+  Result<Profile> p = Profile{};
+  if (!o_.profile.empty()) {
+    p = store_.load(o_.profile);
+  } else if (auto active = store_.active(); !active) {
+    return active.error();
+  } else if (store_.exists(*active)) {
+    p = store_.load(*active);
+  } else {
+    p->name = "default";  // no profile yet: the built-in defaults (EFR seed pair)
+  }
+  if (!p || o_.quality.empty()) return p;
+  if (auto q = parse_quality(o_.quality, "--quality"); !q) return q.error();
+  p->quality = o_.quality == "off" ? "" : o_.quality;  // the command line wins, until a profile is loaded again
   return p;
 }
 
@@ -50,22 +58,25 @@ Status DaemonApp::apply_profile(const Profile& p, const char* why) {
   // Display model: the command line wins, then the profile's; fixed once the source runs.
   if (o_.display.empty() && !loop_) {
     if (p.display_model != model_.name) {
-      const std::string path = p.display_model.find('/') != std::string::npos
-                                   ? p.display_model
-                                   : data_path("data/display/" + p.display_model + ".json");
-      auto m = DisplayModel::load(path);
+      auto m = DisplayModel::load(display_model_path(p.display_model));
       if (!m) return m.error();
       model_ = *m;
     }
   }
+  // Levels chosen by perception replace the profile's own (its pair gives the EFR ratio).
+  JodLevels chosen;
+  auto levels = apply_quality(p, o_.display.empty() ? display_model_path(p.display_model) : o_.display, &chosen);
+  if (!levels) return levels.error();
   const bool filter_changed = p.filter != profile_.filter;
   profile_ = p;
-  const RenderSettings rs = RenderSettings::from(p, ++settings_generation_);
+  const RenderSettings rs = RenderSettings::from(*levels, ++settings_generation_);
   settings_.store(rs);
   if (shm_) shm_->publish_settings(shm_settings(rs));
   if (loop_ && filter_changed) loop_->set_mapper(make_mapper());
   log::info(std::string("profile '") + p.name + "' " + why + ": dominant " + eye_name(p.dominant_eye) +
-            ", sigma_d " + shown_number(p.sigma_d) + ", sigma_nd " + shown_number(p.sigma_nd));
+            ", sigma_d " + shown_number(levels->sigma_d) + ", sigma_nd " + shown_number(levels->sigma_nd) +
+            (p.quality.empty() ? "" : ", f " + shown_number(chosen.f) + " (quality " + p.quality + ": predicted JOD " +
+                                          shown_number(chosen.jod_d) + " dominant, " + shown_number(chosen.jod_nd) + " non-dominant)"));
   return {};
 }
 

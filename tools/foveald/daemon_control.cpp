@@ -156,6 +156,8 @@ nlohmann::json DaemonApp::handle(const nlohmann::json& req) {
       if (!kRunTimeKeys.count(it.key()))
         return error_reply("set: '" + it.key() + "' cannot be set at run time (dominant_eye, sigma_d, sigma_nd, f_x, f_y)");
       j[it.key()] = it.value();
+      // Levels set by hand win over levels chosen by perception.
+      if (it.key() != "dominant_eye") j["quality"] = "off";
     }
     auto p = Profile::from_json(j, profile_.name, "set");
     if (!p) return error_reply(p.error().message);

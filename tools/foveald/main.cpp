@@ -58,6 +58,8 @@ int main(int argc, char** argv) {
   app.add_option("--latch", o.latch, "When a frame reads the fovea: late (after the passes that do not need it) or early (at its start)")
       ->check(CLI::IsMember({"late", "early"}))
       ->capture_default_str();
+  app.add_option("--quality", o.quality, "Levels chosen by perception: jod:T picks sigma_d, sigma_nd and f that hold predicted JOD >= T "
+                                         "from the display model's table (docs/methods.md); off: the profile's levels. Default: the profile's quality");
   app.add_option("--predict", o.predict, "Predict the fovea to each frame's display time: on or off (docs/filtering.md, \"Prediction\")")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();

@@ -16,6 +16,7 @@ struct Options {
   std::string display;        ///< display-model JSON; empty = from the profile / default
   std::string out = "foveald-out";
   std::string profile;        ///< empty = the active profile (or built-in defaults)
+  std::string quality;        ///< jod:T or off, replacing the startup profile's `quality`; empty: the profile's
   std::string control;        ///< control socket path; empty = default
   bool no_control = false;
   bool shm = true;            ///< publish the fovea in shared memory

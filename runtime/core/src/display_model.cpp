@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "foveal/core/data_paths.hpp"
 #include "foveal/core/json_file.hpp"
 
 namespace foveal {
@@ -221,6 +222,11 @@ glm::vec2 LensDistortion::panel(glm::vec2 src, int c, const EyeFrustum& f) const
   }
   if (!(r >= 0) || !std::isfinite(r)) return {kNaN, kNaN};
   return center + y * (r / target) / span;
+}
+
+std::string display_model_path(const std::string& spec) {
+  const bool is_path = spec.find('/') != std::string::npos || (spec.size() >= 5 && spec.compare(spec.size() - 5, 5, ".json") == 0);
+  return is_path ? spec : data_path("data/display/" + spec + ".json");
 }
 
 }  // namespace foveal

@@ -90,6 +90,17 @@ Result<ProfileGazeQuality> quality_from_json(const nlohmann::json& j, const std:
 
 }  // namespace
 
+Result<std::optional<double>> parse_quality(const std::string& spec, const std::string& where) {
+  if (spec.empty() || spec == "off") return std::optional<double>{};
+  const std::string bad = where + ": quality: '" + shown_text(spec, 40) + "' is not off or jod:T with T in (0, 10]";
+  if (spec.rfind("jod:", 0) != 0 || spec.size() == 4) return bad_input(bad);
+  char* end = nullptr;
+  errno = 0;
+  const double t = std::strtod(spec.c_str() + 4, &end);
+  if (*end != '\0' || errno == ERANGE || !(t > 0 && t <= 10)) return bad_input(bad);
+  return std::optional<double>{t};
+}
+
 bool valid_profile_name(const std::string& name) {
   if (name.empty() || name.size() > 64) return false;
   for (char c : name)
@@ -109,6 +120,7 @@ nlohmann::json Profile::to_json() const {
   j["display_model"] = display_model;
   j["filter"] = filter;
   if (gaze_quality) j["gaze_quality"] = quality_to_json(*gaze_quality);
+  if (!quality.empty()) j["quality"] = quality;
   return j;
 }
 
@@ -123,6 +135,7 @@ Status Profile::validate(const std::string& where) const {
   if (!(ipd_mm > 40.0 && ipd_mm < 90.0)) return bad_input(where + ": ipd_mm: must be in (40, 90)");
   if (display_model.empty()) return bad_input(where + ": display_model: must not be empty");
   if (auto f = FilterConfig::from_json(filter, where); !f) return f.error();
+  if (auto q = parse_quality(quality, where); !q) return q.error();
   return {};
 }
 
@@ -154,6 +167,9 @@ Result<Profile> Profile::from_json(const nlohmann::json& j, const std::string& n
       p.display_model = v.get<std::string>();
     } else if (k == "filter") {
       p.filter = v;
+    } else if (k == "quality") {
+      if (!v.is_string()) return bad_input(where + ": quality: expected a string (\"off\" or \"jod:T\")");
+      p.quality = v.get<std::string>() == "off" ? "" : v.get<std::string>();
     } else if (k == "gaze_quality") {
       auto q = quality_from_json(v, where);
       if (!q) return q.error();
@@ -168,12 +184,12 @@ Result<Profile> Profile::from_json(const nlohmann::json& j, const std::string& n
 
 Status Profile::set(const std::string& key, const std::string& value) {
   nlohmann::json j = to_json();
-  if (!j.contains(key) || key == "format") return bad_input("profile " + name + ": unknown key '" + key + "'");
+  if ((!j.contains(key) && key != "quality") || key == "format") return bad_input("profile " + name + ": unknown key '" + key + "'");
   if (key == "filter") {
     auto parsed = parse_json(value, "profile " + name + ": filter");
     if (!parsed) return parsed.error();
     j[key] = std::move(*parsed);
-  } else if (key == "dominant_eye" || key == "display_model" || value == "auto") {
+  } else if (key == "dominant_eye" || key == "display_model" || key == "quality" || value == "auto") {
     j[key] = value;
   } else {
     char* end = nullptr;

@@ -55,8 +55,7 @@ double mean(const std::vector<double>& v) {
 
 Result<DisplayModel> load_model(const std::string& spec) {
   if (spec.empty()) return DisplayModel::vive_pro_eye();
-  const bool is_path = spec.find('/') != std::string::npos || spec.ends_with(".json");
-  return DisplayModel::load(is_path ? spec : data_path("data/display/" + spec + ".json"));
+  return DisplayModel::load(display_model_path(spec));
 }
 
 struct LogInput {
@@ -200,6 +199,8 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
 
   GazeTimelineOptions to;
   to.fps = g.fps, to.latency_ms = g.latency_ms, to.start_s = g.start_s, to.frames = g.frames;
+  to.pick = g.pick == "spread" ? GazeTimelineOptions::Pick::spread : GazeTimelineOptions::Pick::even;
+  to.spread_max_deg = g.spread_max_deg;
   std::vector<LogInput> logs;
   for (const std::string& path : g.logs) {
     auto samples = read_gaze_log(path);
@@ -259,7 +260,7 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   rows.table("gaze_frames.csv",
              "scene,log,frame,t_render_s,t_display_s,t_sample_s,true_l_x,true_l_y,true_r_x,true_r_y,method,gaze,sigma_d,fovea_l_x,"
              "fovea_l_y,fovea_r_x,fovea_r_y,error_l_deg,error_r_deg,fpsnr_db,ssim,psnr_db,patch_psnr_db,exceeds" +
-                 std::string(jod ? ",jod_left,jod_right,jod" : ""));
+                 std::string(jod ? ",jod_left,jod_right,jod" : "") + ",true_ecc_deg");
   const std::size_t per_level = 1 + s.methods.size();
   for (const std::string& spec : s.scenes) {
     // owned[log][level]: the point, where this shard runs it.
@@ -346,7 +347,8 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
                         frame_head + "," + render::method_name(p.method) + "," + p.gaze() + "," + fmt(p.sigma) + "," + fmt(used[0].x) +
                             "," + fmt(used[0].y) + "," + fmt(used[1].x) + "," + fmt(used[1].y) + "," + fmt(err[0]) + "," +
                             fmt(err[1]) + "," + fmt(q->combined.fpsnr_db) + "," + fmt(q->combined.ssim) + "," +
-                            fmt(q->combined.psnr_db) + "," + fmt(patch) + "," + (exceeds ? "1" : "0") + jod_cells,
+                            fmt(q->combined.psnr_db) + "," + fmt(patch) + "," + (exceeds ? "1" : "0") + jod_cells + "," +
+                            fmt(f.truth_ecc_deg),
                         *mine[k / per_level]);
         }
       }
@@ -367,7 +369,7 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   nlohmann::json log_info = nlohmann::json::array();
   for (const LogInput& l : logs)
     log_info.push_back({{"path", l.path}, {"name", l.name}, {"head", l.head_recorded ? "recorded" : "static"},
-                        {"stream_frames", l.timeline.stream_frames}, {"stride", l.timeline.stride},
+                        {"stream_frames", l.timeline.stream_frames}, {"stride", l.timeline.stride}, {"pick", g.pick},
                         {"scored_frames", l.timeline.frames.size()}});
   nlohmann::json summary = {
       {"renderer", comp->renderer()}, {"display", model->name}, {"size", {co.width, co.height}},

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "foveal/core/pose_track.hpp"
+#include "foveal/image/foveation_plan.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
 
 namespace foveal::bench {
@@ -53,19 +56,52 @@ Result<GazeTimeline> build_gaze_timeline(const std::vector<GazeSample>& samples,
   if (first + latency > last_display) return bad_input("the gaze log is too short for one frame after --gaze-start");
   tl.stream_frames = static_cast<std::size_t>(std::floor(static_cast<double>(last_display - latency - first) / period_ns)) + 1;
   tl.stride = std::max<std::size_t>(1, tl.stream_frames / static_cast<std::size_t>(o.frames));
+  const glm::dvec2 size(model.eye_width, model.eye_height);
+  auto t_render = [&](std::size_t k) { return first + static_cast<TimeNs>(std::llround(static_cast<double>(k) * period_ns)); };
+  // Where both eyes really were at display time, and their mean angle from the optical
+  // centres (the fixed method's fovea); false in a blink.
+  auto truth_at = [&](TimeNs t, std::array<glm::dvec2, 2>& truth, double& ecc) {
+    bool ok = true;
+    ecc = 0;
+    for (Eye e : kEyes) {
+      const std::size_t i = static_cast<std::size_t>(e);
+      ok = raw_gaze_at(samples, model, e, t, truth[i]) && ok;
+      const glm::dvec2 gl(truth[i].x, 1.0 - truth[i].y);
+      ecc += 0.5 * render::eccentricity_deg(model.eye(e), render::optical_centre(model.eye(e)), gl);
+    }
+    return ok;
+  };
+
+  std::vector<std::size_t> picked;
+  if (o.pick == GazeTimelineOptions::Pick::even) {
+    for (std::size_t j = 0; j < static_cast<std::size_t>(o.frames) && j * tl.stride < tl.stream_frames; ++j) picked.push_back(j * tl.stride);
+  } else {
+    if (!(o.spread_max_deg > 0) || !std::isfinite(o.spread_max_deg)) return bad_input("--gaze-spread-max must be a number > 0");
+    const double width = o.spread_max_deg / o.frames;
+    std::vector<std::optional<std::pair<double, std::size_t>>> best(static_cast<std::size_t>(o.frames));  // (distance, k)
+    for (std::size_t k = 0; k < tl.stream_frames; ++k) {
+      std::array<glm::dvec2, 2> truth{};
+      double ecc = 0;
+      if (!truth_at(t_render(k) + latency, truth, ecc) || ecc > o.spread_max_deg) continue;
+      const std::size_t b = std::min(best.size() - 1, static_cast<std::size_t>(ecc / width));
+      const double d = std::abs(ecc - (static_cast<double>(b) + 0.5) * width);
+      if (!best[b] || d < best[b]->first) best[b] = std::pair{d, k};
+    }
+    for (const auto& b : best)
+      if (b) picked.push_back(b->second);
+    if (picked.empty()) return bad_input("--gaze-pick spread: no frame of the log has both eyes tracked within " + std::to_string(o.spread_max_deg) + " degrees");
+    std::sort(picked.begin(), picked.end());
+  }
 
   GazePipeline pipe(model, filter);
   PoseTrack heads;
   FoveaFrame latest;
   bool have = false;
   std::size_t next = 0;  // the next sample to feed the pipeline
-  const glm::dvec2 size(model.eye_width, model.eye_height);
-  for (std::size_t j = 0; j < static_cast<std::size_t>(o.frames); ++j) {
-    const std::size_t k = j * tl.stride;
-    if (k >= tl.stream_frames) break;
+  for (std::size_t k : picked) {
     GazeFrame f;
     f.index = k;
-    f.t_render = first + static_cast<TimeNs>(std::llround(static_cast<double>(k) * period_ns));
+    f.t_render = t_render(k);
     f.t_display = f.t_render + latency;
     // What the exchange holds when the frame starts: every sample up to then, filtered.
     for (; next < samples.size() && samples[next].t_ns <= f.t_render; ++next) {
@@ -74,11 +110,12 @@ Result<GazeTimeline> build_gaze_timeline(const std::vector<GazeSample>& samples,
       if (samples[next].head.valid) (void)heads.push({samples[next].t_ns, samples[next].head.pose});
     }
     f.t_sample = have ? latest.t_ns : samples.front().t_ns;
+    f.blink = !truth_at(f.t_display, f.truth, f.truth_ecc_deg);
     for (Eye e : kEyes) {
       const std::size_t i = static_cast<std::size_t>(e);
       f.fovea[i] = have ? glm::clamp(glm::dvec2(latest.eye(e).px) / size, 0.0, 1.0) : glm::dvec2(0.5);
-      if (!raw_gaze_at(samples, model, e, f.t_display, f.truth[i])) f.blink = true, f.truth[i] = f.fovea[i];
     }
+    if (f.blink) f.truth = f.fovea;
     if (o.head_recorded) f.head = heads.pose_at(f.t_sample);
     tl.frames.push_back(f);
   }

@@ -74,4 +74,8 @@ struct DisplayModel {
   Status validate(const std::string& where) const;
 };
 
+/// The file of a display model given as a name under data/display ("htc_vive_pro_eye")
+/// or as a path (anything with a '/' or ending in .json).
+std::string display_model_path(const std::string& spec);
+
 }  // namespace foveal

@@ -40,6 +40,9 @@ struct Profile {
   std::string display_model = "htc_vive_pro_eye";  ///< a name in data/display or a path
   nlohmann::json filter = nlohmann::json::object(); ///< FilterConfig overrides (validated)
   std::optional<ProfileGazeQuality> gaze_quality;   ///< from the last calibration with gaze
+  /// Levels chosen by perception: "jod:T" picks sigma_d, sigma_nd and f from the display
+  /// model's JOD table (foveal/runtime/jod_levels.hpp); empty: the levels above.
+  std::string quality;
 
   /// sigma for an eye: sigma_d for the dominant one, sigma_nd for the other.
   double sigma(Eye e) const { return e == dominant_eye ? sigma_d : sigma_nd; }
@@ -53,6 +56,10 @@ struct Profile {
   /// Sets one key from text ("dominant_eye" "left", "sigma_d" "2.2", "f_x" "auto"...).
   Status set(const std::string& key, const std::string& value);
 };
+
+/// A quality setting: "" or "off" -> no target; "jod:T" -> T, in (0, 10]. Errors start
+/// with `where`.
+Result<std::optional<double>> parse_quality(const std::string& spec, const std::string& where);
 
 /// True for names made of letters, digits, '-' and '_', 1..64 characters.
 bool valid_profile_name(const std::string& name);

@@ -17,6 +17,8 @@ struct GazeBenchOptions {
   std::string display;            ///< display-model file or name under data/display; empty: Vive Pro Eye
   double fps = 90, latency_ms = -1, start_s = 1.0;
   int frames = 24;
+  std::string pick = "even";      ///< even | spread (gaze_timeline.hpp)
+  double spread_max_deg = 30;
   double efr_ratio = 1.5;         ///< σ_nd / σ_d (dominant right eye)
   double patch_deg = 5.0, patch_margin_db = 3.0;
   bool size_given = false;        ///< --size given: it replaces the model's pixels (its field of view stays)
