@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -120,6 +121,48 @@ TEST(BenchGaze, ALaggedFoveaScoresWorseThanAnExactOneAtTheTrueGaze) {
       EXPECT_DOUBLE_EQ(value(f, "fovea_r_y"), 0.5);
     }
   }
+}
+
+TEST(BenchGaze, SpreadPicksOneFramePerEccentricityBand) {
+  test::TempDir d;
+  ASSERT_EQ(test::run(test::bin("foveal") + " synth --seed 11 --duration 8 --noise 0 --blink-rate 0 --pursuit 0 --out " +
+                      d.path("g.csv")).exit_code, 0);
+  test::write_file(d.path("display.json"), kDisplay);
+  auto run = [&](const std::string& name, const std::string& pick) {
+    const std::string out = d.path(name);
+    auto r = test::run(test::bin("foveal") + " bench --gaze " + d.path("g.csv") + " --display " + d.path("display.json") +
+                       " --scene pattern:noise --methods rmfr --sigmas 2 --size 64x32 --frames 1 --warmup 0 --no-png --no-jod"
+                       " --latency-ms 0 --gaze-frames 4 " + pick + " --out " + out);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::vector<Row> frames;
+    for (const Row& f : read_csv(test::read_file(out + "/gaze_frames.csv")))
+      if (f.at("gaze") == "filtered") frames.push_back(f);
+    return frames;
+  };
+  // The eccentricity from the optical centre, computed here from the true gaze points
+  // through the test display's symmetric frustum (tangents ±0.4), both eyes' mean.
+  auto ecc = [](const Row& f) {
+    double sum = 0;
+    for (const char* e : {"l", "r"}) {
+      const double tx = -0.4 + 0.8 * value(f, std::string("true_") + e + "_x"), ty = -0.4 + 0.8 * value(f, std::string("true_") + e + "_y");
+      sum += std::atan(std::sqrt(tx * tx + ty * ty)) * 180 / M_PI;
+    }
+    return sum / 2;
+  };
+  const auto spread = run("spread", "--gaze-pick spread --gaze-spread-max 16");
+  ASSERT_GE(spread.size(), 3u);  // the scanpath reaches at least three of the four 4-degree bands
+  std::set<int> bands;
+  for (std::size_t i = 0; i < spread.size(); ++i) {
+    EXPECT_NEAR(value(spread[i], "true_ecc_deg"), ecc(spread[i]), 0.05);
+    EXPECT_LE(value(spread[i], "true_ecc_deg"), 16.0);
+    EXPECT_TRUE(bands.insert(static_cast<int>(value(spread[i], "true_ecc_deg") / 4)).second) << "two frames in one band";
+    if (i) EXPECT_LT(std::stoi(spread[i - 1].at("frame")), std::stoi(spread[i].at("frame")));  // in stream order
+  }
+  // The default keeps its frames: every (stream / N)-th, eccentricities as they come.
+  const auto even = run("even", "");
+  ASSERT_EQ(even.size(), 4u);
+  EXPECT_EQ(even[0].at("frame"), "0");
+  EXPECT_NEAR(value(even[1], "true_ecc_deg"), ecc(even[1]), 0.05);
 }
 
 TEST(BenchGaze, BadInputExitsTwoNamingTheProblemAndWritesNothing) {
