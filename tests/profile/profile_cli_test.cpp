@@ -64,6 +64,40 @@ TEST_F(ProfileCli, BadValuesExitTwoAndChangeNothing) {
 // Issue 15 item 4: two writers racing on one profile. Each `set` prints the profile it
 // saved; serialised, the 150 saved states form one chain in which every step applies
 // exactly one more update of one writer. A lost update breaks the chain.
+TEST_F(ProfileCli, AQualityTargetShowsTheLevelsItChoosesAndNeedsATable) {
+  // A display model with a levels table beside it (foveal/runtime/jod_levels.hpp).
+  test::write_file(dir_.path("m.json"), test::read_file(test::source_path("data/display/htc_vive_pro_eye.json")));
+  test::write_file(dir_.path("m.levels.json"), R"({"format": "foveal-jod-levels v1", "display": "htc_vive_pro_eye",
+    "sigmas": [2, 3, 4], "f": [0.2, 0.4], "jod": [[9.5, 9.0, 8.5], [9.8, 9.4, 9.0]]})");
+  ASSERT_EQ(foveal("create alice").exit_code, 0);
+  ASSERT_EQ(foveal("set alice display_model " + dir_.path("m.json")).exit_code, 0);
+  auto r = foveal("set alice quality jod:9.2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = foveal("show alice --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["quality"], "jod:9.2");
+  EXPECT_DOUBLE_EQ(j["sigma_d"].get<double>(), 2.0);  // the profile's own pair stays as it was
+  EXPECT_NEAR(j["levels"]["sigma_d"].get<double>(), 3.5, 1e-9);
+  EXPECT_NEAR(j["levels"]["sigma_nd"].get<double>(), 5.25, 1e-9);  // its EFR ratio 1.5
+  EXPECT_DOUBLE_EQ(j["levels"]["f_x"].get<double>(), 0.4);
+  EXPECT_NEAR(j["levels"]["predicted_jod_dominant"].get<double>(), 9.2, 1e-9);
+  r = foveal("show alice");
+  EXPECT_NE(r.out.find("predicted JOD 9.2 dominant"), std::string::npos) << r.out;
+  // A model without a table cannot take a target, and a bad target is refused; nothing changes.
+  const std::string before = test::read_file(dir_.path("foveal/profiles/alice.json"));
+  test::write_file(dir_.path("bare.json"), test::read_file(dir_.path("m.json")));
+  r = foveal("set alice display_model " + dir_.path("bare.json"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("bare.levels.json"), std::string::npos) << r.err;
+  r = foveal("set alice quality jod:12");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("quality"), std::string::npos) << r.err;
+  EXPECT_EQ(test::read_file(dir_.path("foveal/profiles/alice.json")), before);
+  ASSERT_EQ(foveal("set alice quality off").exit_code, 0);
+  EXPECT_FALSE(nlohmann::json::parse(foveal("show alice --json").out).contains("levels"));
+}
+
 TEST_F(ProfileCli, ConcurrentSetsOnOneProfileLoseNoUpdate) {
   ASSERT_EQ(foveal("create alice").exit_code, 0);
   ASSERT_EQ(foveal("set alice ipd_mm 50").exit_code, 0);
