@@ -53,6 +53,18 @@ nlohmann::json pipelines_json(const render::PipelineComparison& c) {
   return j;
 }
 
+// The head pose the frame used and where it (and each eye's fovea) came from.
+nlohmann::json head_json(const RenderSetup& s) {
+  const Pose& p = s.frame.head;
+  const glm::quat q = p.orientation;
+  nlohmann::json j = {{"source", s.head.kind},
+                      {"position_m", {p.position_m.x, p.position_m.y, p.position_m.z}},
+                      {"orientation_wxyz", {q.w, q.x, q.y, q.z}},
+                      {"fovea_source", {{"left", s.head.fovea[0]}, {"right", s.head.fovea[1]}}}};
+  if (s.head.kind == "log") j.update({{"log", s.head.log}, {"at_s", s.head.at_s}, {"sample_s", s.head.sample_s}});
+  return j;
+}
+
 double mb(std::size_t bytes) { return static_cast<double>(bytes) / (1024.0 * 1024.0); }
 
 int run(const Args& a) {
@@ -137,6 +149,7 @@ int run(const Args& a) {
       {"textures_mb", mb(scene->texture_bytes)},
       {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0},
       {"auto_f", auto_f},
+      {"head", head_json(*setup)},
       {"out", a.out}};
   std::optional<render::PipelineComparison> cmp;
   if (a.compare_pipelines) {
@@ -159,6 +172,14 @@ int run(const Args& a) {
     std::printf("  %s pipeline, ms (median of %d): shadow %.2f  %s %.2f  %s %.2f  lighting %.2f  inverse %.2f  GPU total %.2f  CPU frame %.2f\n",
                 render::pipeline_name(setup->frame.pipeline), a.frames, med.shadow, pass[0], med.gbuffer, pass[1], med.mapping,
                 med.lighting, med.inverse, med.gpu_total, med.cpu);
+    if (setup->head.kind != "scene") {
+      const Pose& p = setup->frame.head;
+      std::printf("  head (%s): position %.4f,%.4f,%.4f m  orientation %.6f,%.6f,%.6f,%.6f\n",
+                  setup->head.kind == "log" ? (setup->head.log + " at " + std::to_string(setup->head.sample_s) + " s").c_str()
+                                            : "--head",
+                  p.position_m.x, p.position_m.y, p.position_m.z, p.orientation.w, p.orientation.x, p.orientation.y,
+                  p.orientation.z);
+    }
     std::printf("  render targets %.1f MB, textures %.1f MB, peak RSS %.0f MB\n", mb(mem.total()), mb(scene->texture_bytes),
                 static_cast<double>(ru.ru_maxrss) / 1024.0);
     if (cmp)

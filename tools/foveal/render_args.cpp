@@ -1,10 +1,14 @@
 #include "render_args.hpp"
 
+#include <cmath>
+#include <cstdlib>
+
 #include <CLI/CLI.hpp>
 
 #include "foveal/core/data_paths.hpp"
 #include "foveal/image/foveation_plan.hpp"
 #include "foveal/tools/args.hpp"
+#include "render_head.hpp"
 
 namespace foveal::cmd {
 
@@ -23,8 +27,16 @@ void add_render_options(CLI::App& sub, RenderArgs& a) {
   sub.add_option("--dominant", a.dominant, "Dominant eye")->check(CLI::IsMember({"left", "right"}))->capture_default_str();
   sub.add_option("--fx", a.fx, "RMFR f along x, a fraction of the eye's width (> 0)")->capture_default_str();
   sub.add_option("--fy", a.fy, "RMFR f along y, a fraction of the eye's height (> 0)")->capture_default_str();
-  sub.add_option("--fovea-left", a.fovea_left, "Left-eye fovea X,Y in [0,1], origin top-left of the eye's viewport")->capture_default_str();
-  sub.add_option("--fovea-right", a.fovea_right, "Right-eye fovea X,Y in [0,1]")->capture_default_str();
+  sub.add_option("--fovea-left", a.fovea_left,
+                 "Left-eye fovea X,Y in [0,1], origin top-left of the eye's viewport (default: 0.5,0.5, or with --log the log's)");
+  sub.add_option("--fovea-right", a.fovea_right, "Right-eye fovea X,Y in [0,1] (default as --fovea-left)");
+  sub.add_option("--head", a.head,
+                 "Head pose X,Y,Z,QW,QX,QY,QZ relative to the scene's view: metres and a unit quaternion, the runtime's "
+                 "axes (x right, y up, -z forward; docs/conventions.md); default: the scene's view");
+  sub.add_option("--log", a.log,
+                 "Native gaze log with head pose: with --at, render with its head pose (relative to its first pose) and "
+                 "filtered fovea at that time, as bench --gaze does");
+  sub.add_option("--at", a.at, "With --log: seconds after the log's first sample");
   sub.add_option("--f", a.f, "auto: pick f_x, f_y from the content (overrides --fx/--fy; docs/methods.md)")
       ->check(CLI::IsMember({"auto"}));
   sub.add_option("--kfr-alpha", a.kfr_alpha, "KFR kernel exponent (> 0)")->capture_default_str();
@@ -34,6 +46,48 @@ void add_render_options(CLI::App& sub, RenderArgs& a) {
   sub.add_option("--display", a.display, "Display-model JSON (default: HTC Vive Pro Eye)");
   sub.add_flag("--no-distortion", a.no_distortion, "Ignore the display model's lens distortion (frames comparable with metrics)");
 }
+
+namespace {
+
+// The head pose (--head, or --log at --at) and the foveae: an option's, else the log's,
+// else the centre.
+Status resolve_head(const RenderArgs& a, RenderSetup& s) {
+  std::array<glm::dvec2, 2> fovea{glm::dvec2(0.5), glm::dvec2(0.5)};
+  if (!a.head.empty() && !a.log.empty()) return bad_input("--head and --log: give one head pose, not both");
+  if (!a.at.empty() && a.log.empty()) return bad_input("--at needs --log (the log whose time it is)");
+  if (!a.head.empty()) {
+    auto p = parse_head_pose(a.head, "--head");
+    if (!p) return p.error();
+    s.frame.head = *p;
+    s.head.kind = "head";
+  } else if (!a.log.empty()) {
+    if (a.at.empty()) return bad_input("--log needs --at SECONDS (the time in the log to render)");
+    char* end = nullptr;
+    const double at = std::strtod(a.at.c_str(), &end);
+    if (*end != '\0' || !std::isfinite(at)) return bad_input("--at: '" + a.at + "' is not a number of seconds");
+    auto f = log_frame_at(a.log, at, s.compositor.model);
+    if (!f) return f.error();
+    s.frame.head = f->relative;
+    fovea = f->fovea;
+    s.head = {"log", a.log, at, f->sample_s, {"log", "log"}};
+  }
+  const std::pair<const std::string*, const char*> given[2] = {{&a.fovea_left, "--fovea-left"}, {&a.fovea_right, "--fovea-right"}};
+  for (std::size_t i = 0; i < 2; ++i) {
+    if (!given[i].first->empty()) {
+      auto p = cli::parse_point(*given[i].first, given[i].second);
+      if (!p) return p.error();
+      if (p->first < 0 || p->first > 1 || p->second < 0 || p->second > 1)
+        return bad_input(std::string(given[i].second) + ": X and Y must lie in [0,1], got '" + *given[i].first + "'");
+      fovea[i] = {p->first, p->second};
+      s.head.fovea[i] = "option";
+    }
+    s.frame.eyes[i].fovea_x = fovea[i].x;
+    s.frame.eyes[i].fovea_y = fovea[i].y;
+  }
+  return {};
+}
+
+}  // namespace
 
 Result<RenderSetup> resolve(const RenderArgs& a) {
   RenderSetup s;
@@ -52,15 +106,6 @@ Result<RenderSetup> resolve(const RenderArgs& a) {
   s.frame.pipeline = *pipeline;
   for (auto& e : s.frame.eyes) e.kfr_alpha = a.kfr_alpha, e.layer_scale = a.layer_scale;
   s.auto_f = a.f == "auto";
-  const std::pair<const std::string*, const char*> foveae[2] = {{&a.fovea_left, "--fovea-left"}, {&a.fovea_right, "--fovea-right"}};
-  for (std::size_t i = 0; i < 2; ++i) {
-    auto p = cli::parse_point(*foveae[i].first, foveae[i].second);
-    if (!p) return p.error();
-    if (p->first < 0 || p->first > 1 || p->second < 0 || p->second > 1)
-      return bad_input(std::string(foveae[i].second) + ": X and Y must lie in [0,1], got '" + *foveae[i].first + "'");
-    s.frame.eyes[i].fovea_x = p->first;
-    s.frame.eyes[i].fovea_y = p->second;
-  }
   auto size = cli::parse_size(a.size, "--size");
   if (!size) return size.error();
   if (size->first % 2 != 0) return bad_input("--size: the width must be even (two eyes side by side)");
@@ -72,6 +117,7 @@ Result<RenderSetup> resolve(const RenderArgs& a) {
     if (!m) return m.error();
     s.compositor.model = *m;
   }
+  if (Status st = resolve_head(a, s); !st) return st.error();
   return s;
 }
 
