@@ -184,6 +184,31 @@ TEST_F(Foveald, ABrokenProfileOnSighupKeepsTheLastGoodOne) {
   EXPECT_EQ(wait_exit(1000), 0);
 }
 
+TEST_F(Foveald, AQualityTargetSetsTheLevelsItsTableChoosesUntilALevelIsSetByHand) {
+  test::write_file(dir_.path("m.json"), test::read_file(test::source_path("data/display/htc_vive_pro_eye.json")));
+  test::write_file(dir_.path("m.levels.json"), R"({"format": "foveal-jod-levels v1", "display": "htc_vive_pro_eye",
+    "sigmas": [2, 3, 4], "f": [0.2, 0.4], "jod": [[9.5, 9.0, 8.5], [9.8, 9.4, 9.0]]})");
+  // bob's pair 2.4 / 3.2 gives the EFR ratio 4/3.
+  start({"--profile", "bob", "--quality", "jod:9.4", "--display", dir_.path("m.json"), "--loop", "--end", "5", "-q", "--no-shm",
+         "--no-render", "--out", dir_.path("out")});
+  auto st = ctl({{"cmd", "status"}})["settings"];
+  EXPECT_NEAR(st["sigma_d"].get<double>(), 3.0, 1e-9);
+  EXPECT_NEAR(st["sigma_nd"].get<double>(), 4.0, 1e-9);
+  EXPECT_DOUBLE_EQ(st["f_x"].get<double>(), 0.4);
+  auto set = ctl({{"cmd", "set"}, {"sigma_d", 2.2}});  // by hand: the target is off for this run
+  ASSERT_EQ(set["ok"], true) << set.dump();
+  EXPECT_DOUBLE_EQ(set["settings"]["sigma_d"].get<double>(), 2.2);
+  EXPECT_DOUBLE_EQ(set["settings"]["sigma_nd"].get<double>(), 3.2);
+  ASSERT_EQ(::kill(pid_, SIGINT), 0);
+  EXPECT_EQ(wait_exit(1000), 0);
+  // A model without a table: foveald says so and does not start.
+  test::write_file(dir_.path("bare.json"), test::read_file(dir_.path("m.json")));
+  auto r = test::run("XDG_CONFIG_HOME=" + dir_.path("config") + " XDG_RUNTIME_DIR=" + dir_.path("run") + " " + test::bin("foveald") +
+                     " --quality jod:9 --display " + dir_.path("bare.json") + " --no-render --no-shm --out " + dir_.path("out2"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("bare.levels.json"), std::string::npos) << r.err;
+}
+
 TEST_F(Foveald, MarkersReachTheTraceInTimeOrder) {
   start({"--loop", "--end", "5", "--speed", "1", "-q", "--no-shm", "--no-render", "--out", dir_.path("out")});
   sleep_until_ns(monotonic_now_ns() + 200 * kNsPerMs);
