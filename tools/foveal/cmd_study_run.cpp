@@ -20,6 +20,7 @@
 #include "foveal/tools/cli.hpp"
 #include "render_args.hpp"
 #include "scripted_words.hpp"
+#include "study_jod.hpp"
 #include "study_window.hpp"
 
 namespace foveal::cmd {
@@ -33,7 +34,7 @@ struct Args {
   int repeats = 3, validation_min_score = 4, max_validation_errors = 2;
   double validation_share = 0.3, present_s = 2.0, blank_s = 0.75;
   std::uint64_t seed = 0;
-  bool json = false;
+  bool json = false, no_jod = false;
 };
 
 using ScriptedResponse = ScriptedWord<StudyResponse>;
@@ -98,7 +99,8 @@ Status run_scripted(StudySession& session, StudyFrames& frames, const Args& a) {
   return {};
 }
 
-nlohmann::json summary_json(const StudySession& s, const Args& a, const std::optional<StudyStats>& stats) {
+nlohmann::json summary_json(const StudySession& s, const Args& a, const std::optional<StudyStats>& stats,
+                            const std::optional<StudyJod>& jod) {
   const StudyOptions& o = s.options();
   nlohmann::json conditions = nlohmann::json::array();
   for (const StudyCondition& c : o.conditions) conditions.push_back(c.label());
@@ -126,14 +128,28 @@ nlohmann::json summary_json(const StudySession& s, const Args& a, const std::opt
       {"discarded", s.discarded()}};
   if (stats) {
     nlohmann::json pairs = nlohmann::json::array(), scores = nlohmann::json::array();
-    for (const PairVotes& p : stats->pairs)
+    for (const PairVotes& p : stats->pairs) {
       pairs.push_back({{"first", p.first}, {"second", p.second}, {"trials", p.trials}, {"votes_first", p.votes_first},
                        {"votes_second", p.votes_second}, {"p_value", p.p_value}});
-    for (const ConditionScore& c : stats->scores)
+      if (jod) pairs.back().update({{"predicted_jod_first", predicted_jod_of(*jod, p.first)},
+                                    {"predicted_jod_second", predicted_jod_of(*jod, p.second)}});
+    }
+    for (const ConditionScore& c : stats->scores) {
       scores.push_back({{"condition", c.condition}, {"trials", c.trials}, {"mean", c.mean}});
+      if (jod) scores.back()["predicted_jod"] = predicted_jod_of(*jod, c.condition);
+    }
     j["pairs"] = pairs;
     j["scores"] = scores;
     j["trials_csv"] = a.out + "/trials.csv";
+  }
+  if (jod) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const ConditionJod& r : jod->rows)
+      rows.push_back({{"scene", r.scene}, {"condition", r.condition.label()}, {"jod", r.jod.combined}, {"left", r.jod.left},
+                      {"right", r.jod.right}});
+    j["predicted_jod"] = jod->settings;
+    j["predicted_jod"]["conditions"] = rows;
+    j["conditions_csv"] = a.out + "/conditions.csv";
   }
   return j;
 }
@@ -161,6 +177,17 @@ int run(const Args& a) {
   }
 
   StudySession session(*options, std::move(*plan));
+  // After the participant's last answer (so nobody waits for it): each condition's
+  // predicted JOD against full, on the frames the study showed.
+  std::optional<StudyJod> jod;
+  auto predict = [&](StudyFrames& frames) -> Status {
+    if (a.no_jod || session.discarded()) return {};
+    if (!a.json) std::fprintf(stderr, "study: predicting JOD of %zu conditions\n", options->conditions.size() * options->scenes.size());
+    auto j = predict_study_jod(frames, *options, model);
+    if (!j) return j.error();
+    jod = std::move(*j);
+    return {};
+  };
   if (a.answers.empty()) {
     render::WindowOptions wo;
     wo.monitor = a.monitor;
@@ -175,12 +202,14 @@ int run(const Args& a) {
     auto frames = StudyFrames::create(*options, dominant, size.first, size.second);
     if (!frames) return cli::report(frames.error());
     if (Status st = run_study_window(session, *frames, *window); !st) return cli::report(st.error());
+    if (Status st = predict(*frames); !st) return cli::report(st.error());
   } else {
     auto ctx = gl::EglContext::create();
     if (!ctx) return cli::report(ctx.error());
     auto frames = StudyFrames::create(*options, dominant, size.first, size.second);
     if (!frames) return cli::report(frames.error());
     if (Status st = run_scripted(session, *frames, a); !st) return cli::report(st.error());
+    if (Status st = predict(*frames); !st) return cli::report(st.error());
   }
 
   // A discarded participant leaves only the summary saying so: their trials are not data.
@@ -192,9 +221,16 @@ int run(const Args& a) {
     if (!trials) return cli::report(trials.error());
     stats = compute_study_stats(*trials);
   }
-  const nlohmann::json summary = summary_json(session, a, stats);
+  const std::string conditions_path = a.out + "/conditions.csv";
+  if (jod)
+    if (Status st = write_file_atomically(conditions_path, study_conditions_csv(*jod)); !st) {
+      std::filesystem::remove(trials_path, ec);
+      return cli::report(st.error());
+    }
+  const nlohmann::json summary = summary_json(session, a, stats, jod);
   if (Status st = write_file_atomically(a.out + "/summary.json", summary.dump(2) + "\n"); !st) {
     std::filesystem::remove(trials_path, ec);
+    std::filesystem::remove(conditions_path, ec);
     return cli::report(st.error());
   }
   if (a.json) cli::print_json(summary);
@@ -204,6 +240,13 @@ int run(const Args& a) {
                 session.planned(), session.validation_trials() - session.validation_failures(),
                 session.validation_trials(), session.pauses(),
                 session.discarded() ? (a.out + "/summary.json (participant discarded)").c_str() : trials_path.c_str());
+  if (jod && !a.json) {
+    for (const ConditionJod& r : jod->rows)
+      std::printf("  predicted JOD %.2f (left %.2f, right %.2f)  %s%s%s\n", r.jod.combined, r.jod.left, r.jod.right,
+                  r.condition.label().c_str(), options->scenes.size() > 1 ? " on " : "",
+                  options->scenes.size() > 1 ? r.scene.c_str() : "");
+    std::printf("  -> %s\n", conditions_path.c_str());
+  }
   if (session.discarded())
     return cli::report(bad_input("participant " + options->participant + "'s data discarded: " +
                                  std::to_string(session.validation_failures()) + " failed validation trials (at most " +
@@ -248,6 +291,9 @@ void add_study_run(CLI::App& study, int& exit_code) {
   sub->add_option("--monitor", a->monitor, "Headset mode: fullscreen on the monitor whose name contains this");
   sub->add_option("--out,-o", a->out, "Directory for trials.csv and summary.json")->required();
   sub->add_flag("--json", a->json, "Print the summary as JSON");
+  sub->add_flag("--no-jod", a->no_jod,
+                "Leave out each condition's predicted JOD against full (conditions.csv): a render and a still's JOD per "
+                "condition and scene, seconds each at the headset's size on a CPU renderer");
   sub->callback([a, &exit_code] { exit_code = run(*a); });
 }
 

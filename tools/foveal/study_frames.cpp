@@ -30,11 +30,14 @@ Result<StudyFrames> StudyFrames::create(const StudyOptions& o, Eye dominant, int
 
 Status StudyFrames::draw(const PlannedTrial& t, int presentation) {
   const bool shows_b = (presentation == 0) == t.b_first;
-  const StudyCondition& c = shows_b ? t.b : t.a;
+  return draw(t.scene, shows_b ? t.b : t.a);
+}
+
+Status StudyFrames::draw(const std::string& scene, const StudyCondition& c) {
   auto method = render::parse_method(c.method);
   if (!method) return method.error();
   const render::FrameParams frame = render::efr_frame(*method, dominant_, c.sigma_d, c.sigma_nd, c.f, c.f);
-  if (auto r = comp_->render(scenes_.at(t.scene), frame); !r) return r.error();
+  if (auto r = comp_->render(scenes_.at(scene), frame); !r) return r.error();
   return {};
 }
 

@@ -20,6 +20,8 @@ class StudyFrames {
   static Result<StudyFrames> create(const StudyOptions& o, Eye dominant, int width, int height);
   /// Renders the trial's presentation (0: first, 1: second) into output_framebuffer().
   Status draw(const PlannedTrial& t, int presentation);
+  /// Renders `c` on `scene` (one of the options' scenes) into output_framebuffer().
+  Status draw(const std::string& scene, const StudyCondition& c);
   void draw_black();
   render::Compositor& compositor() { return *comp_; }
   GLuint output_framebuffer() { return comp_->output_framebuffer(); }
