@@ -66,8 +66,10 @@ def main():
         merged = bench_rows.table(d("merged", "bench.csv"))
         check(merged[0][-3:] == ["jod_left", "jod_right", "jod"] and all(0 < float(x) <= 10 for r in merged[1:] for x in r[-3:]),
               "the merged bench.csv ends with jod_left, jod_right, jod, each in (0, 10]")
-        check(bench_rows.table(d("merged", "flicker.csv"))[0][-3:] == ["jod_left", "jod_right", "jod"],
-              "the merged flicker.csv ends with jod_left, jod_right, jod")
+        for name in ("flicker.csv", "fgrid.csv", "rotation.csv", "stability.csv"):
+            t = bench_rows.table(d("merged", name))
+            check(t[0][-3:] == ["jod_left", "jod_right", "jod"] and all(0 < float(x) <= 10 for r in t[1:] for x in r[-3:]),
+                  f"the merged {name} ends with jod_left, jod_right, jod, each in (0, 10]")
         for chart in ("pareto.png", "table.md", "fgrid.png", "rotation.png"):
             check(os.path.exists(d("merged", chart)), f"the merge draws {chart} as a single run does")
         # One part of one: a shard too (what an array of one task writes), merged alone.
@@ -92,7 +94,7 @@ def main():
         diffs = bench_rows.differences(d("gaze-single"), d("gaze-merged"))
         check(not diffs, "the --gaze merge equals the single run row for row (gaze.csv, gaze_frames.csv, gaze.json; "
               "timing left out)" + "".join("\n      " + x for x in diffs[:10]))
-        check(bench_rows.table(d("gaze-merged", "gaze_frames.csv"))[0][-3:] == ["jod_left", "jod_right", "jod"] and
+        check(bench_rows.table(d("gaze-merged", "gaze_frames.csv"))[0][-4:] == ["jod_left", "jod_right", "jod", "true_ecc_deg"] and
               bench_rows.table(d("gaze-merged", "gaze.csv"))[0][-3:] == ["jod_mean", "jod_p5", "jod_min"],
               "the merged gaze_frames.csv and gaze.csv end with their JOD columns")
 

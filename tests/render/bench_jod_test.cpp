@@ -2,7 +2,10 @@
 // fixation, and the bench.csv/bench.json columns from the command line, with --no-jod.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <random>
 
 #include <nlohmann/json.hpp>
@@ -163,7 +166,7 @@ TEST(BenchJod, GazeBenchAppendsJodColumnsAndNoJodLeavesThemOut) {
   auto header = [&](const std::string& file) { return first_line(test::read_file(d.path(file))); };
   const std::string summary = header("jod/gaze.csv"), frames = header("jod/gaze_frames.csv");
   EXPECT_TRUE(summary.ends_with(",fovea_error_deg_mean,jod_mean,jod_p5,jod_min")) << summary;
-  EXPECT_TRUE(frames.ends_with(",patch_psnr_db,exceeds,jod_left,jod_right,jod")) << frames;
+  EXPECT_TRUE(frames.ends_with(",patch_psnr_db,exceeds,jod_left,jod_right,jod,true_ecc_deg")) << frames;
   const auto j = nlohmann::json::parse(test::read_file(d.path("jod/gaze.json")));
   EXPECT_EQ(j["jod"]["frames"], 2 * 3);  // two frames × the oracle, rmfr and uniform
   EXPECT_TRUE(j["rows"][0].contains("jod_mean"));
@@ -171,7 +174,9 @@ TEST(BenchJod, GazeBenchAppendsJodColumnsAndNoJodLeavesThemOut) {
   r = test::run(common + d.path("none") + " --no-jod");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(header("none/gaze.csv") + ",jod_mean,jod_p5,jod_min", summary);
-  EXPECT_EQ(header("none/gaze_frames.csv") + ",jod_left,jod_right,jod", frames);
+  const std::string plain = header("none/gaze_frames.csv");  // true_ecc_deg stays last
+  ASSERT_TRUE(plain.ends_with(",exceeds,true_ecc_deg")) << plain;
+  EXPECT_EQ(plain.substr(0, plain.size() - 13) + ",jod_left,jod_right,jod,true_ecc_deg", frames);
   EXPECT_FALSE(nlohmann::json::parse(test::read_file(d.path("none/gaze.json"))).contains("jod"));
 }
 
@@ -191,4 +196,108 @@ TEST(BenchJod, FlickerAppendsVideoJodColumnsAndNoJodLeavesThemOut) {
   EXPECT_EQ(rows[0].at("jod"), "10");
   const auto j = nlohmann::json::parse(test::read_file(d.path("jod/bench.json")));
   EXPECT_NEAR(j["flicker"][1]["jod"].get<double>(), std::stod(rows[1].at("jod")), 1e-4);  // the CSV has 6 digits
+}
+
+TEST(BenchJod, ThePanelsLuminanceReachesTheMetricAndNonsenseIsRefused) {
+  const int w = 256, h = 128;
+  const image::Image ref = grey_noise(w, h, 5), test = damaged(ref, 0.5, w / 2);
+  const bench::EyeFovea c = std::array<double, 2>{0.5, 0.5};
+  auto vive = bench::StereoJodScorer::create(DisplayModel::vive_pro_eye(), w, h, 1);
+  auto bright = bench::StereoJodScorer::create(DisplayModel::vive_pro_eye(), w, h, 1, perception::Photometry{1000, 0.5});
+  ASSERT_TRUE(vive && bright);
+  EXPECT_DOUBLE_EQ(bright->photometry().peak_cd_m2, 1000);
+  EXPECT_DOUBLE_EQ(bright->photometry().black_cd_m2, 0.5);
+  auto a = vive->still(ref, test, c, c), b = bright->still(ref, test, c, c);
+  ASSERT_TRUE(a && b);
+  EXPECT_GT(std::abs(a->combined - b->combined), 0.01) << "a brighter panel shows the same damage differently";
+  for (const perception::Photometry& bad : {perception::Photometry{100, 100}, perception::Photometry{100, 200},
+                                             perception::Photometry{0, -1}, perception::Photometry{NAN, 0.1},
+                                             perception::Photometry{INFINITY, 0.1}}) {
+    auto s = bench::StereoJodScorer::create(DisplayModel::vive_pro_eye(), w, h, 1, bad);
+    ASSERT_FALSE(s) << bad.peak_cd_m2 << " " << bad.black_cd_m2;
+    EXPECT_NE(s.error().message.find("JOD: display luminance"), std::string::npos) << s.error().message;
+  }
+}
+
+TEST(BenchJod, BenchTakesPeakAndBlackAndRefusesNonsense) {
+  test::TempDir d;
+  const std::string common = test::bin("foveal") + " bench --scene pattern:checker --methods uniform --sigmas 3"
+                             " --size 128x64 --frames 1 --warmup 0 --no-png --out ";
+  auto r = test::run(common + d.path("default"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = test::run(common + d.path("dim") + " --peak 10 --black 0.01");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(test::read_file(d.path("dim/bench.json")));
+  EXPECT_EQ(j["jod"]["peak_cd_m2"], 10);
+  EXPECT_EQ(j["jod"]["black_cd_m2"], 0.01);
+  const auto def = nlohmann::json::parse(test::read_file(d.path("default/bench.json")));
+  EXPECT_EQ(def["jod"]["peak_cd_m2"], 133.3);  // perception::Photometry{}'s, unchanged
+  EXPECT_EQ(def["jod"]["black_cd_m2"], 0.1);
+  ASSERT_EQ(j["rows"].size(), 2u);
+  // A dim panel hides some of the loss (7.46 against 7.31 at 128x64).
+  EXPECT_GT(j["rows"][1]["jod"].get<double>(), def["rows"][1]["jod"].get<double>() + 0.05) << "the row was scored on the dim panel";
+  for (const char* bad : {"--peak 100 --black 100", "--peak 100 --black 200", "--peak 0", "--peak -5 --black -6", "--peak nan",
+                          "--black inf", "--black 0"}) {
+    SCOPED_TRACE(bad);
+    r = test::run(common + d.path("bad") + " " + bad);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("--peak"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(d.path("bad")));
+  }
+  // --gaze scores with the same panel and records it in gaze.json.
+  ASSERT_EQ(test::run(test::bin("foveal") + " synth --seed 2 --duration 3 --out " + d.path("g.csv")).exit_code, 0);
+  r = test::run(test::bin("foveal") + " bench --gaze " + d.path("g.csv") + " --scene pattern:noise --methods uniform --sigmas 2"
+                " --size 64x36 --gaze-frames 1 --frames 1 --warmup 0 --no-png --peak 10 --black 0.01 --out " + d.path("gaze"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto g = nlohmann::json::parse(test::read_file(d.path("gaze/gaze.json")));
+  EXPECT_EQ(g["jod"]["peak_cd_m2"], 10);
+  EXPECT_EQ(g["jod"]["black_cd_m2"], 0.01);
+}
+
+TEST(BenchJod, ExperimentsAppendJodColumnsScoredAtTheirFoveaAndNoJodLeavesThemOut) {
+  test::TempDir d;
+  const std::string common = test::bin("foveal") + " bench --scene pattern:checker --methods rmfr,uniform --sigmas 3 --size 128x72"
+                             " --frames 1 --warmup 0 --f-grid --grid-values 0.2,0.3 --rotation --stability --no-png --out ";
+  auto r = test::run(common + d.path("jod"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = test::run(common + d.path("none") + " --no-jod");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::size_t scored = 0;
+  for (const char* table : {"bench.csv", "fgrid.csv", "rotation.csv", "stability.csv"}) {
+    SCOPED_TRACE(table);
+    const std::string with = test::read_file(d.path(std::string("jod/") + table)), without = test::read_file(d.path(std::string("none/") + table));
+    EXPECT_EQ(first_line(with), first_line(without) + ",jod_left,jod_right,jod");
+    const auto rows = test::read_csv_rows(with);
+    ASSERT_FALSE(rows.empty());
+    scored += rows.size();
+    for (const auto& row : rows)
+      for (const char* k : {"jod_left", "jod_right", "jod"}) {
+        EXPECT_GT(cell(row, k), 0) << k;
+        EXPECT_LE(cell(row, k), 10) << k;
+      }
+    // The other columns are those of the run without JOD, row for row.
+    const auto plain = test::read_csv_rows(without);
+    ASSERT_EQ(plain.size(), rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      for (const auto& [k, v] : plain[i])
+        if (!k.ends_with("_ms")) {
+          EXPECT_EQ(rows[i].at(k), v) << k << " row " << i;
+        }
+  }
+  const auto j = nlohmann::json::parse(test::read_file(d.path("jod/bench.json")));
+  EXPECT_EQ(j["jod"]["frames"].get<std::size_t>(), scored) << "one JOD score per row of every table";
+  // Rotated stripes at σ 3 lose detail in the fovea: every method below 10 at some angle.
+  const auto rotation = test::read_csv_rows(test::read_file(d.path("jod/rotation.csv")));
+  EXPECT_TRUE(std::any_of(rotation.begin(), rotation.end(), [](const test::CsvRow& row) { return cell(row, "jod") < 9.9; }));
+  // Stability: the metric looks where the fovea is. Uniform resolution ignores the fovea,
+  // so its frame is the same at every position and only the fixation moves: its JOD rises
+  // as the fixation leaves the centre for the border, where the pattern's loss is further
+  // out in the periphery (7.738 to 7.778 along the diagonal at 128x72).
+  const auto stability = test::read_csv_rows(test::read_file(d.path("jod/stability.csv")));
+  std::map<std::string, double> uniform;
+  for (const auto& row : stability)
+    if (row.at("method") == "uniform") uniform[row.at("path") + " " + row.at("t")] = cell(row, "jod");
+  ASSERT_EQ(uniform.size(), 22u);
+  EXPECT_GT(uniform["diagonal 1"], uniform["diagonal 0"] + 0.02);
+  EXPECT_GT(uniform["vertical 1"], uniform["vertical 0"] + 0.02);
 }

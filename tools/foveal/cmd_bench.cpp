@@ -111,6 +111,9 @@ void add_bench(CLI::App& app, int& exit_code) {
   sub->add_option("--out,-o", o.out, "Output directory (required)");
   sub->add_flag("--no-png", o.no_png, "CSV and JSON only");
   sub->add_flag("--no-jod", o.no_jod, "Leave out the JOD columns (FovVideoVDP, docs/metrics.md: about 0.3 s per 2880x1600 frame on 2 cores)");
+  sub->add_option("--peak", o.light.peak_cd_m2, "The panel's peak luminance for JOD, cd/m2 (every experiment; recorded in bench.json's jod)")
+      ->capture_default_str();
+  sub->add_option("--black", o.light.black_cd_m2, "The panel's black luminance for JOD, cd/m2 (0 < black < peak)")->capture_default_str();
   sub->add_flag("--json", o.json, "Print the results as JSON");
   add_bench_merge(*sub, exit_code);
   sub->callback([a, sub, size, &exit_code] {

@@ -229,7 +229,7 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   if (!comp) return fail(comp.error());
   std::optional<StereoJodScorer> jod;  // each eye alone at its true gaze, on the model rendered for
   if (s.jod) {
-    auto j = StereoJodScorer::create(co.model, co.width, co.height);
+    auto j = StereoJodScorer::create(co.model, co.width, co.height, 2, s.light);
     if (!j) return fail(j.error());
     jod.emplace(std::move(*j));
   }

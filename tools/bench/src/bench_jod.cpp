@@ -16,15 +16,17 @@ image::Image eye_half(const image::Image& frame, int e, int w, int h) { return i
 
 }  // namespace
 
-Result<StereoJodScorer> StereoJodScorer::create(const DisplayModel& model, int width, int height, int threads) {
+Result<StereoJodScorer> StereoJodScorer::create(const DisplayModel& model, int width, int height, int threads,
+                                                const perception::Photometry& light) {
   if (width % 2 != 0 || width / 2 < 8 || height < 8)
     return bad_input("JOD: a side-by-side frame of even width and at least 8x8 per eye is needed, got " + std::to_string(width) + "x" +
                      std::to_string(height));
+  if (Status s = light.validate(); !s) return Error{s.error().kind, "JOD: " + s.error().message};
   const int w = width / 2;
   std::vector<perception::JodMetric> eyes;
   for (Eye e : {Eye::left, Eye::right})
-    eyes.emplace_back(perception::eye_geometry(model, e, w, height), perception::Photometry{}, perception::Parameters{}, threads);
-  return StereoJodScorer(std::move(eyes), w, height);
+    eyes.emplace_back(perception::eye_geometry(model, e, w, height), light, perception::Parameters{}, threads);
+  return StereoJodScorer(std::move(eyes), light, w, height);
 }
 
 double StereoJodScorer::ppd(Eye e) const { return eyes_[e == Eye::left ? 0 : 1].geometry().ppd(); }

@@ -95,6 +95,16 @@ render::FrameParams uniform_frame(Method m, double sigma, double fx, double fy, 
   return p;
 }
 
+// The JOD cells appended to a row of the experiments' tables (both eyes at `fovea`, as
+// their FPSNR), or nothing without JOD.
+Result<std::string> jod_cells(StereoJodScorer* jod, const image::Image& ref, const image::Image& test, std::pair<double, double> fovea) {
+  if (!jod) return std::string();
+  const EyeFovea f = std::array<double, 2>{fovea.first, fovea.second};
+  auto j = jod->still(ref, test, f, f);
+  if (!j) return j.error();
+  return "," + num(j->left) + "," + num(j->right) + "," + num(j->combined);
+}
+
 image::MetricsOptions metric_options(const render::Compositor& c, std::pair<double, double> fovea) {
   image::MetricsOptions o;
   o.ppd = c.plan(Eye::left).pixels_per_degree();
@@ -131,6 +141,9 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
   if (!size) return fail(size.error());
   if (size->first % 2) return fail(bad_input("--size: the width must be even"));
   if (a.frames < 1) return fail(bad_input("--frames must be >= 1"));
+  if (Status s = a.light.validate(); !s)
+    return fail(bad_input("--peak " + num(a.light.peak_cd_m2) + " --black " + num(a.light.black_cd_m2) +
+                          ": the panel's luminance for JOD must be finite with 0 < black < peak (cd/m2)"));
   auto grid = parse_range(a.grid_values, "--grid-values");
   if (!grid) return fail(grid.error());
   auto shard = bench::parse_shard(a.shard.empty() ? "1/1" : a.shard);
@@ -159,7 +172,7 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
   if (!a.gaze.logs.empty()) {
     if (a.f_grid || a.rotation || a.stability || a.flicker)
       return fail(bad_input("--gaze runs on its own: drop --f-grid, --rotation, --stability and --flicker"));
-    return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json, a.shard, sweep, !a.no_jod});
+    return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json, a.shard, sweep, !a.no_jod, a.light});
   }
 
   std::error_code ec;
@@ -174,7 +187,7 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
   if (!comp) return fail(comp.error());
   std::optional<StereoJodScorer> jod;  // each eye alone at the fovea, on the display model rendered for
   if (!a.no_jod) {
-    auto j = StereoJodScorer::create(co.model, co.width, co.height);
+    auto j = StereoJodScorer::create(co.model, co.width, co.height, 2, a.light);
     if (!j) return fail(j.error());
     jod.emplace(std::move(*j));
   }
@@ -191,9 +204,12 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
   bench::SweepRows rows(*shard);
   rows.table("bench.csv", "scene,method,sigma,shaded_samples,cost,gpu_ms,cpu_ms,shadow_ms,gbuffer_ms,mapping_ms,lighting_ms,inverse_ms,psnr_db,ssim,fpsnr_db" +
                              std::string(jod ? ",jod_left,jod_right,jod" : ""));
-  if (a.f_grid) rows.table("fgrid.csv", "scene,sigma,fx,fy,fpsnr_db,psnr_db,ssim");
-  if (a.rotation) rows.table("rotation.csv", "angle_deg,method,sigma,fpsnr_db,psnr_db,ssim");
-  if (a.stability) rows.table("stability.csv", "scene,path,t,fovea_x,fovea_y,method,sigma,patch_psnr_db,fpsnr_db");
+  // The experiments' JOD columns come last, so that readers by position find the rest.
+  const std::string jod_columns = jod ? ",jod_left,jod_right,jod" : "";
+  if (a.f_grid) rows.table("fgrid.csv", "scene,sigma,fx,fy,fpsnr_db,psnr_db,ssim" + jod_columns);
+  if (a.rotation) rows.table("rotation.csv", "angle_deg,method,sigma,fpsnr_db,psnr_db,ssim" + jod_columns);
+  if (a.stability) rows.table("stability.csv", "scene,path,t,fovea_x,fovea_y,method,sigma,patch_psnr_db,fpsnr_db" + jod_columns);
+  StereoJodScorer* const jod_scorer = jod ? &*jod : nullptr;
   if (a.flicker) rows.table("flicker.csv", std::string(kFlickerColumns) + (jod ? kFlickerJodColumns : ""));
   const double full_samples = static_cast<double>(co.width) * co.height;
   for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index) {
@@ -270,8 +286,10 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
           auto q = image::compute_stereo_metrics(full->image, r->image, mo);
           if (!q) return fail(q.error());
           const double ms = r->median.cpu + std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+          auto j = jod_cells(jod_scorer, full->image, r->image, *fovea);  // after the timing: the f search does not pay for it
+          if (!j) return fail(j.error());
           rows.add_line("fgrid.csv", name + "," + num(a.grid_sigma) + "," + num(fx) + "," + num(fy) + "," + num(q->combined.fpsnr_db) +
-                                         "," + num(q->combined.psnr_db) + "," + num(q->combined.ssim));
+                                         "," + num(q->combined.psnr_db) + "," + num(q->combined.ssim) + *j);
           rows.add_item("fgrid_points", {{"scene_index", scene_index}, {"fx", fx}, {"fy", fy}, {"fpsnr_db", bench::json_number(q->combined.fpsnr_db)}, {"ms", ms}});
         }
       if (rows.take()) {
@@ -309,8 +327,10 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
         if (!r) return fail(r.error());
         auto q = image::compute_stereo_metrics(full->image, r->image, metric_options(*comp, *fovea));
         if (!q) return fail(q.error());
+        auto j = jod_cells(jod_scorer, full->image, r->image, *fovea);
+        if (!j) return fail(j.error());
         rows.add_line("rotation.csv", std::to_string(angle) + "," + render::method_name(m) + "," + num(sigma) + "," +
-                                          num(q->combined.fpsnr_db) + "," + num(q->combined.psnr_db) + "," + num(q->combined.ssim));
+                                          num(q->combined.fpsnr_db) + "," + num(q->combined.psnr_db) + "," + num(q->combined.ssim) + *j);
       }
     }
   }
@@ -339,15 +359,17 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
           if (!r) return fail(r.error());
           auto q = image::compute_stereo_metrics(full->image, r->image, metric_options(*comp, fv));
           if (!q) return fail(q.error());
+          auto j = jod_cells(jod_scorer, full->image, r->image, fv);  // the eyes look where the fovea is, as FPSNR's weights
+          if (!j) return fail(j.error());
           rows.add_line("stability.csv", std::string("pattern:checker,") + path + "," + num(t) + "," + num(fv.first) + "," + num(fv.second) +
                                              "," + render::method_name(m) + "," + num(a.grid_sigma) + "," +
-                                             num(image::psnr(full->image, r->image, patch)) + "," + num(q->combined.fpsnr_db));
+                                             num(image::psnr(full->image, r->image, patch)) + "," + num(q->combined.fpsnr_db) + *j);
         }
       }
   }
   if (a.flicker)
     for (const std::string& spec : scenes)
-      if (Status s = run_flicker(fo, *comp, methods, spec, rows, [&] { bench.tick(); }, jod ? &*jod : nullptr); !s) return fail(s.error());
+      if (Status s = run_flicker(fo, *comp, methods, spec, rows, [&] { bench.tick(); }, jod_scorer); !s) return fail(s.error());
   progress.finish();
   if (jod && !a.json) print_jod_cost(*jod, "bench", started);
 

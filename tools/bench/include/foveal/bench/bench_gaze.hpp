@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "foveal/image/foveation_plan.hpp"
+#include "foveal/perception/jod.hpp"
 
 namespace foveal::bench {
 
@@ -37,6 +38,7 @@ struct GazeBenchSweep {
   std::string shard;  ///< --shard K/N (empty: the whole sweep; bench_sweep.hpp)
   std::string sweep;  ///< the options that define the sweep, for the shard file
   bool jod = true;    ///< JOD per frame at the true gaze (bench_jod.hpp); false: --no-jod
+  perception::Photometry light;  ///< the panel's luminance for JOD (--peak, --black)
 };
 
 /// Runs the gaze-driven evaluation; returns the exit code.

@@ -1,7 +1,8 @@
 #pragma once
 // JOD (FovVideoVDP, foveal::perception) of the bench's side-by-side frames: each eye
 // scored alone as its eye of the display model, at its own fixation, like the bench's
-// FPSNR (docs/bench.md, "JOD"). The panel's light is `foveal metrics --jod`'s default.
+// FPSNR (docs/bench.md, "JOD"). The panel's light is `foveal metrics --jod`'s default
+// unless the bench's --peak and --black give another.
 #include <array>
 #include <chrono>
 #include <optional>
@@ -27,8 +28,10 @@ struct StereoJod {
 /// JOD of still stereo frames at one output size, and the time it has cost.
 class StereoJodScorer {
  public:
-  /// `width` × `height`: the side-by-side frame (even width, an eye at least 8×8).
-  static Result<StereoJodScorer> create(const DisplayModel& model, int width, int height, int threads = 2);
+  /// `width` × `height`: the side-by-side frame (even width, an eye at least 8×8);
+  /// `light`: the panel's peak and black luminance (refused unless 0 < black < peak).
+  static Result<StereoJodScorer> create(const DisplayModel& model, int width, int height, int threads = 2,
+                                        const perception::Photometry& light = {});
 
   Result<StereoJod> still(const image::Image& reference, const image::Image& test, const EyeFovea& left, const EyeFovea& right);
 
@@ -54,8 +57,8 @@ class StereoJodScorer {
   Result<Video> video(double fps);
 
  private:
-  StereoJodScorer(std::vector<perception::JodMetric> eyes, int eye_w, int eye_h)
-      : eyes_(std::move(eyes)), eye_w_(eye_w), eye_h_(eye_h) {}
+  StereoJodScorer(std::vector<perception::JodMetric> eyes, const perception::Photometry& light, int eye_w, int eye_h)
+      : eyes_(std::move(eyes)), photometry_(light), eye_w_(eye_w), eye_h_(eye_h) {}
   Status check(const image::Image& reference, const image::Image& test) const;
   std::optional<perception::Fixation> fixation(const EyeFovea& f) const;
   StereoJod combine(const perception::JodScore& l, const perception::JodScore& r) const;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "foveal/bench/bench_gaze.hpp"
+#include "foveal/perception/jod.hpp"
 #include "foveal/render/compositor.hpp"
 
 namespace foveal::bench {
@@ -25,6 +26,7 @@ struct BenchOptions {
   double fx = 0.3, fy = 0.3;
   bool f_grid = false, rotation = false, stability = false, flicker = false, no_png = false, json = false;
   bool no_jod = false;  ///< leave the JOD columns out (bench_jod.hpp: ~0.3 s a 2880x1600 frame on 2 cores)
+  perception::Photometry light;  ///< --peak, --black: the panel's luminance for JOD (metrics --jod's defaults)
   std::string flicker_log;  ///< empty: the bundled recording
   int flicker_frames = 48;
   std::string camera_paths = "static", flicker_gaze = "raw,filtered", flicker_pipelines;  ///< bench_flicker.hpp
