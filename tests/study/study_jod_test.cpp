@@ -42,11 +42,13 @@ std::string study(const std::string& design, const std::string& conditions, cons
 
 TEST(StudyJod, ConditionsCarryAFinitePredictedJodThatFallsWithTheLevel) {
   test::TempDir d;
-  test::write_file(d.path("answers.txt"), "5\n3\n");
-  const auto r = test::run(study("score", " --condition rmfr:1.5 --condition rmfr:4", d.path("answers.txt"), d.path("out")));
+  test::write_file(d.path("answers.txt"), "5\n3\n4\n");
+  // An EFR condition with the uniform one's sigma_d: the two must not be mixed up.
+  const std::string conditions = " --condition rmfr:1.5 --condition rmfr:4 --condition rmfr:1.5/4";
+  const auto r = test::run(study("score", conditions, d.path("answers.txt"), d.path("out")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto rows = rows_of(test::read_file(d.path("out/conditions.csv")));
-  ASSERT_EQ(rows.size(), 3u);
+  ASSERT_EQ(rows.size(), 4u);
   const std::vector<std::string> header = {"scene", "condition", "method", "sigma_d", "sigma_nd", "f",
                                            "predicted_jod", "predicted_jod_left", "predicted_jod_right"};
   EXPECT_EQ(rows[0], header);
@@ -58,24 +60,32 @@ TEST(StudyJod, ConditionsCarryAFinitePredictedJodThatFallsWithTheLevel) {
       const double v = std::stod(rows[i][c]);
       EXPECT_TRUE(std::isfinite(v) && v <= 10.0) << rows[i][1] << " " << header[c] << " " << v;
     }
-    jod[rows[i][3]] = std::stod(rows[i][6]);
+    jod[rows[i][1]] = std::stod(rows[i][6]);
   }
-  ASSERT_EQ(jod.size(), 2u);
-  EXPECT_LT(jod["4"], jod["1.5"]) << "a coarser level is predicted to look worse";
-  EXPECT_LT(jod["4"], 9.9) << "sigma 4 is visibly degraded";
+  ASSERT_EQ(jod.size(), 3u);
+  const std::string fine = "rmfr sigma=1.5 f=0.3", coarse = "rmfr sigma=4 f=0.3", efr = "rmfr sigma_d=1.5 sigma_nd=4 f=0.3";
+  ASSERT_TRUE(jod.count(fine) && jod.count(coarse) && jod.count(efr));
+  EXPECT_LT(jod[coarse], jod[fine]) << "a coarser level is predicted to look worse";
+  EXPECT_LT(jod[coarse], 9.9) << "sigma 4 is visibly degraded";
+  EXPECT_NE(jod[efr], jod[fine]);
 
   // Beside the participant's answers in the summary: the score of each condition.
   const auto summary = nlohmann::json::parse(r.out);
-  ASSERT_EQ(summary["scores"].size(), 2u);
-  for (const auto& s : summary["scores"]) {
-    const std::string sigma = s["condition"].get<std::string>().find("sigma=4") != std::string::npos ? "4" : "1.5";
-    EXPECT_NEAR(s["predicted_jod"].get<double>(), jod[sigma], 1e-4) << s.dump();
-  }
-  EXPECT_EQ(summary["predicted_jod"]["conditions"].size(), 2u);
+  ASSERT_EQ(summary["scores"].size(), 3u);
+  for (const auto& s : summary["scores"])
+    EXPECT_NEAR(s["predicted_jod"].get<double>(), jod[s["condition"].get<std::string>()], 1e-4) << s.dump();
+  EXPECT_EQ(summary["predicted_jod"]["conditions"].size(), 3u);
   EXPECT_GT(summary["predicted_jod"]["ppd"][0].get<double>(), 0.0) << summary["predicted_jod"].dump();
 
+  // study stats reads it back beside the same trials: the same figures.
+  const auto st = test::run(test::bin("foveal") + " study stats " + d.path("out/trials.csv") + " --conditions " +
+                            d.path("out/conditions.csv") + " --json");
+  ASSERT_EQ(st.exit_code, 0) << st.err;
+  for (const auto& s : nlohmann::json::parse(st.out)["scores"])
+    EXPECT_NEAR(s["predicted_jod"].get<double>(), jod[s["condition"].get<std::string>()], 1e-4) << s.dump();
+
   // --no-jod: no conditions.csv, nothing predicted in the summary.
-  const auto no = test::run(study("score", " --condition rmfr:1.5 --condition rmfr:4 --no-jod", d.path("answers.txt"), d.path("no")));
+  const auto no = test::run(study("score", conditions + " --no-jod", d.path("answers.txt"), d.path("no")));
   ASSERT_EQ(no.exit_code, 0) << no.err;
   EXPECT_FALSE(std::filesystem::exists(d.path("no/conditions.csv")));
   EXPECT_FALSE(nlohmann::json::parse(no.out).contains("predicted_jod"));

@@ -5,8 +5,11 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <map>
+#include <optional>
 
 #include "commands.hpp"
+#include "foveal/study/study_conditions.hpp"
 #include "foveal/study/study_stats.hpp"
 #include "foveal/tools/cli.hpp"
 
@@ -14,7 +17,23 @@ namespace foveal::cmd {
 
 namespace {
 
-nlohmann::json stats_json(const std::string& path, const StudyStats& st) {
+using Predictions = std::optional<std::map<std::string, PredictedJod>>;
+
+// A condition's predicted JOD (--conditions), null when the file has no such condition.
+nlohmann::json predicted(const Predictions& jod, const std::string& label) {
+  const auto it = jod->find(label);
+  return it == jod->end() ? nlohmann::json(nullptr) : nlohmann::json(it->second.jod);
+}
+
+std::string predicted_text(const Predictions& jod, const std::string& label) {
+  if (!jod) return "";
+  const auto it = jod->find(label);
+  char b[32] = "        -";
+  if (it != jod->end()) std::snprintf(b, sizeof b, " %8.2f", it->second.jod);
+  return b;
+}
+
+nlohmann::json stats_json(const std::string& path, const StudyStats& st, const Predictions& jod) {
   nlohmann::json pairs = nlohmann::json::array(), scores = nlohmann::json::array();
   for (const PairVotes& p : st.pairs)
     pairs.push_back({{"first", p.first},
@@ -26,6 +45,11 @@ nlohmann::json stats_json(const std::string& path, const StudyStats& st) {
                      {"p_value", p.p_value}});
   for (const ConditionScore& c : st.scores)
     scores.push_back({{"condition", c.condition}, {"trials", c.trials}, {"mean", c.mean}, {"sd", c.sd}});
+  if (jod) {
+    for (auto& p : pairs)
+      p.update({{"predicted_jod_first", predicted(jod, p["first"].get<std::string>())}, {"predicted_jod_second", predicted(jod, p["second"].get<std::string>())}});
+    for (auto& c : scores) c["predicted_jod"] = predicted(jod, c["condition"].get<std::string>());
+  }
   auto estimate = [](const std::optional<SigmaEstimate>& e) -> nlohmann::json {
     if (!e) return nullptr;
     return {{"sigma", e->sigma}, {"bound", estimate_bound_name(e->bound)}};
@@ -44,23 +68,25 @@ nlohmann::json stats_json(const std::string& path, const StudyStats& st) {
           {"sigma_estimates", sigmas}};
 }
 
-void print_text(const std::string& path, const StudyStats& st) {
+void print_text(const std::string& path, const StudyStats& st, const Predictions& jod) {
   std::printf("%s: %zu pairs of conditions, %zu scored conditions, %llu validation trials left out\n", path.c_str(),
               st.pairs.size(), st.scores.size(), static_cast<unsigned long long>(st.validation_trials));
   if (!st.pairs.empty()) {
-    std::printf("  %-40s %7s %15s %8s %12s\n", "pair (first vs second)", "trials", "votes", "ratio", "p (2-sided)");
+    std::printf("  %-40s %7s %15s %8s %12s%s\n", "pair (first vs second)", "trials", "votes", "ratio", "p (2-sided)",
+                jod ? "   JOD first : second (predicted)" : "");
     for (const PairVotes& p : st.pairs) {
       const std::string name = p.first + " vs " + p.second;
       const std::string votes = std::to_string(p.votes_first) + " : " + std::to_string(p.votes_second);
-      std::printf("  %-40s %7llu %15s %7.1f%% %12.4g\n", name.c_str(), static_cast<unsigned long long>(p.trials),
-                  votes.c_str(), 100.0 * p.share_first, p.p_value);
+      std::printf("  %-40s %7llu %15s %7.1f%% %12.4g%s%s\n", name.c_str(), static_cast<unsigned long long>(p.trials),
+                  votes.c_str(), 100.0 * p.share_first, p.p_value, predicted_text(jod, p.first).c_str(),
+                  jod ? (" :" + predicted_text(jod, p.second)).c_str() : "");
     }
   }
   if (!st.scores.empty()) {
-    std::printf("  %-40s %7s %8s %8s\n", "condition", "trials", "mean", "sd");
+    std::printf("  %-40s %7s %8s %8s%s\n", "condition", "trials", "mean", "sd", jod ? " JOD (predicted)" : "");
     for (const ConditionScore& c : st.scores)
-      std::printf("  %-40s %7llu %8.3f %8.3f\n", c.condition.c_str(), static_cast<unsigned long long>(c.trials),
-                  c.mean, c.sd);
+      std::printf("  %-40s %7llu %8.3f %8.3f%s\n", c.condition.c_str(), static_cast<unsigned long long>(c.trials),
+                  c.mean, c.sd, predicted_text(jod, c.condition).c_str());
   }
   auto bound = [](const SigmaEstimate& x) {
     switch (x.bound) {
@@ -86,7 +112,7 @@ void add_study(CLI::App& app, int& exit_code) {
   CLI::App* study = app.add_subcommand("study", "User studies of foveation: run one (2AFC or random test), statistics of their trials");
   study->require_subcommand(1);
   struct Args {
-    std::string file;
+    std::string file, conditions;
     double threshold = 4.0;
     bool json = false;
   };
@@ -98,6 +124,8 @@ void add_study(CLI::App& app, int& exit_code) {
                     "sigma_UF/sigma_NF: the mean score that still counts as no visible difference")
       ->check(CLI::Range(1.0, 5.0))
       ->capture_default_str();
+  stats->add_option("--conditions", args->conditions,
+                    "conditions.csv of study run: each condition's predicted JOD, printed beside its votes and scores");
   stats->add_flag("--json", args->json, "Print the report as JSON");
   stats->callback([args, &exit_code] {
     // CLI::Range lets NaN through (every comparison with it is false).
@@ -110,9 +138,18 @@ void add_study(CLI::App& app, int& exit_code) {
       exit_code = cli::report(trials.error());
       return;
     }
+    Predictions jod;
+    if (!args->conditions.empty()) {
+      auto j = read_predicted_jod(args->conditions);
+      if (!j) {
+        exit_code = cli::report(j.error());
+        return;
+      }
+      jod = std::move(*j);
+    }
     const StudyStats st = compute_study_stats(*trials, args->threshold);
-    if (args->json) cli::print_json(stats_json(args->file, st));
-    else print_text(args->file, st);
+    if (args->json) cli::print_json(stats_json(args->file, st, jod));
+    else print_text(args->file, st, jod);
   });
   add_study_run(*study, exit_code);
 }

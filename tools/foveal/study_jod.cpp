@@ -63,7 +63,8 @@ nlohmann::json predicted_jod_of(const StudyJod& j, const std::string& label) {
   double sum = 0;
   int n = 0;
   for (const ConditionJod& r : j.rows)
-    if (r.condition.label() == label || two_afc_label(r.condition) == label) sum += r.jod.combined, ++n;
+    if (r.condition.label() == label || (r.condition.uniform() && two_afc_label(r.condition) == label))
+      sum += r.jod.combined, ++n;
   return n ? nlohmann::json(sum / n) : nlohmann::json(nullptr);
 }
 

@@ -33,8 +33,9 @@ Result<StudyJod> predict_study_jod(StudyFrames& frames, const StudyOptions& o, c
 std::string study_conditions_csv(const StudyJod& j);
 
 /// The mean over scenes of the both-eye predicted JOD of the condition labelled `label`,
-/// either as StudyCondition::label() (score trials) or as `study stats` labels a 2AFC
-/// side ("rmfr sigma=2.6 f=0.3", "full sigma=1 f="); null when no condition has it.
+/// either as StudyCondition::label() (score trials) or, for a uniform condition, as
+/// `study stats` labels a 2AFC side ("rmfr sigma=2.6 f=0.3", "full sigma=1 f="); null
+/// when no condition has it.
 nlohmann::json predicted_jod_of(const StudyJod& j, const std::string& label);
 
 }  // namespace foveal::cmd
