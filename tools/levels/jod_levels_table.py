@@ -1,12 +1,14 @@
 #!/usr/bin/python3
 """Builds a display model's JOD levels table (docs/methods.md, "Levels chosen by
-perception") from `foveal bench --gaze` runs made for it: one run per RMFR f (--fx F --fy F),
-each over the same σ grid with --efr-ratio 1 (both eyes at σ), methods rmfr and fixed.
-Each cell is the mean over the runs' scored frames and both eyes of each eye's JOD at its
-true gaze (gaze_frames.csv: jod_left, jod_right); rmfr rows with gaze "filtered" (tracked,
-as foveald renders) fill the table, fixed rows go to reference.fixed_jod for comparison.
+perception") from `foveal bench --gaze` runs made for it (with JOD, methods rmfr and
+fixed, f_x = f_y). Each eye is scored alone at its true gaze, so each counts at its own
+level: the dominant (right) eye at σ_d, the other at σ_d · the run's --efr-ratio. A cell
+(f, σ) is the mean of every such eye JOD at that f and σ over the runs' scored frames;
+rmfr rows with gaze "filtered" (tracked, as foveald renders) fill the table, fixed rows
+go to reference.fixed_jod beside it. Every f must have every σ of the table.
 
-Usage: jod_levels_table.py OUT.levels.json RUN_DIR... [--note TEXT]
+Usage: jod_levels_table.py OUT.levels.json RUN_DIR... [--scenes A,B] [--note TEXT]
+  --scenes: only these scenes' rows (the reference set); default all.
 """
 import csv
 import json
@@ -32,19 +34,21 @@ def read_run(d):
         fail(f"{d}: {e}")
     if not rows or "jod_left" not in rows[0]:
         fail(f"{d}: gaze_frames.csv has no JOD columns (run without --no-jod)")
-    if abs(info.get("efr_ratio", 0) - 1) > 1e-9:
-        fail(f"{d}: made with --efr-ratio {info.get('efr_ratio')}; the table needs both eyes at one level (--efr-ratio 1)")
     if abs(info["fx"] - info["fy"]) > 1e-9:
         fail(f"{d}: f_x {info['fx']} and f_y {info['fy']} differ; the table has one f")
     return info, rows
 
 
 def main(argv):
-    note = ""
-    if "--note" in argv:
-        i = argv.index("--note")
-        note = argv[i + 1]
-        argv = argv[:i] + argv[i + 2:]
+    opts = {"--note": "", "--scenes": ""}
+    for k in opts:
+        if k in argv:
+            i = argv.index(k)
+            if i + 1 >= len(argv):
+                fail(f"{k} needs a value")
+            opts[k] = argv[i + 1]
+            argv = argv[:i] + argv[i + 2:]
+    note, only = opts["--note"], set(filter(None, opts["--scenes"].split(",")))
     if len(argv) < 2:
         fail(__doc__.strip().splitlines()[-1])
     out, runs = argv[0], argv[1:]
@@ -55,36 +59,36 @@ def main(argv):
         if display and info["display"] != display:
             fail(f"{d}: display {info['display']}, the others {display}")
         display = info["display"]
-        f = round(info["fx"], 6)
+        f, ratio = round(info["fx"], 6), info["efr_ratio"]
         for r in rows:
             method = {("rmfr", "filtered"): "rmfr", ("fixed", "none"): "fixed"}.get((r["method"], r["gaze"]))
-            if not method:
+            if not method or (only and r["scene"] not in only):
                 continue
-            key = (method, f, round(float(r["sigma_d"]), 6))
-            for eye in ("jod_left", "jod_right"):
+            sigma = float(r["sigma_d"])
+            for eye, level in (("jod_right", sigma), ("jod_left", sigma * ratio)):  # the bench's dominant eye is the right
                 v = float(r[eye])
                 if math.isfinite(v):
-                    cells.setdefault(key, []).append(v)
+                    cells.setdefault((method, f, round(level, 6)), []).append(v)
             scenes.add(r["scene"]), logs.add(r["log"]), frames.add((r["scene"], r["log"], r["frame"]))
     fs = sorted({k[1] for k in cells if k[0] == "rmfr"})
-    sigmas = sorted({k[2] for k in cells if k[0] == "rmfr"})
-    if not fs or not sigmas:
+    if not fs:
         fail("no tracked rmfr rows in the runs")
+    own = {f: sorted(k[2] for k in cells if k[0] == "rmfr" and k[1] == f) for f in fs}
+    # One σ grid for every f: every level some f was measured at, up to the smallest of
+    # the f's largest levels; each f's row is linear in σ between its own levels (and
+    # JOD 10 at σ 1, full rendering), so no value is extrapolated.
+    top = min(v[-1] for v in own.values())
+    sigmas = sorted({s for v in own.values() for s in v if s <= top})
+
+    def curve(method, f, sigma):
+        pts = [(1.0, 10.0)] + [(s, sum(v) / len(v)) for (m, ff, s), v in sorted(cells.items()) if m == method and ff == f]
+        for (s0, j0), (s1, j1) in zip(pts, pts[1:]):
+            if s0 <= sigma <= s1:
+                return j0 + (j1 - j0) * (sigma - s0) / (s1 - s0)
+        return None
 
     def grid(method):
-        table = []
-        for f in fs:
-            row = []
-            for s in sigmas:
-                v = cells.get((method, f, s))
-                if not v:
-                    if method == "rmfr":
-                        fail(f"no rmfr rows at f {f}, sigma {s}: every run needs the same --sigmas")
-                    row.append(None)
-                    continue
-                row.append(round(min(10.0, sum(v) / len(v)), 4))
-            table.append(row)
-        return table
+        return [[None if (v := curve(method, f, s)) is None else round(min(10.0, v), 4) for s in sigmas] for f in fs]
 
     doc = {
         "format": "foveal-jod-levels v1",
@@ -96,6 +100,7 @@ def main(argv):
             "statistic": "mean over the scored frames and both eyes of each eye's JOD at its true gaze (FovVideoVDP, foveal::perception)",
             "method": "RMFR, fovea tracked as foveald renders it (FilterConfig defaults, one frame of latency)",
             "scenes": sorted(scenes), "logs": sorted(logs), "frames": len(frames), "runs": [os.path.basename(os.path.normpath(d)) for d in runs],
+            "measured_sigmas": {str(f): v for f, v in own.items()},
             "fixed_jod": grid("fixed"),
             "note": note,
         },
