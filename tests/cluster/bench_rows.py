@@ -57,7 +57,7 @@ def differences(expected_dir, actual_dir):
         return out + [f"{name}: missing in {actual_dir}"]
     with open(os.path.join(actual_dir, name)) as f:
         jb = json.load(f)
-    for key in ("rows", "auto_f", "size", "frames", "fovea", "display", "ppd", "logs"):
+    for key in ("rows", "auto_f", "size", "frames", "fovea", "display", "ppd", "logs", "video", "video_frames"):
         if strip_timing(ja.get(key)) != strip_timing(jb.get(key)):
             out.append(f"{name} {key}: {strip_timing(ja.get(key))} expected, {strip_timing(jb.get(key))} found")
     return out

@@ -83,7 +83,7 @@ def main():
             r = run(a.foveal, ["synth", "--seed", str(seed), "--duration", "4", "--out", d(name + ".csv")])
             check(r.returncode == 0, f"synth {name}.csv " + r.stderr.strip())
         gaze = ["--gaze", d("g.csv"), "--gaze", d("h.csv"), "--scene", "pattern:noise", "--methods", "rmfr,kfr",
-                "--sigmas", "2,3", "--size", "64x36", "--gaze-frames", "3", "--frames", "1", "--warmup", "0"]
+                "--sigmas", "2,3", "--size", "64x36", "--gaze-frames", "3", "--gaze-video", "3", "--frames", "1", "--warmup", "0"]
         r = run(a.foveal, ["bench"] + gaze + ["--no-png", "--out", d("gaze-single")])
         check(r.returncode == 0, "the single --gaze run " + r.stderr.strip())
         for k in range(1, 4):
@@ -97,6 +97,9 @@ def main():
         check(bench_rows.table(d("gaze-merged", "gaze_frames.csv"))[0][-4:] == ["jod_left", "jod_right", "jod", "true_ecc_deg"] and
               bench_rows.table(d("gaze-merged", "gaze.csv"))[0][-3:] == ["jod_mean", "jod_p5", "jod_min"],
               "the merged gaze_frames.csv and gaze.csv end with their JOD columns")
+        video = bench_rows.table(d("gaze-merged", "gaze_video.csv"))
+        check(len(video) == 1 + 2 * 2 * 3 and video[0][-3:] == ["jod_left", "jod_right", "jod"],
+              f"the merged gaze_video.csv has a row per log, level and point (oracle, rmfr, kfr): {len(video) - 1}")
 
         # Bad input: exit 2, a message naming it, no output.
         r = run(a.foveal, ["bench"] + SWEEP[:2] + ["--sigmas", "3", "--size", "64x36", "--frames", "1", "--shard", "2/4",

@@ -8,10 +8,12 @@
 #include <map>
 #include <random>
 
+#include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
 #include "csv_rows.hpp"
 #include "foveal/bench/bench_jod.hpp"
+#include "foveal/core/gaze_log.hpp"
 #include "test_support.hpp"
 
 using namespace foveal;
@@ -300,4 +302,101 @@ TEST(BenchJod, ExperimentsAppendJodColumnsScoredAtTheirFoveaAndNoJodLeavesThemOu
   ASSERT_EQ(uniform.size(), 22u);
   EXPECT_GT(uniform["diagonal 1"], uniform["diagonal 0"] + 0.02);
   EXPECT_GT(uniform["vertical 1"], uniform["vertical 0"] + 0.02);
+}
+
+namespace {
+
+// The head's mean speed over `n` frames of the stream from `start_s` as the timeline sees
+// it, computed here from the log itself: each frame takes the pose of the latest sample
+// no later than its start.
+double log_head_speed(const std::vector<GazeSample>& log, double start_s, int n, double fps) {
+  const TimeNs first = log.front().t_ns + static_cast<TimeNs>(std::llround(start_s * 1e9));
+  std::vector<glm::dquat> q;
+  for (int k = 0; k < n; ++k) {
+    const TimeNs t = first + static_cast<TimeNs>(std::llround(k * 1e9 / fps));
+    const GazeSample* latest = nullptr;
+    for (const GazeSample& s : log)
+      if (s.t_ns <= t && s.head.valid) latest = &s;
+    q.push_back(glm::dquat(latest->head.pose.orientation));
+  }
+  double deg = 0;
+  for (std::size_t k = 1; k < q.size(); ++k) deg += glm::degrees(glm::angle(glm::conjugate(q[k - 1]) * q[k]));
+  return deg / ((n - 1) / fps);
+}
+
+}  // namespace
+
+TEST(BenchJod, GazeVideoScoresEachLogMethodAndLevelAsOneVideoAlongTheHead) {
+  test::TempDir d;
+  const std::string log = test::source_path("data/gaze/vive_pro_eye_TESTNA01.csv");  // a v2 log: the head turns at 3.6-3.7 s
+  const std::string common = test::bin("foveal") + " bench --gaze " + log + " --gaze-start 3.6 --scene " +
+                             test::source_path("data/scenes/WaterBottle/WaterBottle.gltf") +
+                             " --methods uniform,rmfr --sigmas 1 --size 96x54 --gaze-frames 1 --frames 1 --warmup 0 --no-png";
+  auto r = test::run(common + " --gaze-video 8 --out " + d.path("rec"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = test::run(common + " --gaze-video 8 --head static --out " + d.path("static"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string csv = test::read_file(d.path("rec/gaze_video.csv"));
+  EXPECT_EQ(first_line(csv), "scene,log,display,method,gaze,sigma_d,sigma_nd,frames,blink_frames,fps,head_speed_deg_s,jod_left,jod_right,jod");
+  const auto rows = test::read_csv_rows(csv), still = test::read_csv_rows(test::read_file(d.path("static/gaze_video.csv")));
+  ASSERT_EQ(rows.size(), 3u);  // the oracle, uniform, rmfr at the one level
+  ASSERT_EQ(still.size(), 3u);
+  auto samples = read_gaze_log(log);
+  ASSERT_TRUE(samples) << samples.error().message;
+  const double speed = log_head_speed(*samples, 3.6, 8, 90);
+  EXPECT_GT(speed, 5);  // deg/s: a real turn
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    SCOPED_TRACE(rows[i].at("method") + " " + rows[i].at("gaze"));
+    EXPECT_EQ(cell(rows[i], "frames") + cell(rows[i], "blink_frames"), 8);
+    EXPECT_EQ(rows[i].at("fps"), "90");
+    EXPECT_NEAR(cell(rows[i], "head_speed_deg_s"), speed, 1e-3 * speed);
+    EXPECT_EQ(cell(still[i], "head_speed_deg_s"), 0);
+    for (const char* k : {"jod_left", "jod_right", "jod"}) {
+      EXPECT_GT(cell(rows[i], k), 0) << k;
+      EXPECT_LE(cell(rows[i], k), 10) << k;
+    }
+  }
+  // Uniform at σ_d 1: the dominant (right) eye renders full, so each of its frames equals
+  // that frame's reference, rendered on the same head pose: a video JOD of 10 exactly.
+  const auto& uniform = rows[1];
+  ASSERT_EQ(uniform.at("method"), "uniform");
+  EXPECT_EQ(cell(uniform, "jod_right"), 10);
+  EXPECT_LT(cell(uniform, "jod_left"), 10);  // σ_nd 1.5
+  const auto j = nlohmann::json::parse(test::read_file(d.path("rec/gaze.json")));
+  EXPECT_EQ(j["video_frames"], 8);
+  ASSERT_EQ(j["video"].size(), 3u);
+  EXPECT_NEAR(j["video"][1]["jod"].get<double>(), cell(uniform, "jod"), 1e-4);
+  EXPECT_EQ(j["logs"][0]["video_frames"], 8);
+
+  // Without --gaze-video, no table; --gaze-video needs JOD and --gaze.
+  r = test::run(common + " --out " + d.path("none"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(d.path("none/gaze_video.csv")));
+  r = test::run(common + " --gaze-video 4 --no-jod --out " + d.path("bad"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--gaze-video"), std::string::npos) << r.err;
+  r = test::run(test::bin("foveal") + " bench --scene pattern:noise --gaze-video 4 --out " + d.path("bad"));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_FALSE(std::filesystem::exists(d.path("bad")));
+}
+
+TEST(BenchJod, GazeVideoLeavesOutTheFramesInBlinksAsTheStillsDo) {
+  test::TempDir d;
+  ASSERT_EQ(test::run(test::bin("foveal") + " synth --seed 5 --duration 4 --blink-rate 2 --out " + d.path("g.csv")).exit_code, 0);
+  // At 30 Hz the stream from 1 s has about 90 frames: --gaze-frames 1000 scores every one
+  // of them as stills, --gaze-video 1000 all of them as one video.
+  auto r = test::run(test::bin("foveal") + " bench --gaze " + d.path("g.csv") + " --gaze-fps 30 --scene pattern:noise --methods uniform"
+                     " --sigmas 2 --size 64x36 --gaze-frames 1000 --gaze-video 1000 --frames 1 --warmup 0 --no-png --out " + d.path("b"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto video = test::read_csv_rows(test::read_file(d.path("b/gaze_video.csv")));
+  const auto stills = test::read_csv_rows(test::read_file(d.path("b/gaze.csv")));
+  ASSERT_EQ(video.size(), 2u);
+  ASSERT_EQ(stills.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_GT(cell(video[i], "blink_frames"), 0);
+    EXPECT_EQ(video[i].at("blink_frames"), stills[i].at("blink_frames"));
+    EXPECT_EQ(video[i].at("frames"), stills[i].at("frames"));
+    EXPECT_EQ(video[i].at("fps"), "30");
+    EXPECT_EQ(cell(video[i], "head_speed_deg_s"), 0);  // a log without head poses
+  }
 }

@@ -37,6 +37,9 @@ void add_gaze_options(CLI::App& sub, bench::GazeBenchOptions& g) {
       ->capture_default_str()->check(CLI::IsMember({"even", "spread"}))->needs(gaze);
   sub.add_option("--gaze-spread-max", g.spread_max_deg, "Largest eccentricity of --gaze-pick spread (degrees)")
       ->capture_default_str()->check(CLI::Range(0.5, 90.0))->needs(gaze);
+  sub.add_option("--gaze-video", g.video_frames, "Also score, per log, method and level, this many consecutive frames from --gaze-start "
+                                                "as one video along the recorded head motion: gaze_video.csv (0: no video)")
+      ->capture_default_str()->check(CLI::Range(0, 100000))->needs(gaze);
   sub.add_option("--efr-ratio", g.efr_ratio, "Non-dominant (left) eye's level over the dominant's")
       ->capture_default_str()->check(CLI::Range(1.0, 4.0))->needs(gaze);
   sub.add_option("--patch-deg", g.patch_deg, "Side of the fovea patch around the true gaze (degrees)")

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -15,6 +16,7 @@
 #include "foveal/bench/bench_outputs.hpp"
 #include "foveal/bench/bench_sweep.hpp"
 #include "foveal/bench/gaze_timeline.hpp"
+#include "foveal/bench/gaze_video.hpp"
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/data_paths.hpp"
 #include "foveal/core/gaze_log.hpp"
@@ -62,6 +64,7 @@ struct LogInput {
   std::string path, name;
   bool head_recorded = false;
   GazeTimeline timeline;
+  GazeTimeline video;  ///< --gaze-video's consecutive frames (none without)
 };
 
 /// One method × level's frames on one scene and log.
@@ -196,6 +199,8 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   if (!model) return fail(model.error());
   std::pair<int, int> size = s.size;
   if (!g.size_given) size = {model->output_width(), model->output_height()};
+  if (g.video_frames < 0) return fail(bad_input("--gaze-video must be >= 0 (0: no video)"));
+  if (g.video_frames > 0 && !s.jod) return fail(bad_input("--gaze-video scores the sequences with JOD: drop --no-jod"));
 
   GazeTimelineOptions to;
   to.fps = g.fps, to.latency_ms = g.latency_ms, to.start_s = g.start_s, to.frames = g.frames;
@@ -214,6 +219,15 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
     auto tl = build_gaze_timeline(*samples, *model, FilterConfig{}, to);
     if (!tl) return fail(Error{tl.error().kind, path + ": " + tl.error().message});
     in.timeline = std::move(*tl);
+    if (g.video_frames > 0) {
+      // The same stream and latency model, its first N frames from --gaze-start in a row.
+      GazeTimelineOptions vo = to;
+      vo.pick = GazeTimelineOptions::Pick::consecutive;
+      vo.frames = g.video_frames;
+      auto v = build_gaze_timeline(*samples, *model, FilterConfig{}, vo);
+      if (!v) return fail(Error{v.error().kind, path + ": --gaze-video: " + v.error().message});
+      in.video = std::move(*v);
+    }
     logs.push_back(std::move(in));
   }
 
@@ -245,6 +259,8 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   for (const LogInput& l : logs) {
     std::uint64_t renders = l.head_recorded ? 0 : 1;  // the full reference: per frame, or once with a static head
     for (const GazeFrame& f : l.timeline.frames) renders += f.blink ? 0 : points.size() + (l.head_recorded ? 1 : 0);
+    if (!l.video.frames.empty()) renders += l.head_recorded ? 0 : 1;
+    for (const GazeFrame& f : l.video.frames) renders += f.blink ? 0 : points.size() + (l.head_recorded ? 1 : 0);
     total += s.scenes.size() * renders;
   }
   cli::Progress progress("bench --gaze", total / static_cast<std::uint64_t>(shard->n), !s.json);
@@ -261,6 +277,12 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
              "scene,log,frame,t_render_s,t_display_s,t_sample_s,true_l_x,true_l_y,true_r_x,true_r_y,method,gaze,sigma_d,fovea_l_x,"
              "fovea_l_y,fovea_r_x,fovea_r_y,error_l_deg,error_r_deg,fpsnr_db,ssim,psnr_db,patch_psnr_db,exceeds" +
                  std::string(jod ? ",jod_left,jod_right,jod" : "") + ",true_ecc_deg");
+  std::vector<std::string> video_columns;  // gaze_video.csv's, in order
+  if (g.video_frames > 0) {
+    rows.table("gaze_video.csv", kGazeVideoColumns);
+    std::istringstream in(kGazeVideoColumns);
+    for (std::string c; std::getline(in, c, ',');) video_columns.push_back(c);
+  }
   const std::size_t per_level = 1 + s.methods.size();
   for (const std::string& spec : s.scenes) {
     // owned[log][level]: the point, where this shard runs it.
@@ -359,6 +381,36 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
         rows.add_line("gaze.csv", chomp(csv_line(row, columns)), *mine[k / per_level]);
         rows.add_item("rows", std::move(row), *mine[k / per_level]);
       }
+      if (log.video.frames.empty()) continue;
+      // --gaze-video: the sequence's references once per scene and log (kept whole, W·H·4
+      // bytes a frame), then each point's frames as one video against them.
+      const std::vector<GazeFrame>& vf = log.video.frames;
+      std::vector<image::Image> vrefs;
+      std::vector<std::size_t> ref_of(vf.size(), 0);
+      for (std::size_t k = 0; k < vf.size(); ++k) {
+        if (vf[k].blink) continue;
+        if (vrefs.empty() || vf[k].head.valid) {
+          auto r = bench.render(*scene, bench.params(Method::full, 1.0, vf[k]));
+          if (!r) return fail(r.error());
+          vrefs.push_back(std::move(*r));
+        }
+        ref_of[k] = vrefs.size() - 1;
+      }
+      const double head_speed = mean_head_speed_deg_s(vf, g.fps);
+      auto reference = [&](std::size_t k) -> Result<image::Image> { return vrefs.at(ref_of[k]); };
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        if (!mine[k / per_level]) continue;
+        const Point& p = points[k];
+        auto test = [&](std::size_t i) { return bench.render(*scene, bench.params(p.method, p.sigma, vf[i], p.oracle)); };
+        auto v = score_gaze_video(*jod, g.fps, vf, reference, test);
+        if (!v) return fail(Error{v.error().kind, log.path + ": " + v.error().message});
+        nlohmann::json row = {{"scene", scene_name}, {"log", log.name}, {"display", model->name}, {"method", render::method_name(p.method)},
+                              {"gaze", p.gaze()}, {"sigma_d", p.sigma}, {"sigma_nd", p.sigma * g.efr_ratio}, {"frames", v->frames},
+                              {"blink_frames", v->blink_frames}, {"fps", g.fps}, {"head_speed_deg_s", head_speed},
+                              {"jod_left", v->jod.left}, {"jod_right", v->jod.right}, {"jod", v->jod.combined}};
+        rows.add_line("gaze_video.csv", chomp(csv_line(row, video_columns)), *mine[k / per_level]);
+        rows.add_item("video", std::move(row), *mine[k / per_level]);
+      }
     }
   }
   progress.finish();
@@ -370,13 +422,13 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   for (const LogInput& l : logs)
     log_info.push_back({{"path", l.path}, {"name", l.name}, {"head", l.head_recorded ? "recorded" : "static"},
                         {"stream_frames", l.timeline.stream_frames}, {"stride", l.timeline.stride}, {"pick", g.pick},
-                        {"scored_frames", l.timeline.frames.size()}});
+                        {"scored_frames", l.timeline.frames.size()}, {"video_frames", l.video.frames.size()}});
   nlohmann::json summary = {
       {"renderer", comp->renderer()}, {"display", model->name}, {"size", {co.width, co.height}},
       {"ppd", bench.ppd()}, {"fps", g.fps}, {"latency_ms", logs.front().timeline.latency_ms},
       {"start_s", g.start_s}, {"efr_ratio", g.efr_ratio}, {"dominant", "right"}, {"fx", s.fx}, {"fy", s.fy},
       {"patch_deg", g.patch_deg}, {"patch_margin_db", g.patch_margin_db}, {"filter", "FilterConfig defaults (foveald without a profile)"},
-      {"timed_frames", s.timed_frames}, {"logs", log_info},
+      {"timed_frames", s.timed_frames}, {"logs", log_info}, {"video_frames", g.video_frames},
       {"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()},
       {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
   if (jod) summary["jod"] = jod_settings(*jod);

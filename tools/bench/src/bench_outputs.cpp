@@ -97,6 +97,8 @@ int write_outputs(const std::string& dir, const SweepRows& rows, nlohmann::json 
     summary["auto_f"] = std::move(*autos);
     if (nlohmann::json flicker = rows.list("flicker"); !flicker.empty()) summary["flicker"] = std::move(flicker);  // bench_flicker.cpp
   }
+  if (kind == "gaze")
+    if (nlohmann::json video = rows.list("video"); !video.empty()) summary["video"] = std::move(video);  // --gaze-video: bench_gaze.cpp
   // All or nothing: tables, JSON and charts are staged, then moved into `dir` together.
   auto out = cli::StagedOutputs::create(dir);
   if (!out) return fail(out.error());

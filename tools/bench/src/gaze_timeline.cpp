@@ -75,6 +75,9 @@ Result<GazeTimeline> build_gaze_timeline(const std::vector<GazeSample>& samples,
   std::vector<std::size_t> picked;
   if (o.pick == GazeTimelineOptions::Pick::even) {
     for (std::size_t j = 0; j < static_cast<std::size_t>(o.frames) && j * tl.stride < tl.stream_frames; ++j) picked.push_back(j * tl.stride);
+  } else if (o.pick == GazeTimelineOptions::Pick::consecutive) {
+    tl.stride = 1;
+    for (std::size_t k = 0; k < static_cast<std::size_t>(o.frames) && k < tl.stream_frames; ++k) picked.push_back(k);
   } else {
     if (!(o.spread_max_deg > 0) || !std::isfinite(o.spread_max_deg)) return bad_input("--gaze-spread-max must be a number > 0");
     const double width = o.spread_max_deg / o.frames;

@@ -18,6 +18,7 @@ struct GazeBenchOptions {
   std::string display;            ///< display-model file or name under data/display; empty: Vive Pro Eye
   double fps = 90, latency_ms = -1, start_s = 1.0;
   int frames = 24;
+  int video_frames = 0;           ///< --gaze-video N: N consecutive frames scored as a video per log, method and level; 0: none
   std::string pick = "even";      ///< even | spread (gaze_timeline.hpp)
   double spread_max_deg = 30;
   double efr_ratio = 1.5;         ///< σ_nd / σ_d (dominant right eye)

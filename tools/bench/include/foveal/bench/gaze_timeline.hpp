@@ -22,10 +22,11 @@ struct GazeTimelineOptions {
   double latency_ms = -1;   ///< frame start -> display; < 0: one frame period
   double start_s = 1.0;     ///< first frame this long after the first sample (the filter settles)
   int frames = 24;          ///< frames scored (at most)
-  /// Which frames: even (every stride-th of the stream) or spread (true gazes spread
+  /// Which frames: even (every stride-th of the stream), spread (true gazes spread
   /// evenly in eccentricity from the optical centre up to spread_max_deg: one frame per
-  /// equal-width bin, the one nearest the bin's middle; an empty bin gives no frame).
-  enum class Pick { even, spread } pick = Pick::even;
+  /// equal-width bin, the one nearest the bin's middle; an empty bin gives no frame) or
+  /// consecutive (the stream's first `frames` frames, for a video: --gaze-video).
+  enum class Pick { even, spread, consecutive } pick = Pick::even;
   double spread_max_deg = 30;
   bool head_recorded = false;
 };
