@@ -128,16 +128,24 @@ def main():
               f"jod_cost.png: each method's JOD against cost, levels in order ({lines})")
         check("JOD" in ax.get_ylabel(), f"jod_cost.png's y axis is JOD ({ax.get_ylabel()})")
         figs = caught_figures(gaze_charts)
+        # A --gaze-video run's sequences: the video JOD per series, averaged over the logs.
+        write_csv(d("gaze-jod", "gaze_video.csv"), ["scene", "log", "display", "method", "gaze", "sigma_d", "sigma_nd", "frames",
+                                                     "blink_frames", "fps", "head_speed_deg_s", "jod_left", "jod_right", "jod"],
+                  [["sc", log, "vive", m, g, sg, sg * 1.5, 6, 0, 90, 12, j - 0.8, j - 0.6, j - 0.7] for log, m, g, sg, c, j in GAZE_ROWS])
         for name in ("jod", "old"):
-            with open(d("gaze-" + name, "gaze.csv"), newline="") as f:
-                gaze_charts.chart(gaze_charts.averaged(list(csv.DictReader(f))), {}, name + ".png")
+            sys.argv = ["gaze_charts.py", d("gaze-" + name)]
+            gaze_charts.main()
+            figs[name + ".png"] = figs.pop("gaze.png")
         axes = figs["jod.png"].axes
         check(len(axes) == 3 and len(figs["old.png"].axes) == 2, f"gaze chart: 3 panels with JOD, 2 without ({len(axes)})")
+        check(not any("(video)" in line.get_label() for ax in figs["old.png"].axes for line in ax.get_lines()),
+              "no video line without gaze_video.csv")
         lines = line_data(axes[2]) if len(axes) == 3 else {}
         mean = lambda *v: [sum(v) / len(v)]  # noqa: E731
         want = {"fixed foveation (no tracking) (mean)": ([0.11, 0.25], mean(8.6, 8.4) + mean(9.3, 9.3)),
                 "RMFR+EFR, eye-tracked (mean)": ([0.11, 0.25], mean(9.0, 8.8) + mean(9.6, 9.4)),
-                "RMFR+EFR, perfect tracking (fovea on the true gaze) (5th pct.)": ([0.11, 0.25], mean(8.9, 8.7) + mean(9.5, 9.3))}
+                "RMFR+EFR, perfect tracking (fovea on the true gaze) (5th pct.)": ([0.11, 0.25], mean(8.9, 8.7) + mean(9.5, 9.3)),
+                "uniform resolution (no tracking) (video)": ([0.11, 0.25], mean(8.1 - 0.7, 8.3 - 0.7) + mean(9.0 - 0.7, 9.2 - 0.7))}
         for label, (xs, ys) in want.items():
             got = lines.get(label)
             ok = got is not None and got[0] == xs and all(abs(a - b) < 1e-9 for a, b in zip(got[1], ys)) and len(got[1]) == len(ys)

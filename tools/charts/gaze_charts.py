@@ -4,7 +4,7 @@
 Reads DIR/gaze.csv (and gaze.json for the settings); writes DIR/gaze.png (quality against
 shading cost per scene: FPSNR mean and 5th percentile over frames, the share of frames
 whose fovea patch falls below the bound, and, when gaze.csv has them, JOD mean and 5th
-percentile) and DIR/gaze_table.md (per scene and level, each method's FPSNR (and JOD) and
+percentile, and with gaze_video.csv the sequences' video JOD) and DIR/gaze_table.md (per scene and level, each method's FPSNR (and JOD) and
 what eye tracking buys over fixed foveation and uniform resolution at the same cost). Rows
 of several logs are averaged (mean over logs of the per-log figures). A run with
 --no-jod, or from before JOD, has no JOD row in the chart and no JOD in the table.
@@ -69,7 +69,15 @@ def points(avg, scene, method):
     return sorted(((s, v) for (sc, m, s), v in avg.items() if sc == scene and m == method), key=lambda p: -p[0])
 
 
-def chart(avg, settings, out):
+def video_averaged(rows):
+    """gaze_video.csv (--gaze-video): (scene, series, sigma_d) -> mean video JOD over the logs."""
+    groups = {}
+    for r in rows:
+        groups.setdefault((r["scene"], series(r), num(r["sigma_d"])), []).append(num(r["jod"]))
+    return {k: sum(v) / len(v) for k, v in groups.items()}
+
+
+def chart(avg, settings, out, video=None):
     scenes = sorted({k[0] for k in avg})
     jod = any("jod_mean" in v for v in avg.values())
     nrows = 3 if jod else 2
@@ -89,6 +97,10 @@ def chart(avg, settings, out):
                 axes[2][col].plot(xs, [v["jod_mean"] for _, v in pts], "o-", color=color, label=label + " (mean)", markersize=4)
                 axes[2][col].plot(xs, [v["jod_p5"] for _, v in pts], "v--", color=color, alpha=0.6, markersize=3,
                                   label=label + " (5th pct.)")
+                seq = [(v["cost"], video[(scene, method, s)]) for s, v in pts if video and (scene, method, s) in video]
+                if seq:
+                    axes[2][col].plot([c for c, _ in seq], [j for _, j in seq], "s:", color=color, markersize=4,
+                                      label=label + " (video)")
         if jod:
             panel = axes[2][col]
             panel.axhline(9.5, color="black", linestyle=":", linewidth=1, label="JOD 9.5")
@@ -157,7 +169,11 @@ def main():
     avg = averaged(rows)
     if not avg:
         sys.exit(f"{d}/gaze.csv: no rows")
-    chart(avg, settings, os.path.join(d, "gaze.png"))
+    video = None
+    if os.path.exists(os.path.join(d, "gaze_video.csv")):
+        with open(os.path.join(d, "gaze_video.csv"), newline="") as f:
+            video = video_averaged(list(csv.DictReader(f)))
+    chart(avg, settings, os.path.join(d, "gaze.png"), video)
     table(avg, os.path.join(d, "gaze_table.md"))
 
 
