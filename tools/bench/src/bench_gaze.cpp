@@ -213,7 +213,7 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
     const bool has_pose = std::any_of(samples->begin(), samples->end(), [](const GazeSample& x) { return x.head.valid; });
     if (g.head == "recorded" && !has_pose)
       return fail(bad_input("--head recorded: " + path + " carries no head pose (a native log v2 with head columns has one)"));
-    LogInput in{path, std::filesystem::path(path).stem().string(), g.head.empty() ? has_pose : g.head == "recorded", {}};
+    LogInput in{path, std::filesystem::path(path).stem().string(), g.head.empty() ? has_pose : g.head == "recorded", {}, {}};
     to.head_recorded = in.head_recorded;
     // The filter foveald runs without a profile (docs/filtering.md).
     auto tl = build_gaze_timeline(*samples, *model, FilterConfig{}, to);
