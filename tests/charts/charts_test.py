@@ -127,6 +127,19 @@ def main():
         check(lines.get("rmfr") == ([0.15, 0.51], [9.1, 9.7]) and lines.get("uniform") == ([0.15, 0.51], [8.8, 9.6]),
               f"jod_cost.png: each method's JOD against cost, levels in order ({lines})")
         check("JOD" in ax.get_ylabel(), f"jod_cost.png's y axis is JOD ({ax.get_ylabel()})")
+        # rotation.csv and stability.csv with JOD: a JOD panel beside FPSNR, from the JOD column.
+        write_csv(d("bench-jod", "rotation.csv"), ["angle_deg", "method", "sigma", "fpsnr_db", "psnr_db", "ssim", "jod_left", "jod_right", "jod"],
+                  [[a, "rmfr", 2, 30 + a / 10, 30, 0.9, 9, 9, 9 - a / 100] for a in (0, 90, 180)])
+        write_csv(d("bench-jod", "stability.csv"), ["scene", "path", "t", "fovea_x", "fovea_y", "method", "sigma", "patch_psnr_db", "fpsnr_db",
+                                                     "jod_left", "jod_right", "jod"],
+                  [["p", p, t, 0.5, 0.5, "uniform", 2, 30, 20 + t, 8, 8, 8 + t / 2] for p in ("diagonal", "vertical") for t in (0, 0.5, 1)])
+        bench_charts.main()
+        rot = figs["rotation.png"].axes
+        check(len(rot) == 2 and line_data(rot[1]).get("rmfr") == ([0.0, 90.0, 180.0], [9.0, 8.1, 7.2]),
+              f"rotation.png: a JOD panel from rotation.csv's jod ({[line_data(a) for a in rot]})")
+        stab = figs["stability.png"].axes
+        check(len(stab) == 6 and line_data(stab[4]).get("uniform") == ([0.0, 0.5, 1.0], [8.0, 8.25, 8.5]),
+              f"stability.png: a JOD row from stability.csv's jod ({len(stab)} panels)")
         figs = caught_figures(gaze_charts)
         # A --gaze-video run's sequences: the video JOD per series, averaged over the logs.
         write_csv(d("gaze-jod", "gaze_video.csv"), ["scene", "log", "display", "method", "gaze", "sigma_d", "sigma_nd", "frames",

@@ -3,7 +3,8 @@
 
 Reads DIR/bench.csv (and fgrid.csv, rotation.csv, bench.json when present); writes
 pareto.png, quality_cost.png, jod_cost.png (when bench.csv has JOD columns), fgrid.png,
-rotation.png and table.md into DIR.
+rotation.png and stability.png (each with a JOD panel when its table has JOD) and
+table.md into DIR.
 """
 import csv
 import json
@@ -109,22 +110,27 @@ def fgrid(rows, autos, out):
 
 
 def rotation(rows, out):
-    fig, ax = plt.subplots(figsize=(7, 4.3))
-    for method in COLORS:
-        m = sorted((r for r in rows if r["method"] == method), key=lambda r: num(r["angle_deg"]))
-        if m:
-            ax.plot([num(r["angle_deg"]) for r in m], [num(r["fpsnr_db"]) for r in m], "o-", color=COLORS[method], label=method, markersize=4)
-    ax.set_title(f"Rotated stripes (σ = {rows[0]['sigma']}): FPSNR per method")
-    ax.set_xlabel("pattern rotation (degrees)")
-    ax.set_ylabel("FPSNR (dB)")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    """FPSNR per method against the stripes' angle; beside it JOD, when rotation.csv has it."""
+    jod = bool(rows) and "jod" in rows[0]
+    fig, axes = plt.subplots(1, 2 if jod else 1, figsize=(13 if jod else 7, 4.3), squeeze=False)
+    panels = [("fpsnr_db", "FPSNR (dB)", "FPSNR")] + ([("jod", "JOD (both eyes, at the fovea)", "JOD")] if jod else [])
+    for ax, (key, label, name) in zip(axes[0], panels):
+        for method in COLORS:
+            m = sorted((r for r in rows if r["method"] == method), key=lambda r: num(r["angle_deg"]))
+            if m:
+                ax.plot([num(r["angle_deg"]) for r in m], [num(r[key]) for r in m], "o-", color=COLORS[method], label=method, markersize=4)
+        ax.set_title(f"Rotated stripes (σ = {rows[0]['sigma']}): {name} per method")
+        ax.set_xlabel("pattern rotation (degrees)")
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
     fig.tight_layout()
     chart_files.save_figure(fig, out, dpi=110)
 
 
 def stability(rows, out):
-    fig, axes = plt.subplots(2, 2, figsize=(11, 7.5), sharex=True)
+    jod = bool(rows) and "jod" in rows[0]  # a third row: JOD at the fovea
+    fig, axes = plt.subplots(3 if jod else 2, 2, figsize=(11, 11 if jod else 7.5), sharex=True)
     for col, path in enumerate(("diagonal", "vertical")):
         for method in COLORS:
             m = sorted((r for r in rows if r["method"] == method and r["path"] == path), key=lambda r: num(r["t"]))
@@ -133,13 +139,18 @@ def stability(rows, out):
             t = [num(r["t"]) for r in m]
             axes[0][col].plot(t, [min(num(r["patch_psnr_db"]), 60) for r in m], "o-", color=COLORS[method], label=method, markersize=4)
             axes[1][col].plot(t, [num(r["fpsnr_db"]) for r in m], "o-", color=COLORS[method], label=method, markersize=4)
+            if jod:
+                axes[2][col].plot(t, [num(r["jod"]) for r in m], "o-", color=COLORS[method], label=method, markersize=4)
         where = "centre -> top-left corner" if path == "diagonal" else "centre -> bottom border"
         axes[0][col].set_title(f"fovea {where}: 64-px patch around the fovea")
         axes[1][col].set_title(f"fovea {where}: whole frame")
-        axes[1][col].set_xlabel("position along the path (0 = centre, 1 = border)")
+        axes[-1][col].set_xlabel("position along the path (0 = centre, 1 = border)")
         axes[0][col].set_ylabel("patch PSNR (dB, ∞ shown at 60)")
         axes[1][col].set_ylabel("FPSNR (dB)")
-        for ax in (axes[0][col], axes[1][col]):
+        if jod:
+            axes[2][col].set_title(f"fovea {where}: JOD at the fovea")
+            axes[2][col].set_ylabel("JOD")
+        for ax in [axes[r][col] for r in range(len(axes))]:
             ax.grid(alpha=0.3)
             ax.legend(fontsize=7)
     fig.suptitle(f"Stability: quality against fovea position (pattern:checker, σ = {rows[0]['sigma']})")
