@@ -94,6 +94,9 @@ Result<Material> read_material(const tinygltf::Material& gm, const TextureUpload
   mat.occlusion_strength = static_cast<float>(gm.occlusionTexture.strength);
   mat.double_sided = gm.doubleSided;
   if (gm.alphaMode == "MASK") mat.alpha_cutoff = static_cast<float>(gm.alphaCutoff);
+  else if (gm.alphaMode == "BLEND") mat.blend = true;
+  else if (gm.alphaMode != "OPAQUE" && !gm.alphaMode.empty())
+    warnings.push_back(where + ": alphaMode '" + gm.alphaMode + "' is not OPAQUE, MASK or BLEND; drawn as OPAQUE");
   mat.unlit = gm.extensions.count("KHR_materials_unlit") > 0;
 
   auto tex = [&](const TextureRef& t, bool srgb, Material::Slot slot, int& out) -> Status {

@@ -86,7 +86,7 @@ PassTimes median_pass_times(const std::vector<PassTimes>& frames) {
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
   };
   for (double PassTimes::*f : {&PassTimes::shadow, &PassTimes::gbuffer, &PassTimes::mapping, &PassTimes::lighting,
-                               &PassTimes::inverse, &PassTimes::gpu_total, &PassTimes::cpu})
+                               &PassTimes::inverse, &PassTimes::blend, &PassTimes::gpu_total, &PassTimes::cpu})
     m.*f = median(f);
   m.shaded_samples = frames.back().shaded_samples;
   m.pipeline = frames.back().pipeline;
@@ -100,7 +100,7 @@ using Clock = std::chrono::steady_clock;
 using detail::set;
 
 // Which pass a GPU timestamp interval belongs to.
-enum class Pass { shadow, gbuffer, mapping, lighting, inverse };
+enum class Pass { shadow, gbuffer, mapping, lighting, inverse, blend };
 
 // GL_TIMESTAMP queries at pass boundaries, read back once the frame is finished.
 class PassTimer {
@@ -128,6 +128,7 @@ class PassTimer {
         case Pass::mapping: t.mapping += ms; break;
         case Pass::lighting: t.lighting += ms; break;
         case Pass::inverse: t.inverse += ms; break;
+        case Pass::blend: t.blend += ms; break;
       }
     }
     if (count_ > 1) t.gpu_total = static_cast<double>(stamp[count_ - 1] - stamp[0]) / 1e6;
@@ -146,6 +147,12 @@ namespace detail {
 const Material& material_of(const Scene& scene, int material) {
   static const Material kDefault{};
   return material >= 0 ? scene.materials[static_cast<std::size_t>(material)] : kDefault;
+}
+
+bool has_blended_draws(const Scene& scene) {
+  for (const DrawItem& d : scene.draws)
+    if (material_of(scene, scene.primitives[static_cast<std::size_t>(d.primitive)].material).blend) return true;
+  return false;
 }
 
 void set_material(GLuint p, const Scene& scene, const Material& m) {
@@ -232,7 +239,7 @@ void set_mapping(GLuint p, const EyePlan& plan, glm::vec2 texture_size) {
 struct Compositor::Impl {
   CompositorOptions opt;
   int eye_w = 0, eye_h = 0;
-  gl::Program gbuffer_prog, pattern_prog, shadow_prog;
+  gl::Program gbuffer_prog, pattern_prog, shadow_prog, blend_prog;
   // One per MAPPING (0 RMFR/full, 1 KFR, 2 layers); resolve also with and without the lens.
   std::array<gl::Program, 3> map_progs, lighting_progs;
   // RMFR maps and resolves through foveal-rmfr, so its map and resolve slots stay empty.
@@ -244,6 +251,7 @@ struct Compositor::Impl {
   std::array<std::optional<detail::SurfaceTargets>, 2> transformed;
   std::optional<detail::VisibilityPipeline> visibility;
   std::array<std::optional<detail::ColorTarget>, 2> reduced;
+  std::optional<detail::ColorTarget> undistorted;  // blend target under the lens (made on first use)
   detail::ColorTarget output, shadow;
   std::array<EyePlan, 2> plans{};
   PassTimer timer;
@@ -256,9 +264,11 @@ struct Compositor::Impl {
     set(p, "u_view_proj", v.view_proj);
     for (const DrawItem& d : scene.draws) {
       const Primitive& prim = scene.primitives[static_cast<std::size_t>(d.primitive)];
+      const Material& mat = detail::material_of(scene, prim.material);
+      if (mat.blend) continue;  // the blend pass draws it over the lit result
       set(p, "u_model", d.world);
       set(p, "u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(d.world))));
-      detail::set_material(p, scene, detail::material_of(scene, prim.material));
+      detail::set_material(p, scene, mat);
       glBindVertexArray(prim.vao.id());
       glDrawElements(GL_TRIANGLES, prim.index_count, GL_UNSIGNED_INT, nullptr);
     }
@@ -286,6 +296,9 @@ struct Compositor::Impl {
     set(p, "u_light_matrix", sun_clip_matrix(scene.bounds));
     for (const DrawItem& d : scene.draws) {
       const Primitive& prim = scene.primitives[static_cast<std::size_t>(d.primitive)];
+      // Blended surfaces cast no shadow: an opaque one from a pane of glass would be
+      // wrong, and a partial one needs a translucent shadow map (docs/scenes.md).
+      if (detail::material_of(scene, prim.material).blend) continue;
       set(p, "u_model", d.world);
       glBindVertexArray(prim.vao.id());
       glDrawElements(GL_TRIANGLES, prim.index_count, GL_UNSIGNED_INT, nullptr);
@@ -306,12 +319,75 @@ struct Compositor::Impl {
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
 
+  // alphaMode BLEND, after the eye's lit opaque result is complete in the output: each
+  // blended draw shaded forward at output resolution, back to front by the distance of
+  // its bounds' centre from the eye, composited "over" it (straight alpha), tested
+  // against the eye's opaque depth `depth` (W×H) without writing depth, into the eye's
+  // viewport at `origin` of `fbo`.
+  void blend_pass(const Scene& scene, const EyeView& v, GLuint fbo, glm::ivec2 origin, GLuint depth) {
+    std::vector<std::pair<float, std::size_t>> order;  // (distance, draw)
+    for (std::size_t i = 0; i < scene.draws.size(); ++i) {
+      const DrawItem& d = scene.draws[i];
+      const Primitive& prim = scene.primitives[static_cast<std::size_t>(d.primitive)];
+      if (!detail::material_of(scene, prim.material).blend) continue;
+      const glm::vec3 centre(d.world * glm::vec4(prim.local_bounds.center(), 1.0f));
+      order.emplace_back(glm::length(centre - v.position), i);
+    }
+    if (order.empty()) return;
+    // Farthest first; equal distances keep the file's order.
+    std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(origin.x, origin.y, eye_w, eye_h);
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    const GLuint p = blend_prog.id();
+    glUseProgram(p);
+    set(p, "u_view_proj", v.view_proj);
+    set(p, "u_inv_view_proj", v.inv_view_proj);
+    set(p, "u_camera_pos", v.position);
+    set(p, "u_origin", origin);
+    set(p, "u_eye_size", glm::vec2(eye_w, eye_h));
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, lights_ubo.id());
+    for (const auto& [distance, i] : order) {
+      const DrawItem& d = scene.draws[i];
+      const Primitive& prim = scene.primitives[static_cast<std::size_t>(d.primitive)];
+      const Material& mat = detail::material_of(scene, prim.material);
+      set(p, "u_model", d.world);
+      set(p, "u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(d.world))));
+      detail::set_material(p, scene, mat);  // textures on units 0-4
+      glBindTextureUnit(5, shadow.texture.id());
+      glBindTextureUnit(6, depth);
+      // Single-sided: back faces culled, as glTF says; a mirroring transform flips the winding.
+      if (mat.double_sided) {
+        glDisable(GL_CULL_FACE);
+      } else {
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+        glFrontFace(glm::determinant(glm::mat3(d.world)) < 0.0f ? GL_CW : GL_CCW);
+      }
+      glBindVertexArray(prim.vao.id());
+      glDrawElements(GL_TRIANGLES, prim.index_count, GL_UNSIGNED_INT, nullptr);
+    }
+    glDisable(GL_CULL_FACE);
+    glFrontFace(GL_CCW);
+    glDisable(GL_BLEND);
+  }
+
+  // The depth texture of the eye just drawn: the G-buffer's or the visibility target's.
+  GLuint opaque_depth(Pipeline pipeline) const {
+    return pipeline == Pipeline::visibility ? visibility->depth_texture() : gbuffer->depth.id();
+  }
+
   // Exact size for single-buffer methods; the layered methods' atlas changes shape with
   // the fovea every frame, so it only grows.
   void ensure_transformed(std::size_t eye, int w, int h, bool grow_only) {
     const auto& t = transformed[eye];
     if (auto size = detail::realloc_size(t.has_value(), t ? t->width : 0, t ? t->height : 0, w, h, grow_only))
       transformed[eye] = detail::SurfaceTargets::create(size->first, size->second, true);
+  }
+  void ensure_undistorted() {
+    if (!undistorted) undistorted = detail::ColorTarget::create(eye_w, eye_h, reduced_format(), true);
   }
   void ensure_reduced(std::size_t eye, int w, int h, bool grow_only) {
     const auto& r = reduced[eye];
@@ -433,6 +509,7 @@ Result<Compositor> Compositor::create(const CompositorOptions& o, const gl::Shad
       {&impl->gbuffer_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "gbuffer.frag"}}},
       {&impl->pattern_prog, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "pattern.frag"}}},
       {&impl->shadow_prog, {{GL_VERTEX_SHADER, "shadow.vert"}}},
+      {&impl->blend_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "blend.frag"}}},
   };
   for (const auto& [prog, stages] : programs)
     if (Status s = build(*prog, stages); !s) return s.error();
@@ -494,6 +571,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
   // The eyes' fovea points as of the latch, after the left eye's full-resolution pass:
   // the right eye's could come later still, but both eyes show one gaze sample.
   std::array<EyeFoveation, 2> eyes = params.eyes;
+  const bool blended = detail::has_blended_draws(scene);
   for (Eye e : kEyes) {
     const std::size_t i = static_cast<std::size_t>(e);
     const LensDistortion& lens = m.opt.model.distortion[i];
@@ -533,13 +611,40 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
       surface = *g;
     }
 
-    if (plan.method == Method::full) {
+    // alphaMode BLEND surfaces go over the eye's lit opaque result at output resolution.
+    // Through the lens they must go on before it: the opaque result is resolved without
+    // the lens into the eye's W×H blend target, blended there, and that is taken through
+    // the lens by an identity resolve (one more full-resolution pass, only then).
+    const bool blend_under_lens = distort && blended;
+    if (blend_under_lens) m.ensure_undistorted();
+    const GLuint resolve_fbo = blend_under_lens ? m.undistorted->fbo.id() : m.output.fbo.id();
+    const glm::ivec2 resolve_origin = blend_under_lens ? glm::ivec2(0) : eye_origin;
+    auto blend_eye = [&]() -> Status {
+      if (!blended) return {};
+      m.blend_pass(scene, view, resolve_fbo, resolve_origin, m.opaque_depth(params.pipeline));
+      if (blend_under_lens) {
+        rmfr::Plan identity = rmfr_plan(plan);
+        identity.buffer_w = identity.screen_w, identity.buffer_h = identity.screen_h;
+        identity.sigma = 1.0;
+        identity.fx = identity.fy = rmfr::kRmfrIdentityF;
+        const rmfr::Lens l = rmfr_lens(lens);
+        if (Status s = m.foveator->resolve(identity, m.undistorted->texture.id(), m.output.fbo.id(), eye_origin.x,
+                                           eye_origin.y, &l);
+            !s)
+          return s;
+      }
+      m.timer.mark(Pass::blend);
+      return {};
+    };
+
+    if (plan.method == Method::full) {  // never through the lens (see above)
       glBindFramebuffer(GL_FRAMEBUFFER, m.output.fbo.id());
       glViewport(eye_origin.x, eye_origin.y, m.eye_w, m.eye_h);
       const GLuint lp = m.lighting_progs[0].id();
       set_mapping(lp, plan, glm::vec2(surface->width, surface->height));
       m.lighting_pass(lp, *surface, eye_origin, view);
       m.timer.mark(Pass::lighting);
+      if (Status s = blend_eye(); !s) return s.error();
       continue;
     }
 
@@ -562,20 +667,21 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     // Resolve into this eye's half of the output. KFR's angle axis wraps around.
     if (variant == 0) {  // RMFR's kernel (rmfr, uniform, fixed): foveal-rmfr's resolve
       const rmfr::Lens l = rmfr_lens(lens);
-      if (Status s = m.foveator->resolve(rmfr_plan(plan), rs.texture.id(), m.output.fbo.id(), eye_origin.x, eye_origin.y,
-                                         distort ? &l : nullptr);
+      if (Status s = m.foveator->resolve(rmfr_plan(plan), rs.texture.id(), resolve_fbo, resolve_origin.x,
+                                         resolve_origin.y, distort && !blend_under_lens ? &l : nullptr);
           !s)
         return s.error();
       m.timer.mark(Pass::inverse);
+      if (Status s = blend_eye(); !s) return s.error();
       continue;
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, m.output.fbo.id());
-    glViewport(eye_origin.x, eye_origin.y, m.eye_w, m.eye_h);
+    glBindFramebuffer(GL_FRAMEBUFFER, resolve_fbo);
+    glViewport(resolve_origin.x, resolve_origin.y, m.eye_w, m.eye_h);
     glTextureParameteri(rs.texture.id(), GL_TEXTURE_WRAP_T, plan.method == Method::kfr ? GL_REPEAT : GL_CLAMP_TO_EDGE);
-    const GLuint ip = m.resolve_progs[variant][distort ? 1 : 0].id();
+    const GLuint ip = m.resolve_progs[variant][distort && !blend_under_lens ? 1 : 0].id();
     glUseProgram(ip);
     set_mapping(ip, plan, texture_size);
-    set(ip, "u_origin", eye_origin);
+    set(ip, "u_origin", resolve_origin);
     set(ip, "u_lens_center", glm::vec2(lens.center.x, 1.0f - lens.center.y));
     set(ip, "u_lens_k", glm::vec3(lens.k1, lens.k2, lens.k3));
     set(ip, "u_lens_scale", lens.channel_scale);
@@ -583,6 +689,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     glBindVertexArray(m.empty_vao.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     m.timer.mark(Pass::inverse);
+    if (Status s = blend_eye(); !s) return s.error();
   }
   glFinish();
   times.gpu_done_ns = monotonic_now_ns();
@@ -647,7 +754,7 @@ TargetMemory Compositor::memory(Pipeline p) const {
   TargetMemory t;
   for (std::size_t i = 0; i < 2; ++i)
     if (m.reduced[i]) t.reduced += m.reduced[i]->bytes();
-  t.output = m.output.bytes();
+  t.output = m.output.bytes() + (m.undistorted ? m.undistorted->bytes() : 0);  // the blend target under the lens
   t.shadow = m.shadow.bytes();
   if (p == Pipeline::visibility) {
     t.visibility = m.visibility->visibility_bytes();

@@ -36,6 +36,9 @@ void set_material(GLuint program, const Scene& scene, const Material& m);
 /// The material of a primitive (the default one for -1).
 const Material& material_of(const Scene& scene, int material);
 
+/// Whether any draw's material is alphaMode BLEND (drawn by the blend pass only).
+bool has_blended_draws(const Scene& scene);
+
 }  // namespace detail
 
 /// The MAPPING variant of the mapping-dependent programs (shaders/common/mapping.glsl).

@@ -33,6 +33,7 @@ std::vector<std::size_t> used_materials(const Scene& scene) {
   std::vector<bool> used(scene.materials.size() + 1, false);
   for (const DrawItem& d : scene.draws) {
     const int m = scene.primitives[static_cast<std::size_t>(d.primitive)].material;
+    if (material_of(scene, m).blend) continue;  // never in the visibility target
     used[m >= 0 ? static_cast<std::size_t>(m) : scene.materials.size()] = true;
   }
   std::vector<std::size_t> out;
@@ -96,6 +97,7 @@ void VisibilityPipeline::visibility_pass(const Scene& scene, const EyeView& view
     const DrawItem& d = scene.draws[i];
     const Primitive& prim = scene.primitives[static_cast<std::size_t>(d.primitive)];
     const Material& m = material_of(scene, prim.material);
+    if (m.blend) continue;  // the compositor's blend pass draws it over the lit result
     const bool masked = m.alpha_cutoff >= 0.0f;
     const GLuint p = masked ? visibility_mask_prog_.id() : visibility_prog_.id();
     glUseProgram(p);

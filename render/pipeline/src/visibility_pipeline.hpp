@@ -43,6 +43,9 @@ class VisibilityPipeline {
   /// Eye `eye`'s surface: exactly w×h, or at least w×h when `grow_only` (layered atlases).
   MaterialSurface& eye_surface(std::size_t eye, int w, int h, bool grow_only);
 
+  /// The last visibility pass's depth (D32F, W×H): the opaque depth the blend pass tests.
+  GLuint depth_texture() const { return visibility_ ? visibility_->depth.id() : 0; }
+
   /// Bytes of the id/depth target, of the eyes' surfaces, of the full surface.
   std::size_t visibility_bytes() const { return visibility_ ? visibility_->bytes() : 0; }
   std::size_t eye_surface_bytes() const;

@@ -36,6 +36,9 @@ struct Material {
   glm::vec3 emissive{0.0f};
   float normal_scale = 1.0f, occlusion_strength = 1.0f;
   float alpha_cutoff = -1.0f;  ///< >= 0 for alphaMode MASK
+  /// alphaMode BLEND: left out of the opaque passes (and the shadow map) and composited
+  /// over the lit opaque result in a sorted forward pass (docs/scenes.md, "Transparency").
+  bool blend = false;
   bool unlit = false;          ///< KHR_materials_unlit
   bool double_sided = false;
   int base_color_tex = -1, metal_rough_tex = -1, normal_tex = -1, occlusion_tex = -1, emissive_tex = -1;

@@ -71,6 +71,9 @@ FrameParams efr_frame(Method method, Eye dominant, double sigma_d, double sigma_
 struct PassTimes {
   Pipeline pipeline = Pipeline::gbuffer;
   double shadow = 0, gbuffer = 0, mapping = 0, lighting = 0, inverse = 0;
+  /// alphaMode BLEND surfaces shaded forward at output resolution after the inverse pass
+  /// (with lens distortion, also the identity resolve through the lens); 0 without any.
+  double blend = 0;
   double gpu_total = 0;  ///< first to last GPU timestamp of the frame
   double cpu = 0;        ///< wall time of render() including the wait for the GPU
   std::size_t shaded_samples = 0;  ///< lighting-pass samples, both eyes

@@ -1,0 +1,88 @@
+#ifndef LIGHTING_GLSL
+#define LIGHTING_GLSL
+// The light rig and the surface response: one implementation for the deferred lighting
+// pass (lighting.frag, on a G-buffer texel) and the forward pass of alphaMode BLEND
+// surfaces (blend.frag, at a fragment). The includer binds the shadow map to unit 5 and
+// the Lights block to binding 0.
+layout(binding = 5) uniform sampler2DShadow u_shadow_map;
+
+const int MAX_POINT_LIGHTS = 64;
+layout(std140, binding = 0) uniform Lights {
+  vec4 u_point_pos_range[MAX_POINT_LIGHTS];  // world xyz, range
+  vec4 u_point_color[MAX_POINT_LIGHTS];      // linear rgb × intensity
+  vec4 u_sun_dir;                            // towards the light
+  vec4 u_sun_color;
+  vec4 u_ambient;                            // rgb, w = exposure
+  vec4 u_background;
+  mat4 u_sun_matrix;                         // world -> shadow map [0,1]³
+  ivec4 u_counts;                            // x: point lights, y: shadow on
+};
+
+const float PI = 3.14159265359;
+
+float d_ggx(float n_dot_h, float a) {
+  float a2 = a * a;
+  float d = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
+  return a2 / (PI * d * d);
+}
+
+// Height-correlated Smith visibility (includes the 1 / (4 n·l n·v) term).
+float v_smith(float n_dot_v, float n_dot_l, float a) {
+  float a2 = a * a;
+  float gv = n_dot_l * sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2);
+  float gl = n_dot_v * sqrt(n_dot_l * n_dot_l * (1.0 - a2) + a2);
+  return 0.5 / max(gv + gl, 1e-5);
+}
+
+vec3 shade(vec3 n, vec3 v, vec3 l, vec3 albedo, float metallic, float roughness) {
+  float n_dot_l = dot(n, l);
+  if (n_dot_l <= 0.0) return vec3(0.0);
+  vec3 h = normalize(v + l);
+  float n_dot_v = max(dot(n, v), 1e-4), n_dot_h = max(dot(n, h), 0.0), v_dot_h = max(dot(v, h), 0.0);
+  float a = max(roughness * roughness, 2e-3);
+  vec3 f0 = mix(vec3(0.04), albedo, metallic);
+  vec3 f = f0 + (1.0 - f0) * pow(1.0 - v_dot_h, 5.0);
+  vec3 specular = d_ggx(n_dot_h, a) * v_smith(n_dot_v, n_dot_l, a) * f;
+  vec3 diffuse = (1.0 - f) * (1.0 - metallic) * albedo / PI;
+  return (diffuse + specular) * n_dot_l;
+}
+
+float sun_visibility(vec3 p, vec3 n) {
+  if (u_counts.y == 0) return 1.0;
+  vec4 s = u_sun_matrix * vec4(p + n * 0.002 * u_sun_color.w, 1.0);
+  if (any(lessThan(s.xyz, vec3(0.0))) || any(greaterThan(s.xyz, vec3(1.0)))) return 1.0;
+  vec2 texel = 1.0 / vec2(textureSize(u_shadow_map, 0));
+  float bias = 0.0015;
+  float sum = 0.0;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) sum += texture(u_shadow_map, vec3(s.xy + vec2(x, y) * texel, s.z - bias));
+  return sum / 9.0;
+}
+
+// ACES filmic fit (Narkowicz 2015), display-referred linear output.
+vec3 tone_map(vec3 x) {
+  return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+
+// Tone-mapped colour of a lit surface point p (world) with normal n seen from the camera.
+vec3 lit_color(vec3 p, vec3 n, vec3 camera_pos, vec3 albedo, float metallic, float roughness, float occlusion,
+               vec3 emissive) {
+  vec3 v = normalize(camera_pos - p);
+  // Ambient: diffuse for dielectrics, a flat specular (F0) so metals are not black.
+  vec3 f0 = mix(vec3(0.04), albedo, metallic);
+  vec3 color = u_ambient.rgb * (albedo * (1.0 - metallic) + f0) * occlusion;
+  color += shade(n, v, u_sun_dir.xyz, albedo, metallic, roughness) * u_sun_color.rgb * sun_visibility(p, n);
+  for (int i = 0; i < u_counts.x; ++i) {
+    vec3 to_light = u_point_pos_range[i].xyz - p;
+    float range = u_point_pos_range[i].w;
+    float d2 = dot(to_light, to_light);
+    if (d2 >= range * range) continue;
+    float x = d2 / (range * range);
+    float window = (1.0 - x * x) * (1.0 - x * x);
+    float falloff = window / (1.0 + 16.0 * x);
+    color += shade(n, v, to_light * inversesqrt(d2), albedo, metallic, roughness) * u_point_color[i].rgb * falloff;
+  }
+  color += emissive;
+  return tone_map(color * u_ambient.w);
+}
+#endif

@@ -1,0 +1,224 @@
+// alphaMode BLEND (docs/scenes.md, "Transparency"): blended primitives are left out of
+// the opaque passes and composited "over" the lit opaque result after the inverse pass,
+// back to front, tested against the opaque depth. Scenes are written by the test: unit
+// quads facing a camera at z = 3, an opaque background at z = 0 and blended quads in
+// front of it. Unlit materials make the expected colour exact; one lit case checks the
+// forward shading against the deferred one.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "gl_support.hpp"
+#include "gltf_test_models.hpp"
+#include "test_support.hpp"
+
+using namespace foveal;
+using nlohmann::json;
+
+namespace {
+
+constexpr int kWidth = 256, kHeight = 128;  // 128×128 per eye
+
+struct Quad {
+  std::array<float, 4> color;  // base colour factor, alpha last
+  std::string mode;            // alphaMode
+  float z, half;               // plane and half size, centred on the z axis
+  bool unlit = true;
+};
+
+// One node per quad in `quads`' order (their draw order), each with its own mesh and material.
+std::string write_scene(test::TempDir& dir, const std::string& name, const std::vector<Quad>& quads) {
+  json j = test::quad_model();
+  j["extensionsUsed"] = {"KHR_materials_unlit"};
+  j["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 1.0}, {"znear", 0.1}}}}};
+  j["nodes"] = {{{"camera", 0}, {"translation", {0, 0, 3}}}};
+  j["meshes"] = json::array();
+  j["materials"] = json::array();
+  json scene_nodes = {0};
+  for (std::size_t i = 0; i < quads.size(); ++i) {
+    const Quad& q = quads[i];
+    json m = {{"pbrMetallicRoughness", {{"baseColorFactor", q.color}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}},
+              {"alphaMode", q.mode}};
+    if (q.unlit) m["extensions"] = {{"KHR_materials_unlit", json::object()}};
+    j["materials"].push_back(m);
+    json primitive = {{"attributes", {{"POSITION", 0}}}, {"indices", 1}, {"material", i}};
+    j["meshes"].push_back({{"primitives", json::array({primitive})}});
+    j["nodes"].push_back({{"mesh", i}, {"translation", {-q.half, -q.half, q.z}}, {"scale", {2 * q.half, 2 * q.half, 1.0f}}});
+    scene_nodes.push_back(i + 1);
+  }
+  j["scenes"] = {{{"nodes", scene_nodes}}};
+  const std::string path = dir.path(name + ".gltf");
+  test::write_file(path, j.dump());
+  return path;
+}
+
+const Quad kBackground{{1, 0, 0, 1}, "OPAQUE", 0.0f, 2.0f};
+const Quad kGreen{{0, 1, 0, 0.5f}, "BLEND", 1.0f, 0.6f};
+const Quad kBlue{{0, 0, 1, 0.5f}, "BLEND", 1.5f, 0.4f};
+
+double srgb_encode(double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055; }
+double srgb_decode(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
+
+// Each eye's centre pixel, where every quad of the scenes covers.
+std::array<std::array<int, 3>, 2> centres(const image::Image& img) {
+  std::array<std::array<int, 3>, 2> out{};
+  for (int e = 0; e < 2; ++e) {
+    const std::uint8_t* p = img.at(e * img.width / 2 + img.width / 4, img.height / 2);
+    out[static_cast<std::size_t>(e)] = {p[0], p[1], p[2]};
+  }
+  return out;
+}
+
+struct Case {
+  render::Pipeline pipeline;
+  render::Method method;
+  double sigma;
+};
+const Case kCases[] = {{render::Pipeline::gbuffer, render::Method::full, 1.0},
+                       {render::Pipeline::gbuffer, render::Method::rmfr, 2.0},
+                       {render::Pipeline::visibility, render::Method::full, 1.0},
+                       {render::Pipeline::visibility, render::Method::rmfr, 2.0}};
+
+std::string describe(const Case& c) {
+  return std::string(render::pipeline_name(c.pipeline)) + " " + render::method_name(c.method);
+}
+
+render::Compositor lens_compositor() {
+  auto model = DisplayModel::load(test::source_path("data/display/htc_vive_pro_eye_lens.json"));
+  EXPECT_TRUE(model) << (model ? "" : model.error().message);
+  render::CompositorOptions o;
+  o.width = kWidth, o.height = kHeight, o.shadow_map_size = 1024;
+  if (model) o.model = *model;
+  auto c = render::Compositor::create(o, test::source_shaders());
+  if (!c) {
+    ADD_FAILURE() << c.error().message;
+    std::abort();
+  }
+  return std::move(*c);
+}
+
+image::Image render_case(const std::string& spec, const Case& c, bool lens = false) {
+  render::Compositor comp = lens ? lens_compositor() : test::make_compositor(kWidth, kHeight);
+  render::Scene s = test::scene(spec);
+  render::FrameParams p = test::frame(c.method, c.sigma);
+  p.pipeline = c.pipeline;
+  auto t = comp.render(s, p);
+  EXPECT_TRUE(t) << (t ? "" : t.error().message);
+  bool blended = false;
+  for (const render::Material& m : s.materials) blended = blended || m.blend;
+  if (t) {
+    EXPECT_EQ(t->blend > 0.0, blended) << describe(c) << ": the blend pass is timed when there is one";
+  }
+  return comp.read_image();
+}
+
+// Both eyes' centre pixels equal `linear` (the expected linear colour) within 2 of 255.
+void expect_centres(const image::Image& img, std::array<double, 3> linear, const std::string& what) {
+  for (const auto& px : centres(img))
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(px[static_cast<std::size_t>(k)], 255.0 * srgb_encode(linear[static_cast<std::size_t>(k)]), 2.0)
+          << what << ", channel " << k;
+}
+
+}  // namespace
+
+TEST(Blend, AQuadIsTheOverCompositeOfItsColourAndAlphaWithTheOpaqueResult) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir dir;
+  const std::string blended = write_scene(dir, "blend", {kBackground, kGreen});
+  Quad opaque_green = kGreen;
+  opaque_green.mode = "OPAQUE";
+  const std::string opaque = write_scene(dir, "opaque", {kBackground, opaque_green});
+  {
+    render::Scene s = test::scene(blended);
+    ASSERT_EQ(s.materials.size(), 2u);
+    EXPECT_FALSE(s.materials[0].blend);
+    EXPECT_TRUE(s.materials[1].blend);
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  }
+  for (const Case& c : kCases) {
+    // Green at alpha 0.5 over red: (0.5, 0.5, 0) in linear light.
+    expect_centres(render_case(blended, c), {0.5, 0.5, 0.0}, describe(c) + ", BLEND");
+    // The same quad OPAQUE covers the red: the blend makes the difference.
+    expect_centres(render_case(opaque, c), {0.0, 1.0, 0.0}, describe(c) + ", OPAQUE");
+  }
+}
+
+TEST(Blend, OverlappingQuadsCompositeBackToFrontWhateverTheirOrderInTheFile) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir dir;
+  const std::string near_last = write_scene(dir, "near_last", {kBackground, kGreen, kBlue});
+  const std::string near_first = write_scene(dir, "near_first", {kBackground, kBlue, kGreen});
+  for (const Case& c : kCases) {
+    const image::Image a = render_case(near_last, c), b = render_case(near_first, c);
+    // Green over red, then blue (nearer) over that: (0.25, 0.25, 0.5); the other order
+    // would give (0.25, 0.5, 0.25).
+    expect_centres(a, {0.25, 0.25, 0.5}, describe(c) + ", nearer quad last in the file");
+    expect_centres(b, {0.25, 0.25, 0.5}, describe(c) + ", nearer quad first in the file");
+    EXPECT_EQ(a.rgba, b.rgba) << describe(c) << ": the file's order changes the image";
+  }
+}
+
+TEST(Blend, AQuadBehindAnOpaqueOneIsHidden) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir dir;
+  const Quad white{{1, 1, 1, 1}, "OPAQUE", 1.5f, 0.4f};
+  const std::string spec = write_scene(dir, "hidden", {kBackground, kGreen, white});
+  for (const Case& c : kCases) expect_centres(render_case(spec, c), {1.0, 1.0, 1.0}, describe(c));
+}
+
+// Lit: the forward pass shades with the deferred pass's material and lights. A lit quad at
+// alpha 0.5 is the over-composite of the same quad drawn OPAQUE and of the background
+// behind it, and at alpha 1 equals the OPAQUE quad (full method: both are shaded at every
+// pixel). The background is rendered with the quad at alpha 0: the light rig follows the
+// scene's bounds, so the quad must stay, and blended surfaces cast no shadow.
+TEST(Blend, ALitQuadIsShadedAsTheOpaquePathShadesIt) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir dir;
+  Quad bg = kBackground, lit = kGreen;
+  bg.unlit = lit.unlit = false;
+  lit.color = {0.2f, 0.8f, 0.4f, 0.5f};
+  Quad solid = lit, opaque = lit, clear = lit;
+  clear.color[3] = 0.0f;
+  solid.color[3] = 1.0f;
+  opaque.color[3] = 1.0f, opaque.mode = "OPAQUE";
+  const std::string half = write_scene(dir, "half", {bg, lit}), one = write_scene(dir, "one", {bg, solid}),
+                    ref = write_scene(dir, "ref", {bg, opaque}), none = write_scene(dir, "none", {bg, clear});
+  for (const Case& c : kCases) {
+    if (c.method != render::Method::full) continue;
+    const auto quad = centres(render_case(ref, c)), behind = centres(render_case(none, c));
+    const auto blended = centres(render_case(half, c)), alpha_one = centres(render_case(one, c));
+    for (std::size_t e = 0; e < 2; ++e)
+      for (std::size_t k = 0; k < 3; ++k) {
+        EXPECT_NEAR(alpha_one[e][k], quad[e][k], 2) << describe(c) << ", alpha 1, eye " << e << " channel " << k;
+        const double over = 0.5 * srgb_decode(quad[e][k] / 255.0) + 0.5 * srgb_decode(behind[e][k] / 255.0);
+        EXPECT_NEAR(blended[e][k], 255.0 * srgb_encode(over), 2.5) << describe(c) << ", alpha 0.5, eye " << e << " channel " << k;
+      }
+    EXPECT_NE(quad, behind) << "the test needs the quad to differ from the background";
+  }
+}
+
+// Through the lens the blended quads go on before the distortion: the image equals that of
+// an opaque quad painted with the composite colour, distorted the same way (drawn after
+// the lens, the quad would keep its undistorted outline).
+TEST(Blend, UnderTheLensTheCompositeIsDistortedWithTheOpaqueResult) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir dir;
+  Quad painted = kGreen;
+  painted.mode = "OPAQUE";
+  painted.color = {0.5f, 0.5f, 0.0f, 1.0f};
+  const std::string blended = write_scene(dir, "blend", {kBackground, kGreen});
+  const std::string reference = write_scene(dir, "painted", {kBackground, painted});
+  for (const Case& c : kCases) {
+    const image::Image a = render_case(blended, c, true), b = render_case(reference, c, true);
+    expect_centres(a, {0.5, 0.5, 0.0}, describe(c) + ", through the lens");
+    // Full: the same warp of the same picture; RMFR: the composite is filtered twice
+    // (resolve, then the lens), the painted quad once.
+    EXPECT_GT(image::psnr(a, b), c.method == render::Method::full ? 40.0 : 30.0) << describe(c);
+  }
+}
