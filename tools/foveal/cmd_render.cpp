@@ -39,7 +39,7 @@ nlohmann::json pipelines_json(const render::PipelineComparison& c) {
   auto passes = [](const render::PassTimes& t) {
     const auto n = render::pass_names(t.pipeline);
     return nlohmann::json{{"shadow", t.shadow}, {n[0], t.gbuffer}, {n[1], t.mapping}, {"lighting", t.lighting},
-                          {"inverse", t.inverse}, {"gpu_total", t.gpu_total}, {"cpu_frame", t.cpu}};
+                          {"inverse", t.inverse}, {"blend", t.blend}, {"gpu_total", t.gpu_total}, {"cpu_frame", t.cpu}};
   };
   nlohmann::json j = {{"best_full_gpu_ms", c.best_full_gpu()}};
   for (render::Pipeline p : render::all_pipelines()) {
@@ -141,7 +141,7 @@ int run(const Args& a) {
       {"renderer", comp->renderer()},
       {"frames", a.frames},
       {"passes_ms", {{"shadow", med.shadow}, {pass[0], med.gbuffer}, {pass[1], med.mapping},
-                     {"lighting", med.lighting}, {"inverse", med.inverse}, {"gpu_total", med.gpu_total},
+                     {"lighting", med.lighting}, {"inverse", med.inverse}, {"blend", med.blend}, {"gpu_total", med.gpu_total},
                      {"cpu_frame", med.cpu}}},
       {"targets_mb", {{"gbuffer", mb(mem.gbuffer)}, {"transformed", mb(mem.transformed)}, {"reduced", mb(mem.reduced)},
                       {"visibility", mb(mem.visibility)}, {"output", mb(mem.output)}, {"shadow", mb(mem.shadow)},
@@ -169,9 +169,9 @@ int run(const Args& a) {
       std::printf("  %-5s %s  buffer %dx%d  shaded %zu\n", eye_name(e), render::method_name(plan.method), b[0], b[1],
                   plan.shaded_samples());
     }
-    std::printf("  %s pipeline, ms (median of %d): shadow %.2f  %s %.2f  %s %.2f  lighting %.2f  inverse %.2f  GPU total %.2f  CPU frame %.2f\n",
+    std::printf("  %s pipeline, ms (median of %d): shadow %.2f  %s %.2f  %s %.2f  lighting %.2f  inverse %.2f  blend %.2f  GPU total %.2f  CPU frame %.2f\n",
                 render::pipeline_name(setup->frame.pipeline), a.frames, med.shadow, pass[0], med.gbuffer, pass[1], med.mapping,
-                med.lighting, med.inverse, med.gpu_total, med.cpu);
+                med.lighting, med.inverse, med.blend, med.gpu_total, med.cpu);
     if (setup->head.kind != "scene") {
       const Pose& p = setup->frame.head;
       std::printf("  head (%s): position %.4f,%.4f,%.4f m  orientation %.6f,%.6f,%.6f,%.6f\n",

@@ -66,7 +66,7 @@ Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions
       std::string("frame,t_ns,generation,fovea_left_x,fovea_left_y,fovea_right_x,fovea_right_y,sigma_left,sigma_right,"
                   "buffer_left_w,buffer_left_h,buffer_right_w,buffer_right_h,f_x,f_y,shadow_ms,gbuffer_ms,mapping_ms,"
                   "lighting_ms,inverse_ms,gpu_ms,cpu_ms,head_x,head_y,head_z,head_qw,head_qx,head_qy,head_qz,head_t_ns,") +
-      FrameLatency::csv_header() + "\n");
+      FrameLatency::csv_header() + ",blend_ms\n");
   // Direct mode paces to its mode's refresh, known now that the output is open.
   const nlohmann::json& out = r->snap_.output;
   const double mode_hz = out.contains("mode") ? out["mode"].value("refresh_hz", 0.0) : 0.0;
@@ -140,7 +140,7 @@ Status FrameRenderer::render(const std::function<FoveaFrame()>& latest, const Re
                 double(hp.position_m.y), double(hp.position_m.z), double(hp.orientation.w), double(hp.orientation.x),
                 double(hp.orientation.y), double(hp.orientation.z), static_cast<std::int64_t>(head.t_ns));
   if (Status st = output_->present(comp_->output_framebuffer(), comp_->width(), comp_->height()); !st) return st;
-  pending_.push_back({line, lat, output_->last_ready_ns()});
+  pending_.push_back({line, lat, output_->last_ready_ns(), t->blend});
   // Just in time needs this frame's refresh before it plans the next.
   if (o_.pacing == Pacing::jit)
     if (Status st = output_->finish(); !st) return st;
@@ -185,7 +185,9 @@ Status FrameRenderer::write_shown_rows() {
     pacer_->shown(row.latency.start_ns, row.ready_ns, t, row.latency.display_target_ns);
     // A row once the frame is on screen, readable in the temporary file while foveald runs.
     if (csv_closed_) continue;
-    csv_->write(row.cells + row.latency.csv_cells() + "\n");
+    char blend[32];
+    std::snprintf(blend, sizeof blend, ",%.3f", row.blend_ms);
+    csv_->write(row.cells + row.latency.csv_cells() + blend + "\n");
     std::fflush(csv_->stream());
   }
   return {};
@@ -274,7 +276,7 @@ nlohmann::json FrameRenderer::stats_json() const {
                                   : nlohmann::json(nullptr)},
           {"last_frame", eyes},
           {"passes_ms_median", {{"shadow", med.shadow}, {"gbuffer", med.gbuffer}, {"mapping", med.mapping},
-                                {"lighting", med.lighting}, {"inverse", med.inverse},
+                                {"lighting", med.lighting}, {"inverse", med.inverse}, {"blend", med.blend},
                                 {"gpu_total", med.gpu_total}, {"cpu_frame", med.cpu}}},
           {"targets_mb", snap_.targets_mb},
           {"latch", o_.late_latch ? "late" : "early"},

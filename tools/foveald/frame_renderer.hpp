@@ -95,6 +95,7 @@ class FrameRenderer {
     std::string cells;
     FrameLatency latency;
     TimeNs ready_ns = 0;  ///< Output::last_ready_ns: the frame's cost for pacing
+    double blend_ms = 0;  ///< the last column (PassTimes::blend), after the latency's
   };
 
   /// What other threads may read, updated after each frame under snapshot_mutex_.

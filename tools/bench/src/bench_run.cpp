@@ -251,7 +251,7 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
       nlohmann::json item = {{"scene", name}, {"method", render::method_name(m)}, {"sigma", sigma}, {"shaded_samples", r.median.shaded_samples},
                              {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu},
                              {"passes_ms", {{"shadow", t.shadow}, {"gbuffer", t.gbuffer}, {"mapping", t.mapping},
-                                            {"lighting", t.lighting}, {"inverse", t.inverse}}},
+                                            {"lighting", t.lighting}, {"inverse", t.inverse}, {"blend", t.blend}}},
                              {"psnr_db", bench::json_number(c.psnr_db)}, {"ssim", c.ssim}, {"fpsnr_db", bench::json_number(c.fpsnr_db)}};
       if (j) {
         item["jod_left"] = j->left, item["jod_right"] = j->right, item["jod"] = j->combined;
