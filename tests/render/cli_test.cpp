@@ -22,7 +22,7 @@ TEST(RenderCli, WritesAPngAndReportsPassesAsJson) {
   EXPECT_EQ(j["eyes"]["left"]["buffer"][0].get<int>(), 27);   // 80 / sigma_nd 3
   // The default pipeline's passes (the visibility pipeline: docs/rmfr.md, "Which pipeline by default").
   EXPECT_EQ(j["pipeline"], "visibility");
-  for (const char* pass : {"visibility", "material", "lighting", "inverse", "gpu_total", "cpu_frame"})
+  for (const char* pass : {"visibility", "material", "lighting", "inverse", "blend", "gpu_total", "cpu_frame"})
     EXPECT_GE(j["passes_ms"].value(pass, -1.0), 0.0) << pass << " in " << j["passes_ms"].dump();
   EXPECT_GT(j["targets_mb"]["total"].get<double>(), 0.0);
   auto img = image::load(d.path("f.png"));
