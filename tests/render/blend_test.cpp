@@ -29,6 +29,7 @@ struct Quad {
   std::string mode;            // alphaMode
   float z, half;               // plane and half size, centred on the z axis
   bool unlit = true;
+  float vertex_alpha = -1.0f;  // >= 0: a COLOR_0 (white, this alpha) at every vertex
 };
 
 // One node per quad in `quads`' order (their draw order), each with its own mesh and material.
@@ -47,6 +48,15 @@ std::string write_scene(test::TempDir& dir, const std::string& name, const std::
     if (q.unlit) m["extensions"] = {{"KHR_materials_unlit", json::object()}};
     j["materials"].push_back(m);
     json primitive = {{"attributes", {{"POSITION", 0}}}, {"indices", 1}, {"material", i}};
+    if (q.vertex_alpha >= 0.0f) {
+      std::string colors;
+      for (int v = 0; v < 4; ++v)
+        for (float c : {1.0f, 1.0f, 1.0f, q.vertex_alpha}) colors.append(reinterpret_cast<const char*>(&c), sizeof c);
+      j["buffers"].push_back({{"byteLength", colors.size()}, {"uri", test::data_uri(colors)}});
+      j["bufferViews"].push_back({{"buffer", j["buffers"].size() - 1}, {"byteLength", colors.size()}});
+      j["accessors"].push_back({{"bufferView", j["bufferViews"].size() - 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC4"}});
+      primitive["attributes"]["COLOR_0"] = j["accessors"].size() - 1;
+    }
     j["meshes"].push_back({{"primitives", json::array({primitive})}});
     j["nodes"].push_back({{"mesh", i}, {"translation", {-q.half, -q.half, q.z}}, {"scale", {2 * q.half, 2 * q.half, 1.0f}}});
     scene_nodes.push_back(i + 1);
@@ -147,6 +157,27 @@ TEST(Blend, AQuadIsTheOverCompositeOfItsColourAndAlphaWithTheOpaqueResult) {
     // The same quad OPAQUE covers the red: the blend makes the difference.
     expect_centres(render_case(opaque, c), {0.0, 1.0, 0.0}, describe(c) + ", OPAQUE");
   }
+}
+
+// glTF's alpha is the base colour factor's × the texture's × the vertex colour's.
+TEST(Blend, AlphaIsTheFactorTimesTheVertexColoursAlpha) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir dir;
+  Quad green = kGreen;
+  green.vertex_alpha = 0.5f;  // × factor 0.5: α 0.25
+  const std::string spec = write_scene(dir, "vertex_alpha", {kBackground, green});
+  for (const Case& c : kCases) expect_centres(render_case(spec, c), {0.75, 0.25, 0.0}, describe(c));
+}
+
+// No silent fallback: an alphaMode glTF does not define is refused, naming where.
+TEST(Blend, AnUnknownAlphaModeIsRefused) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir dir;
+  Quad odd = kGreen;
+  odd.mode = "GLASS";
+  auto s = render::load_scene(write_scene(dir, "odd", {kBackground, odd}));
+  ASSERT_FALSE(s);
+  EXPECT_NE(s.error().message.find("materials[1].alphaMode"), std::string::npos) << s.error().message;
 }
 
 TEST(Blend, OverlappingQuadsCompositeBackToFrontWhateverTheirOrderInTheFile) {

@@ -94,9 +94,7 @@ Result<Material> read_material(const tinygltf::Material& gm, const TextureUpload
   mat.occlusion_strength = static_cast<float>(gm.occlusionTexture.strength);
   mat.double_sided = gm.doubleSided;
   if (gm.alphaMode == "MASK") mat.alpha_cutoff = static_cast<float>(gm.alphaCutoff);
-  else if (gm.alphaMode == "BLEND") mat.blend = true;
-  else if (gm.alphaMode != "OPAQUE" && !gm.alphaMode.empty())
-    warnings.push_back(where + ": alphaMode '" + gm.alphaMode + "' is not OPAQUE, MASK or BLEND; drawn as OPAQUE");
+  else if (gm.alphaMode == "BLEND") mat.blend = true;  // any other value was refused by the JSON checks
   mat.unlit = gm.extensions.count("KHR_materials_unlit") > 0;
 
   auto tex = [&](const TextureRef& t, bool srgb, Material::Slot slot, int& out) -> Status {
