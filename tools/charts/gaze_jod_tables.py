@@ -1,13 +1,13 @@
 #!/usr/bin/python3
 """What eye tracking buys, in JOD (docs/results/gaze/README.md): tables of one or more
-`foveal bench --gaze` runs (with JOD columns) into OUT.md.
+`foveal bench --gaze` runs (with JOD columns) into OUT.md; each run's gaze_table.md
+(gaze_charts.py) has the figures at equal cost.
 
-1. At equal cost: per scene and level, each method's JOD (mean over the scored frames of
-   both eyes' JOD at the true gaze), with FPSNR beside it for tracked, fixed and uniform.
-2. The cost each method needs to hold JOD >= 9.5 and >= 9.0: JOD against the shaded
-   share, linear between the levels run; "< c" where even the densest level run misses,
+1. The cost each method needs to hold JOD >= 9.5 and >= 9.0 (JOD: the mean over the
+   scored frames of both eyes' JOD at the true gaze): JOD against the shaded share,
+   linear between the levels run; "> c" where even the densest level run misses,
    "<= c" where the sparsest holds it (the grid does not tell more).
-3. By eccentricity of the true gaze from the optical centre (gaze_frames.csv's
+2. By eccentricity of the true gaze from the optical centre (gaze_frames.csv's
    true_ecc_deg): tracked RMFR+EFR minus fixed foveation, JOD, per 10-degree band.
 
 Usage: gaze_jod_tables.py OUT.md RUN_DIR...
@@ -76,33 +76,17 @@ def main(argv):
     acc = {}
     for r in rows:
         n = int(r["frames"])
-        a = acc.setdefault((r["display"], r["scene"], series(r), num(r["sigma_d"])), {"n": 0, "jod": 0.0, "fpsnr": 0.0, "cost": num(r["cost"])})
+        a = acc.setdefault((r["display"], r["scene"], series(r), num(r["sigma_d"])), {"n": 0, "jod": 0.0, "cost": num(r["cost"])})
         if n and math.isfinite(num(r["jod_mean"])):
             a["n"] += n
             a["jod"] += n * num(r["jod_mean"])
-            a["fpsnr"] += n * num(r["fpsnr_mean"])
     for a in acc.values():
         a["jod"] = a["jod"] / a["n"] if a["n"] else math.nan
-        a["fpsnr"] = a["fpsnr"] / a["n"] if a["n"] else math.nan
     groups = sorted({(k[0], k[1]) for k in acc})
     present = [s for s in ORDER if any(k[2] == s for k in acc)]
     lines = ["# What eye tracking buys, in JOD", "",
              f"Runs: {', '.join(os.path.basename(os.path.normpath(d)) for d in runs)}. JOD: mean over the scored frames of "
              "both eyes' FovVideoVDP JOD at the true gaze (10 = indistinguishable from full rendering).", ""]
-
-    lines += ["## At equal cost", "", "| display | scene | σ_d (cost) | " + " | ".join(NAMES[s] for s in present) +
-              " | tracked − fixed | tracked − uniform | FPSNR tracked / fixed / uniform (dB) |",
-              "|" + "---|" * (5 + len(present))]
-    for disp, scene in groups:
-        for sigma in sorted({k[3] for k in acc if k[:2] == (disp, scene)}):
-            cell = {s: acc.get((disp, scene, s, sigma)) for s in present}
-            jod = {s: (c["jod"] if c else math.nan) for s, c in cell.items()}
-            cost = next(c["cost"] for c in cell.values() if c)
-            fp = [cell[s]["fpsnr"] if cell.get(s) else math.nan for s in ("rmfr", "fixed", "uniform")]
-            lines.append(f"| {disp} | {scene} | {sigma:g} ({cost:.2f}) | " + " | ".join(f"{jod[s]:.2f}" for s in present) +
-                         f" | {jod.get('rmfr', math.nan) - jod.get('fixed', math.nan):+.2f} | {jod.get('rmfr', math.nan) - jod.get('uniform', math.nan):+.2f}"
-                         f" | {' / '.join(f'{x:.2f}' for x in fp)} |")
-    lines += [""]
 
     for t in THRESHOLDS:
         lines += [f"## Shaded share needed to hold JOD ≥ {t}", "", "| display | scene | " + " | ".join(NAMES[s] for s in present) + " |",

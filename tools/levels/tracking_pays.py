@@ -70,7 +70,10 @@ def main(argv):
             continue
         s, f = max(held)
         fixed = [(mean(c["off"]), ff) for (m, ff, ss), c in cell.items() if m == "fixed" and ss == s and c["off"]]
-        best = max(fixed) if fixed else (math.nan, None)
+        if not fixed:
+            lines.append(f"- JOD ≥ {target}: cheapest tracked setting f {f:g}, σ {s:g}; no fixed foveation was run at σ {s:g}.")
+            continue
+        best = max(fixed)
         gap = mean(cell[("tracked", f, s)]["off"]) - best[0]
         verdict = "tracking pays" if best[0] < target and gap >= margin else f"fixed matches it (within {margin:g} JOD or above T)"
         lines.append(f"- JOD ≥ {target}: cheapest tracked setting f {f:g}, σ {s:g} (cost {1 / s ** 2:.3f}): off-centre JOD "
