@@ -120,7 +120,7 @@ TEST(BenchJod, BenchWritesJodPerEyeAfterTheOldColumnsAndNoJodLeavesThemOut) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("JOD added"), std::string::npos) << r.err;  // its cost per frame
   const std::string csv = test::read_file(d.path("jod/bench.csv"));
-  EXPECT_EQ(first_line(csv), std::string(kHeader) + ",jod_left,jod_right,jod");
+  EXPECT_EQ(first_line(csv), std::string(kHeader) + ",blend_ms,jod_left,jod_right,jod");
   const auto rows = test::read_csv_rows(csv);
   ASSERT_EQ(rows.size(), 5u);  // full, then each method at two levels
   EXPECT_EQ(rows[0].at("method"), "full");
@@ -152,7 +152,7 @@ TEST(BenchJod, BenchWritesJodPerEyeAfterTheOldColumnsAndNoJodLeavesThemOut) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("JOD"), std::string::npos) << r.err;
   const std::string plain = test::read_file(d.path("none/bench.csv"));
-  EXPECT_EQ(first_line(plain), kHeader);
+  EXPECT_EQ(first_line(plain), std::string(kHeader) + ",blend_ms");
   EXPECT_FALSE(nlohmann::json::parse(test::read_file(d.path("none/bench.json"))).contains("jod"));
 }
 

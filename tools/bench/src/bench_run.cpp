@@ -202,8 +202,8 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
   // starts with rows.take(): a shard runs its points only, and renders a reference
   // only where it runs a point that needs it.
   bench::SweepRows rows(*shard);
-  rows.table("bench.csv", "scene,method,sigma,shaded_samples,cost,gpu_ms,cpu_ms,shadow_ms,gbuffer_ms,mapping_ms,lighting_ms,inverse_ms,psnr_db,ssim,fpsnr_db" +
-                             std::string(jod ? ",jod_left,jod_right,jod" : ""));
+  rows.table("bench.csv", "scene,method,sigma,shaded_samples,cost,gpu_ms,cpu_ms,shadow_ms,gbuffer_ms,mapping_ms,lighting_ms,inverse_ms,psnr_db,ssim,fpsnr_db,"
+                             "blend_ms" + std::string(jod ? ",jod_left,jod_right,jod" : ""));
   // The experiments' JOD columns come last, so that readers by position find the rest.
   const std::string jod_columns = jod ? ",jod_left,jod_right,jod" : "";
   if (a.f_grid) rows.table("fgrid.csv", "scene,sigma,fx,fy,fpsnr_db,psnr_db,ssim" + jod_columns);
@@ -247,6 +247,7 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
                                      num(static_cast<double>(r.median.shaded_samples) / full_samples) + "," + num(t.gpu_total) + "," +
                                      num(t.cpu) + "," + num(t.shadow) + "," + num(t.gbuffer) + "," + num(t.mapping) + "," +
                                      num(t.lighting) + "," + num(t.inverse) + "," + num(c.psnr_db) + "," + num(c.ssim) + "," + num(c.fpsnr_db) +
+                                     "," + num(t.blend) +
                                      (j ? "," + num(j->left) + "," + num(j->right) + "," + num(j->combined) : ""));
       nlohmann::json item = {{"scene", name}, {"method", render::method_name(m)}, {"sigma", sigma}, {"shaded_samples", r.median.shaded_samples},
                              {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu},
