@@ -25,10 +25,12 @@ std::vector<PoseRow> frame_poses(const std::string& csv) {
   for (std::istringstream h(line); std::getline(h, line, ',');) names.push_back(line);
   const auto col = static_cast<std::size_t>(std::find(names.begin(), names.end(), "head_x") - names.begin());
   EXPECT_LT(col + 6, names.size()) << "frames.csv has the head columns";
+  EXPECT_EQ(names.empty() ? "" : names.back(), "blend_ms") << "the blend pass is frames.csv's last column";
   std::vector<PoseRow> rows;
   while (std::getline(in, line)) {
     std::vector<std::string> f;
     for (std::istringstream r(line); std::getline(r, line, ',');) f.push_back(line);
+    EXPECT_EQ(f.size(), names.size()) << "a row with as many cells as the header";
     if (f.size() < col + 7) break;
     PoseRow p;
     for (std::size_t i = 0; i < 7; ++i) p[i] = std::stod(f[col + i]);
