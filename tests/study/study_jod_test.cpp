@@ -10,26 +10,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "csv_rows.hpp"
 #include "test_support.hpp"
 
 using namespace foveal;
 
 namespace {
 
-std::vector<std::vector<std::string>> rows_of(const std::string& text) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f(1);
-    for (char c : line) {
-      if (c == ',') f.emplace_back();
-      else f.back() += c;
-    }
-    rows.push_back(f);
-  }
-  return rows;
-}
+const auto rows_of = test::csv_lines;
 
 std::string study(const std::string& design, const std::string& conditions, const std::string& answers_file,
                   const std::string& out) {

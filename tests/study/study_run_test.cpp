@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "foveal/study/study_session.hpp"
+#include "csv_rows.hpp"
 #include "test_support.hpp"
 
 namespace foveal {
@@ -54,20 +55,7 @@ std::string responses(const std::vector<int>& keys) {
   return s;
 }
 
-std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f(1);
-    for (char c : line) {
-      if (c == ',') f.emplace_back();
-      else f.back() += c;
-    }
-    rows.push_back(f);
-  }
-  return rows;
-}
+const auto csv_rows = test::csv_lines;
 
 TEST(StudyRun, TwoAfcScriptedEndToEnd) {
   const StudyOptions o = two_afc_options();

@@ -20,6 +20,14 @@ inline std::vector<std::string> csv_cells(const std::string& line) {
   return cells;
 }
 
+/// Every line's cells, the header's included.
+inline std::vector<std::vector<std::string>> csv_lines(const std::string& text) {
+  std::vector<std::vector<std::string>> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(csv_cells(line));
+  return lines;
+}
+
 inline std::vector<CsvRow> read_csv_rows(const std::string& text) {
   std::istringstream in(text);
   std::string line;
