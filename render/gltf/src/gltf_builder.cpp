@@ -13,6 +13,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gltf_internal.hpp"
+#include "gltf_lights.hpp"
 #include "gltf_materials.hpp"
 #include "gltf_topology.hpp"
 
@@ -371,6 +372,9 @@ class Builder {
       out_.view.head_to_world = pose;
       out_.view.source = "glTF camera " + (n.name.empty() ? std::to_string(index) : n.name);
     }
+    auto lights = node_light(m_, n, world, file_, path);
+    if (!lights) return lights.error();
+    out_.lights.insert(out_.lights.end(), lights->begin(), lights->end());
     for (int child : n.children)
       if (Status s = node(child, world, depth + 1); !s) return s;
     return {};

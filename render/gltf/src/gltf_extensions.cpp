@@ -6,7 +6,8 @@ namespace foveal::render::detail {
 
 const std::vector<std::string>& supported_gltf_extensions() {
   static const std::vector<std::string> kSupported = {
-      "EXT_meshopt_compression",        "KHR_draco_mesh_compression",         "KHR_materials_emissive_strength",
+      "EXT_meshopt_compression",        "KHR_draco_mesh_compression",         "KHR_lights_punctual",
+      "KHR_materials_emissive_strength",
       "KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit",          "KHR_mesh_quantization",
       "KHR_texture_transform",
   };

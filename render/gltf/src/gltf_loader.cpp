@@ -16,6 +16,7 @@
 #include "gltf_extensions.hpp"
 #include "gltf_internal.hpp"
 #include "gltf_json_fixups.hpp"
+#include "gltf_lights.hpp"
 
 namespace foveal::render {
 
@@ -197,6 +198,8 @@ Result<GltfScene> load_gltf_bytes(std::string_view bytes, const std::string& nam
   auto root = parse_json(json_text, name, {limits.max_json_bytes, kMaxJsonDepth});
   if (!root) return root.error();
   if (Status s = detail::check_gltf_json(*root, name); !s) return s.error();
+  std::vector<std::string> light_warnings;
+  if (Status s = detail::check_gltf_lights(*root, name, light_warnings); !s) return s.error();
   // Draco and meshopt files need placeholders tinygltf accepts (gltf_json_fixups.hpp).
   std::string mended;
   if (detail::mend_for_tinygltf(*root, binary)) {
@@ -235,6 +238,7 @@ Result<GltfScene> load_gltf_bytes(std::string_view bytes, const std::string& nam
     if (b > a) warnings.push_back(name + ": " + warn.substr(a, b - a));
   }
   if (Status s = detail::check_gltf_extensions(model, name, warnings); !s) return s.error();
+  warnings.insert(warnings.end(), light_warnings.begin(), light_warnings.end());
   if (Status s = decode_buffer_view_images(model, ctx); !s) return s.error();
   if (Status s = detail::decode_gltf_model(model, name, limits, budget); !s) return s.error();
   auto scene = detail::build_gltf_scene(model, name, limits, budget, sink);

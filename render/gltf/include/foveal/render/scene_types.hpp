@@ -53,6 +53,20 @@ struct DrawItem {
   glm::mat4 world{1.0f};
 };
 
+/// A KHR_lights_punctual light placed by its node (docs/scenes.md, "Lights"): world
+/// position and the direction the light points (the node's −Z), both without the node's
+/// scale; range, intensity and cone angles as the file gives them.
+struct PunctualLight {
+  enum class Type { directional, point, spot } type = Type::point;
+  glm::vec3 color{1.0f};   ///< linear RGB
+  float intensity = 1.0f;  ///< candela (point, spot) or lux (directional)
+  float range = 0.0f;      ///< 0: no cutoff
+  float inner_cone = 0.0f, outer_cone = 0.7853982f;  ///< radians, spot only
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  ///< unit, where the light shines
+  int index = 0;                           ///< its index in the extension's `lights`
+};
+
 /// Where the viewer's head is: the midpoint between the eyes, looking along -z.
 struct ViewPose {
   glm::mat4 head_to_world{1.0f};  ///< rotation and translation only
