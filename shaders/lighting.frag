@@ -1,5 +1,5 @@
 // Lighting: GGX metal-roughness shading with up to 64 point lights and one directional
-// light with a PCF shadow map, on the G-buffer (full method, identity mapping) or on an
+// light with a PCF shadow map (the rig), or the glTF file's own lights, on the G-buffer (full method, identity mapping) or on an
 // eye's reduced G-buffer (any foveation method). Each texel knows its screen pixel
 // through the method's mapping, so positions are rebuilt from depth at the right place. Output: tone-mapped linear colour.
 #include "common/mapping.glsl"

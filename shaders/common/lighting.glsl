@@ -7,6 +7,7 @@
 layout(binding = 5) uniform sampler2DShadow u_shadow_map;
 
 const int MAX_POINT_LIGHTS = 64;
+const int MAX_FILE_LIGHTS = 64;
 layout(std140, binding = 0) uniform Lights {
   vec4 u_point_pos_range[MAX_POINT_LIGHTS];  // world xyz, range
   vec4 u_point_color[MAX_POINT_LIGHTS];      // linear rgb × intensity
@@ -15,7 +16,12 @@ layout(std140, binding = 0) uniform Lights {
   vec4 u_ambient;                            // rgb, w = exposure
   vec4 u_background;
   mat4 u_sun_matrix;                         // world -> shadow map [0,1]³
-  ivec4 u_counts;                            // x: point lights, y: shadow on
+  ivec4 u_counts;                            // x: point lights, y: shadow on, z: file lights
+  // KHR_lights_punctual (light_rig.hpp, make_scene_lights); the rig's members are unused then.
+  vec4 u_light_pos_range[MAX_FILE_LIGHTS];   // world xyz, range (0: no cutoff)
+  vec4 u_light_color[MAX_FILE_LIGHTS];       // rgb × intensity, w: 0 directional, 1 point/spot
+  vec4 u_light_dir[MAX_FILE_LIGHTS];         // where it shines, w: cone scale
+  vec4 u_light_cone[MAX_FILE_LIGHTS];        // x: cone offset
 };
 
 const float PI = 3.14159265359;
@@ -59,6 +65,28 @@ float sun_visibility(vec3 p, vec3 n) {
   return sum / 9.0;
 }
 
+// What a file light adds at p: radiance for intensity in cd (point, spot: E = I / d²
+// at normal incidence) or lux (directional: E = I), with the glTF specification's range
+// window max(min(1 − (d/range)⁴, 1), 0) and spot cone sat(cos θ · scale + offset)².
+vec3 file_light(int i, vec3 p, vec3 n, vec3 v, vec3 albedo, float metallic, float roughness) {
+  vec4 c = u_light_color[i];
+  if (c.w == 0.0) return shade(n, v, -u_light_dir[i].xyz, albedo, metallic, roughness) * c.rgb;
+  vec3 to_light = u_light_pos_range[i].xyz - p;
+  float d2 = max(dot(to_light, to_light), 1e-8);
+  float range = u_light_pos_range[i].w;
+  float window = 1.0;
+  if (range > 0.0) {
+    float r = d2 / (range * range);  // (d/range)²
+    window = clamp(1.0 - r * r, 0.0, 1.0);
+    if (window == 0.0) return vec3(0.0);
+  }
+  vec3 l = to_light * inversesqrt(d2);
+  float cone = clamp(dot(u_light_dir[i].xyz, -l) * u_light_dir[i].w + u_light_cone[i].x, 0.0, 1.0);
+  cone *= cone;
+  if (cone == 0.0) return vec3(0.0);
+  return shade(n, v, l, albedo, metallic, roughness) * c.rgb * (window * cone / d2);
+}
+
 // ACES filmic fit (Narkowicz 2015), display-referred linear output.
 vec3 tone_map(vec3 x) {
   return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
@@ -71,7 +99,8 @@ vec3 lit_color(vec3 p, vec3 n, vec3 camera_pos, vec3 albedo, float metallic, flo
   // Ambient: diffuse for dielectrics, a flat specular (F0) so metals are not black.
   vec3 f0 = mix(vec3(0.04), albedo, metallic);
   vec3 color = u_ambient.rgb * (albedo * (1.0 - metallic) + f0) * occlusion;
-  color += shade(n, v, u_sun_dir.xyz, albedo, metallic, roughness) * u_sun_color.rgb * sun_visibility(p, n);
+  if (u_counts.z == 0)  // the rig's sun; a file with lights has no rig
+    color += shade(n, v, u_sun_dir.xyz, albedo, metallic, roughness) * u_sun_color.rgb * sun_visibility(p, n);
   for (int i = 0; i < u_counts.x; ++i) {
     vec3 to_light = u_point_pos_range[i].xyz - p;
     float range = u_point_pos_range[i].w;
@@ -82,6 +111,7 @@ vec3 lit_color(vec3 p, vec3 n, vec3 camera_pos, vec3 albedo, float metallic, flo
     float falloff = window / (1.0 + 16.0 * x);
     color += shade(n, v, to_light * inversesqrt(d2), albedo, metallic, roughness) * u_point_color[i].rgb * falloff;
   }
+  for (int i = 0; i < u_counts.z; ++i) color += file_light(i, p, n, v, albedo, metallic, roughness);
   color += emissive;
   return tone_map(color * u_ambient.w);
 }

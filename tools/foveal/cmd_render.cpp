@@ -134,6 +134,10 @@ int run(const Args& a) {
       {"triangles", scene->triangles},
       {"view", scene->view.source},
       {"warnings", scene->warnings},
+      // The file's KHR_lights_punctual lights replace the rig (docs/scenes.md, "Lights").
+      {"lights", scene->is_pattern()     ? nlohmann::json{{"source", "none"}, {"count", 0}}
+                 : scene->lights.empty() ? nlohmann::json{{"source", "rig"}, {"count", setup->compositor.point_lights + 1}}
+                                         : nlohmann::json{{"source", "file"}, {"count", scene->lights.size()}}},
       {"method", render::method_name(setup->frame.method)},
       {"pipeline", render::pipeline_name(setup->frame.pipeline)},
       {"size", {comp->width(), comp->height()}},

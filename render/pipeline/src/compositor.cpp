@@ -558,8 +558,10 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
   m.timer.begin_frame();
   m.timer.mark(Pass::shadow);
 
-  LightBlock lights = make_light_rig(scene.bounds, m.opt.point_lights);
-  if (!scene.is_pattern()) {  // patterns are unlit: no shadow pass
+  // The file's own lights when it has any (no shadow map: only the rig's sun casts one).
+  const bool file_lights = !scene.lights.empty();
+  LightBlock lights = file_lights ? make_scene_lights(scene.lights) : make_light_rig(scene.bounds, m.opt.point_lights);
+  if (!scene.is_pattern() && !file_lights) {  // patterns are unlit: no shadow pass
     m.shadow_pass(scene);
     m.timer.mark(Pass::shadow);
   } else {

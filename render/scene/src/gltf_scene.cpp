@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "foveal/render/gltf_loader.hpp"
+#include "foveal/render/light_rig.hpp"
 #include "scene_internal.hpp"
 
 namespace foveal::render::detail {
@@ -70,6 +71,12 @@ Result<Scene> load_gltf_scene(const std::string& path) {
   scene.view = std::move(loaded->view);
   scene.triangles = loaded->triangles;
   scene.warnings = std::move(loaded->warnings);
+  scene.lights = std::move(loaded->lights);
+  if (scene.lights.size() > static_cast<std::size_t>(kMaxFileLights)) {
+    scene.warnings.push_back(path + ": " + std::to_string(scene.lights.size()) + " KHR_lights_punctual light nodes; the first " +
+                             std::to_string(kMaxFileLights) + " are used");
+    scene.lights.resize(static_cast<std::size_t>(kMaxFileLights));
+  }
   upload_geometry(scene, sink.all_vertices, sink.all_indices);
   return scene;
 }

@@ -41,4 +41,28 @@ LightBlock make_light_rig(const Bounds& b, int point_lights) {
   return l;
 }
 
+LightBlock make_scene_lights(const std::vector<PunctualLight>& lights) {
+  LightBlock l;
+  const std::size_t n = std::min(lights.size(), static_cast<std::size_t>(kMaxFileLights));
+  for (std::size_t i = 0; i < n; ++i) {
+    const PunctualLight& p = lights[i];
+    const bool directional = p.type == PunctualLight::Type::directional;
+    l.light_pos_range[i] = glm::vec4(p.position, directional ? 0.0f : p.range);
+    l.light_color[i] = glm::vec4(p.color * p.intensity, directional ? 0.0f : 1.0f);
+    // The specification's angular attenuation: scale 1 / max(0.001, cos inner − cos outer),
+    // offset −cos outer · scale; a point light gets scale 0, offset 1 (no cone).
+    float scale = 0.0f, offset = 1.0f;
+    if (p.type == PunctualLight::Type::spot) {
+      scale = 1.0f / std::max(0.001f, std::cos(p.inner_cone) - std::cos(p.outer_cone));
+      offset = -std::cos(p.outer_cone) * scale;
+    }
+    l.light_dir[i] = glm::vec4(p.direction, scale);
+    l.light_cone[i] = glm::vec4(offset, 0.0f, 0.0f, 0.0f);
+  }
+  l.ambient = glm::vec4(glm::vec3(0.0f), 1.0f);
+  l.background = glm::vec4(0.02f, 0.025f, 0.035f, 1.0f);
+  l.counts = glm::ivec4(0, 0, static_cast<int>(n), 0);
+  return l;
+}
+
 }  // namespace foveal::render

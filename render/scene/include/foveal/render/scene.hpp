@@ -76,6 +76,8 @@ struct Scene {
   std::size_t triangles = 0;
   std::size_t texture_bytes = 0;  ///< GPU memory of the textures, mip levels included
   std::optional<Pattern> pattern;
+  /// KHR_lights_punctual lights (at most kMaxFileLights, light_rig.hpp); empty: the rig lights it.
+  std::vector<PunctualLight> lights;
   std::vector<std::string> warnings;  ///< what the file uses that is ignored, once each
 
   bool is_pattern() const { return pattern.has_value(); }
