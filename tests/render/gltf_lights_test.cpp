@@ -143,3 +143,25 @@ TEST(GltfLights, RequiringTheExtensionIsAccepted) {
   ASSERT_TRUE(s) << s.error().message;
   EXPECT_EQ(s->lights.size(), 1u);
 }
+
+// tools/scenes/point_lights.py: the benchmark scene's lights load, inside the scene's bounds.
+TEST(GltfLights, ThePointLightsScriptWritesADungeonCopyWithItsLights) {
+  test::TempDir dir;
+  const std::string src = test::source_path("data/scenes/Dungeon/dungeon_simplified.gltf");
+  auto r = test::run("python3 " + test::source_path("tools/scenes/point_lights.py") + " " + src + " " + dir.path("out") + " --lights 8");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  NullSink sink;
+  auto s = render::load_gltf(dir.path("out/dungeon_simplified_lights8.gltf"), {}, sink);
+  ASSERT_TRUE(s) << s.error().message;
+  ASSERT_EQ(s->lights.size(), 8u);
+  EXPECT_GT(sink.textures, 0) << "the copy reads the original's images";
+  for (const render::PunctualLight& l : s->lights) {
+    EXPECT_EQ(l.type, render::PunctualLight::Type::point);
+    EXPECT_NEAR(l.range, 0.35f * 2.0f * s->bounds.radius(), 1e-4f * l.range) << "the rig's range";
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_GT(l.position[k], s->bounds.min[k]);
+      EXPECT_LT(l.position[k], s->bounds.max[k]);
+    }
+  }
+  EXPECT_NE(test::run("python3 " + test::source_path("tools/scenes/point_lights.py") + " " + src + " " + dir.path("x") + " --lights 65").exit_code, 0);
+}
