@@ -68,8 +68,10 @@ def main(argv):
     out, runs = argv[0], argv[1:]
     rows, frames = [], []
     for d in runs:
-        rows += read(os.path.join(d, "gaze.csv"))
-        frames += read(os.path.join(d, "gaze_frames.csv"))
+        run_rows = read(os.path.join(d, "gaze.csv"))
+        display = run_rows[0]["display"] if run_rows else "?"
+        rows += run_rows
+        frames += [dict(f, display=display) for f in read(os.path.join(d, "gaze_frames.csv"))]
     if not rows or "jod_mean" not in rows[0]:
         sys.exit("gaze_jod_tables: the runs have no JOD columns (made with --no-jod?)")
     # (display, scene, series, sigma) -> frame-weighted means over logs
@@ -103,12 +105,11 @@ def main(argv):
         lines += ["## Tracked minus fixed, by the true gaze's eccentricity", "",
                   "JOD of RMFR+EFR tracked minus fixed foveation on the same frames, mean per band (frames in the band).", "",
                   "| display | scene | σ_d | 0-10° | 10-20° | 20-30° |", "|---|---|---|---|---|---|"]
-        disp_of = {(r["scene"], r["log"]): r["display"] for r in rows}
         by = {}
         for f in frames:
             if series(f) not in ("rmfr", "fixed"):
                 continue
-            key = (disp_of.get((f["scene"], f["log"]), "?"), f["scene"], num(f["sigma_d"]), f["log"], f["frame"])
+            key = (f["display"], f["scene"], num(f["sigma_d"]), f["log"], f["frame"])
             by.setdefault(key, {})[series(f)] = (num(f["jod"]), num(f["true_ecc_deg"]))
         bands = {}
         for (disp, scene, sigma, _, _), v in by.items():
