@@ -41,6 +41,6 @@ void main() {
   vec4 w = u_inv_view_proj * vec4(ndc, gl_FragCoord.z * 2.0 - 1.0, 1.0);
   vec3 p = w.xyz / w.w;
   vec3 n = decode_normal(g.normal.rg);
-  o_color = vec4(lit_color(p, n, u_camera_pos, g.albedo.rgb, g.material.r, g.material.g, g.material.b, g.emissive.rgb),
+  o_color = vec4(lit_color(pixel, p, n, u_camera_pos, g.albedo.rgb, g.material.r, g.material.g, g.material.b, g.emissive.rgb),
                  alpha);
 }

@@ -37,5 +37,5 @@ void main() {
   vec3 n = decode_normal(texelFetch(g_normal, texel, 0).rg);
   vec4 m = texelFetch(g_material, texel, 0);
   vec3 emissive = texelFetch(g_emissive, texel, 0).rgb;
-  o_color = vec4(lit_color(p, n, u_camera_pos, albedo.rgb, m.r, m.g, m.b, emissive), 1.0);
+  o_color = vec4(lit_color(pixel, p, n, u_camera_pos, albedo.rgb, m.r, m.g, m.b, emissive), 1.0);
 }

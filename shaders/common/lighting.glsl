@@ -24,6 +24,11 @@ layout(std140, binding = 0) uniform Lights {
   vec4 u_light_cone[MAX_FILE_LIGHTS];        // x: cone offset
 };
 
+// Per-tile light lists (light_tiles.hpp): (first, count) per tile of u_light_grid.z
+// pixels, then light indices; u_light_grid.w == 0: every file light at every sample.
+layout(binding = 7) uniform usamplerBuffer u_light_tiles;
+uniform ivec4 u_light_grid;  // columns, rows, tile pixels, lists on
+
 const float PI = 3.14159265359;
 
 float d_ggx(float n_dot_h, float a) {
@@ -92,8 +97,9 @@ vec3 tone_map(vec3 x) {
   return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
 }
 
-// Tone-mapped colour of a lit surface point p (world) with normal n seen from the camera.
-vec3 lit_color(vec3 p, vec3 n, vec3 camera_pos, vec3 albedo, float metallic, float roughness, float occlusion,
+// Tone-mapped colour of a lit surface point p (world) with normal n seen from the camera,
+// at the eye's screen pixel `pixel` (for the tile's light list).
+vec3 lit_color(ivec2 pixel, vec3 p, vec3 n, vec3 camera_pos, vec3 albedo, float metallic, float roughness, float occlusion,
                vec3 emissive) {
   vec3 v = normalize(camera_pos - p);
   // Ambient: diffuse for dielectrics, a flat specular (F0) so metals are not black.
@@ -111,7 +117,15 @@ vec3 lit_color(vec3 p, vec3 n, vec3 camera_pos, vec3 albedo, float metallic, flo
     float falloff = window / (1.0 + 16.0 * x);
     color += shade(n, v, to_light * inversesqrt(d2), albedo, metallic, roughness) * u_point_color[i].rgb * falloff;
   }
-  for (int i = 0; i < u_counts.z; ++i) color += file_light(i, p, n, v, albedo, metallic, roughness);
+  if (u_light_grid.w != 0) {
+    ivec2 t = clamp(pixel / u_light_grid.z, ivec2(0), u_light_grid.xy - 1);
+    int k = t.y * u_light_grid.x + t.x;
+    int first = int(texelFetch(u_light_tiles, 2 * k).r), count = int(texelFetch(u_light_tiles, 2 * k + 1).r);
+    for (int j = 0; j < count; ++j)
+      color += file_light(int(texelFetch(u_light_tiles, first + j).r), p, n, v, albedo, metallic, roughness);
+  } else {
+    for (int i = 0; i < u_counts.z; ++i) color += file_light(i, p, n, v, albedo, metallic, roughness);
+  }
   color += emissive;
   return tone_map(color * u_ambient.w);
 }

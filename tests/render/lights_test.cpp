@@ -6,6 +6,7 @@
 // illuminance E = I/d² (point, spot; × the range window) or E = I (directional); the
 // output is the ACES fit of L (exposure 1, no ambient). Each case runs in both
 // pipelines, full and RMFR σ 2; without the light the rig lights the plane instead.
+// Last, the per-tile light lists against every light at every sample.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,8 +14,10 @@
 #include <cmath>
 #include <string>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "foveal/render/light_tiles.hpp"
 #include "gl_support.hpp"
 #include "gltf_test_models.hpp"
 #include "test_support.hpp"
@@ -195,4 +198,65 @@ TEST(Lights, RenderJsonSaysWhetherTheFileOrTheRigLightsTheScene) {
   EXPECT_EQ(jb["lights"]["source"], "rig");
   EXPECT_EQ(jb["lights"]["count"], 65);  // 64 points and the sun
   for (const json& w : ja["warnings"]) EXPECT_EQ(w.get<std::string>().find("KHR_lights_punctual"), std::string::npos) << w;
+}
+
+// Per-tile light lists (light_tiles.hpp): a light's tiles hold its range sphere's screen
+// rectangle, and lighting through the lists is the image of every light at every sample.
+TEST(LightTiles, ASphereInFrontCoversItsProjectionAndOneBehindTheEyeEverything) {
+  const glm::mat4 proj = glm::perspective(1.0f, 1.0f, 0.1f, 100.0f);  // eye at the origin looking down −z
+  const glm::ivec4 centre = render::sphere_screen_rect({0, 0, -10}, 1.0f, proj, 100, 100);
+  EXPECT_LE(centre.x, 45);
+  EXPECT_GE(centre.z, 55);
+  EXPECT_GT(centre.x, 30) << "a 1-unit sphere at 10 units covers far less than the screen";
+  EXPECT_LT(centre.z, 70);
+  EXPECT_EQ(render::sphere_screen_rect({0, 0, 0.5f}, 1.0f, proj, 100, 100), glm::ivec4(0, 0, 100, 100)) << "the eye is inside";
+  const glm::ivec4 off = render::sphere_screen_rect({50, 0, -10}, 1.0f, proj, 100, 100);
+  EXPECT_TRUE(off.x >= off.z) << "off screen: no tiles";
+  render::PunctualLight near, far, unbounded;
+  near.position = {0, 0, -10}, near.range = 1.0f;
+  far.position = {50, 0, -10}, far.range = 1.0f;
+  unbounded.position = {50, 0, -10};
+  const render::LightTiles t = render::build_light_tiles({near, far, unbounded}, 3, proj, 100, 100, 16);
+  EXPECT_EQ(t.cols, 7);
+  EXPECT_EQ(t.rows, 7);
+  auto list = [&](int x, int y) {
+    const std::size_t k = static_cast<std::size_t>(y * t.cols + x);
+    return std::vector<std::uint32_t>(t.data.begin() + t.data[2 * k], t.data.begin() + t.data[2 * k] + t.data[2 * k + 1]);
+  };
+  EXPECT_EQ(list(3, 3), (std::vector<std::uint32_t>{0, 2})) << "the centre tile: the near light and the one without range";
+  EXPECT_EQ(list(0, 0), (std::vector<std::uint32_t>{2}));
+}
+
+TEST(LightTiles, LightingThroughTheListsIsLightingWithEveryLightInBothPipelines) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir dir;
+  // Three short-range lights over different parts of the plane and one without a range.
+  json j = json::parse(test::read_file(write_scene(dir, "base", {{{"type", "point"}, {"intensity", 0.3}}, kDown})));
+  for (double x : {-1.5, 0.0, 1.5}) {
+    j["extensions"]["KHR_lights_punctual"]["lights"].push_back({{"type", "point"}, {"intensity", 1.0}, {"range", 1.2}});
+    j["nodes"].push_back({{"translation", {x, 0.5 * x, 0.4}}, {"extensions", {{"KHR_lights_punctual", {{"light", j["extensions"]["KHR_lights_punctual"]["lights"].size() - 1}}}}}});
+    j["scenes"][0]["nodes"].push_back(j["nodes"].size() - 1);
+  }
+  const std::string path = dir.path("four.gltf");
+  test::write_file(path, j.dump());
+  render::Scene s = test::scene(path);
+  ASSERT_EQ(s.lights.size(), 4u);
+  for (const Case& c : kCases) {
+    std::vector<float> images[2];
+    for (int tiled = 0; tiled < 2; ++tiled) {
+      render::CompositorOptions o;
+      o.width = kWidth, o.height = kHeight, o.float_output = true, o.light_tiles = tiled == 1;
+      auto comp = render::Compositor::create(o, test::source_shaders());
+      ASSERT_TRUE(comp) << comp.error().message;
+      render::FrameParams p = test::frame(c.method, c.sigma);
+      p.pipeline = c.pipeline;
+      auto t = comp->render(s, p);
+      ASSERT_TRUE(t) << t.error().message;
+      images[tiled] = comp->read_float();
+    }
+    double worst = 0;
+    for (std::size_t k = 0; k < images[0].size(); ++k) worst = std::max(worst, std::fabs(double(images[0][k]) - images[1][k]));
+    EXPECT_LE(worst, 1e-6) << describe(c) << ": the lists leave out only lights that add nothing";
+    EXPECT_GT(*std::max_element(images[1].begin(), images[1].end()), 0.2f) << describe(c) << ": the short-range lights light the plane";
+  }
 }

@@ -45,6 +45,11 @@ void add_render_options(CLI::App& sub, RenderArgs& a) {
   sub.add_option("--size", a.size, "Side-by-side output size WxH (even width)")->capture_default_str();
   sub.add_option("--display", a.display, "Display-model JSON (default: HTC Vive Pro Eye)");
   sub.add_flag("--no-distortion", a.no_distortion, "Ignore the display model's lens distortion (frames comparable with metrics)");
+  sub.add_option("--light-lists", a.light_lists,
+                 "The glTF file's own lights: tiles (each 16x16-pixel tile loops over the lights that reach it) or all "
+                 "(every light at every sample); docs/scenes.md, \"Lights\"")
+      ->check(CLI::IsMember({"tiles", "all"}))
+      ->capture_default_str();
 }
 
 namespace {
@@ -112,6 +117,7 @@ Result<RenderSetup> resolve(const RenderArgs& a) {
   s.compositor.width = size->first;
   s.compositor.height = size->second;
   s.compositor.distortion = !a.no_distortion;
+  s.compositor.light_tiles = a.light_lists == "tiles";
   if (!a.display.empty()) {
     auto m = DisplayModel::load(a.display);
     if (!m) return m.error();

@@ -28,6 +28,7 @@ struct RenderArgs {
   std::string size = "2880x1600";
   std::string display;
   bool no_distortion = false;
+  std::string light_lists = "tiles";  ///< --light-lists: tiles or all
 };
 
 void add_render_options(CLI::App& sub, RenderArgs& a);

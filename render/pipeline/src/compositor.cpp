@@ -10,6 +10,7 @@
 
 #include "foveal/rmfr_mapping.hpp"
 #include "foveal/render/light_rig.hpp"
+#include "foveal/render/light_tiles.hpp"
 #include "foveal/render/scene.hpp"
 #include "foveal/render/stereo_camera.hpp"
 #include "foveal/rmfr.hpp"
@@ -247,6 +248,11 @@ struct Compositor::Impl {
   std::optional<rmfr::Foveator> foveator;  // RMFR's mapping and resolve passes
   gl::VertexArray empty_vao;
   gl::Buffer lights_ubo;
+  // The eye's per-tile lists of the file's lights (light_tiles.hpp) and the grid the
+  // lighting and blend passes read them by (w 0: no lists).
+  gl::Buffer light_tiles_buffer;
+  gl::Texture light_tiles_texture;
+  glm::ivec4 light_grid{0};
   std::optional<detail::SurfaceTargets> gbuffer;  // made by the first G-buffer-pipeline frame
   std::array<std::optional<detail::SurfaceTargets>, 2> transformed;
   std::optional<detail::VisibilityPipeline> visibility;
@@ -312,8 +318,10 @@ struct Compositor::Impl {
     set(p, "u_origin", origin);
     set(p, "u_inv_view_proj", v.inv_view_proj);
     set(p, "u_camera_pos", v.position);
+    set(p, "u_light_grid", light_grid);
     src.bind_textures();
     glBindTextureUnit(5, shadow.texture.id());
+    glBindTextureUnit(7, light_tiles_texture.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, lights_ubo.id());
     glBindVertexArray(empty_vao.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -348,6 +356,8 @@ struct Compositor::Impl {
     set(p, "u_camera_pos", v.position);
     set(p, "u_origin", origin);
     set(p, "u_eye_size", glm::vec2(eye_w, eye_h));
+    set(p, "u_light_grid", light_grid);
+    glBindTextureUnit(7, light_tiles_texture.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, lights_ubo.id());
     for (const auto& [distance, i] : order) {
       const DrawItem& d = scene.draws[i];
@@ -532,6 +542,12 @@ Result<Compositor> Compositor::create(const CompositorOptions& o, const gl::Shad
   impl->empty_vao = gl::VertexArray::create();
   impl->lights_ubo = gl::Buffer::create();
   glNamedBufferStorage(impl->lights_ubo.id(), sizeof(LightBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  impl->light_tiles_buffer = gl::Buffer::create();
+  {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
+    impl->light_tiles_texture = gl::Texture(id);
+  }
   auto visibility = detail::VisibilityPipeline::create(shaders, impl->eye_w, impl->eye_h);
   if (!visibility) return visibility.error();
   impl->visibility.emplace(std::move(*visibility));
@@ -579,6 +595,14 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     const LensDistortion& lens = m.opt.model.distortion[i];
     const bool distort = m.opt.distortion && lens.enabled;
     const EyeView view = eye_view(scene, m.opt.model, e, camera->head, camera->ipd_mm);
+    m.light_grid = glm::ivec4(0);
+    if (file_lights && m.opt.light_tiles) {
+      const LightTiles tiles = build_light_tiles(scene.lights, static_cast<std::size_t>(lights.counts.z), view.view_proj, m.eye_w, m.eye_h);
+      glNamedBufferData(m.light_tiles_buffer.id(), static_cast<GLsizeiptr>(tiles.data.size() * sizeof(std::uint32_t)), tiles.data.data(),
+                        GL_STREAM_DRAW);
+      glTextureBuffer(m.light_tiles_texture.id(), GL_R32UI, m.light_tiles_buffer.id());
+      m.light_grid = glm::ivec4(tiles.cols, tiles.rows, tiles.tile_px, 1);
+    }
     if (Status s = m.full_resolution_pass(scene, view, params.pipeline); !s) return s.error();
     if (e == Eye::left) m.run_latch(latch, eyes, times);
     // The full method has no resolve pass to fold the lens into: it runs as RMFR at σ = 1

@@ -104,6 +104,8 @@ struct CompositorOptions {
   bool float_output = false;  ///< RGBA32F reduced buffers and output (for NaN/Inf tests)
   int shadow_map_size = 2048;
   int point_lights = 64;
+  /// The file's lights through per-tile lists (light_tiles.hpp); false: every light at every sample.
+  bool light_tiles = true;
   bool distortion = true;  ///< apply the display model's lens distortion, if it has one
 };
 
