@@ -156,7 +156,9 @@ TEST(BenchGaze, SpreadPicksOneFramePerEccentricityBand) {
     EXPECT_NEAR(value(spread[i], "true_ecc_deg"), ecc(spread[i]), 0.05);
     EXPECT_LE(value(spread[i], "true_ecc_deg"), 16.0);
     EXPECT_TRUE(bands.insert(static_cast<int>(value(spread[i], "true_ecc_deg") / 4)).second) << "two frames in one band";
-    if (i) EXPECT_LT(std::stoi(spread[i - 1].at("frame")), std::stoi(spread[i].at("frame")));  // in stream order
+    if (i) {
+      EXPECT_LT(std::stoi(spread[i - 1].at("frame")), std::stoi(spread[i].at("frame")));  // in stream order
+    }
   }
   // The default keeps its frames: every (stream / N)-th, eccentricities as they come.
   const auto even = run("even", "");
