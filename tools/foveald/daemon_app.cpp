@@ -4,6 +4,7 @@
 #include <sys/signalfd.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -76,7 +77,9 @@ Status DaemonApp::apply_profile(const Profile& p, const char* why) {
   log::info(std::string("profile '") + p.name + "' " + why + ": dominant " + eye_name(p.dominant_eye) +
             ", sigma_d " + shown_number(levels->sigma_d) + ", sigma_nd " + shown_number(levels->sigma_nd) +
             (p.quality.empty() ? "" : ", f " + shown_number(chosen.f) + " (quality " + p.quality + ": predicted JOD " +
-                                          shown_number(chosen.jod_d) + " dominant, " + shown_number(chosen.jod_nd) + " non-dominant)"));
+                                          shown_number(chosen.jod_d) + " dominant, " +
+                                          (std::isfinite(chosen.jod_nd) ? shown_number(chosen.jod_nd) : "past the table") +
+                                          " non-dominant)"));
   return {};
 }
 
