@@ -6,15 +6,16 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <filesystem>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include "foveal/tools/run_program.hpp"
 #include "other_user.hpp"
+#include "sanitizers.hpp"
 #include "test_support.hpp"
 
 namespace foveal {
@@ -49,18 +50,10 @@ std::string make_shard(const TempDir& d, const std::string& name, const std::str
   return d.path(name);
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-#define FOVEAL_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define FOVEAL_ASAN 1
-#endif
-#endif
-
 // The 2 GiB cap on one run of foveal. ASan reserves terabytes of shadow address space at
 // start, so under ASan the cap is its own allocation limit rather than RLIMIT_AS.
 std::vector<std::string> memory_cap() {
-#ifdef FOVEAL_ASAN
+#ifdef FOVEAL_TEST_ASAN
   const char* inherited = std::getenv("ASAN_OPTIONS");
   return {"/usr/bin/env", std::string("ASAN_OPTIONS=") + (inherited ? std::string(inherited) + ":" : std::string()) +
                               "max_allocation_size_mb=2048:allocator_may_return_null=1"};

@@ -10,6 +10,7 @@
 
 #include "control_fixture.hpp"
 #include "foveal/core/clock.hpp"
+#include "sanitizers.hpp"
 
 namespace foveal {
 namespace {
@@ -18,17 +19,10 @@ using control_test::ControlSocket;
 
 double ms_since(TimeNs t0) { return static_cast<double>(monotonic_now_ns() - t0) / 1e6; }
 
-#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
-#define FOVEAL_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(thread_sanitizer) || __has_feature(address_sanitizer)
-#define FOVEAL_SANITIZED 1
-#endif
-#endif
 // A loop that waited on stuck clients took 100 ms for each: 3.1 s for 31. A sanitizer
 // build runs everything 5-15 times slower and shares the CPU with the flood, so it gets
 // a wider bound, still a third of what the waiting loop took.
-#ifdef FOVEAL_SANITIZED
+#ifdef FOVEAL_TEST_SANITIZED
 constexpr double kStatusBoundMs = 1000;
 #else
 constexpr double kStatusBoundMs = 100;
