@@ -1,5 +1,6 @@
-// Forward pass of alphaMode BLEND surfaces (docs/scenes.md, "Transparency"): after the
-// eye's lit opaque result is complete at output resolution, each blended fragment is
+// Forward pass of alphaMode BLEND and transmissive surfaces (docs/scenes.md,
+// "Transparency", "Materials"): after the eye's lit opaque result is complete at output
+// resolution, each blended fragment is
 // shaded with the opaque path's material (common/material.glsl) and lights
 // (common/lighting.glsl) and composited "over" it by the fixed-function blend with
 // alpha = base colour factor × texture × vertex colour alpha. The opaque depth is tested
@@ -19,6 +20,30 @@ uniform ivec2 u_origin;       // the eye's pixel (0,0) in the output
 uniform vec2 u_eye_size;      // the eye's W×H
 uniform mat4 u_inv_view_proj;
 uniform vec3 u_camera_pos;
+#ifdef FEATURE_TRANSMISSION
+// The eye's lit opaque result before this pass (W×H, mipmapped): what transmission shows.
+layout(binding = 12) uniform sampler2D u_behind;
+uniform mat4 u_view_proj;
+uniform vec3 u_model_scale;  // the draw's scale per axis: the volume's thickness into world units
+
+// KHR_materials_transmission (+ _volume): the opaque result behind the surface, seen
+// through it: along the refracted ray to the back of a volume of the given thickness
+// (straight through when thin-walled), blurred by the roughness as the ior spreads it,
+// attenuated by Beer-Lambert c^(d / attenuationDistance), tinted by the base colour and
+// weighted by the transmission and what Fresnel does not reflect (docs/scenes.md).
+vec3 transmitted(vec3 p, vec3 n, vec3 v, Surface s, Transmission t) {
+  vec3 ray = normalize(refract(-v, n, 1.0 / u_ior)) * t.thickness * u_model_scale;
+  vec4 clip = u_view_proj * vec4(p + ray, 1.0);
+  vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+  float lod = log2(float(textureSize(u_behind, 0).x)) * s.roughness * clamp(u_ior * 2.0 - 2.0, 0.0, 1.0);
+  vec3 behind = textureLod(u_behind, uv, lod).rgb;
+  vec3 attenuation = vec3(1.0);
+  if (u_transmission.z > 0.0) attenuation = pow(u_attenuation_color, vec3(length(ray) / u_transmission.z));
+  float n_dot_v = clamp(dot(n, v), 0.0, 1.0);
+  vec3 f = s.f0 + (s.f90 - s.f0) * pow(1.0 - n_dot_v, 5.0);
+  return t.factor * (1.0 - s.metallic) * (1.0 - f) * s.albedo * attenuation * behind;
+}
+#endif
 
 layout(location = 0) out vec4 o_color;
 
@@ -31,7 +56,7 @@ void main() {
   SurfacePoint s = SurfacePoint(v_normal, v_tangent, v_uv, v_uv1, v_color, gl_FrontFacing);
   vec4 base = material_base(s);
   GBufferTexel g = evaluate_material(s, base);
-  float alpha = clamp(base.a, 0.0, 1.0);
+  float alpha = u_blend ? clamp(base.a, 0.0, 1.0) : 1.0;  // an opaque transmissive surface replaces
   if (u_unlit) {
     o_color = vec4(g.albedo.rgb, alpha);
     return;
@@ -41,6 +66,14 @@ void main() {
   vec4 w = u_inv_view_proj * vec4(ndc, gl_FragCoord.z * 2.0 - 1.0, 1.0);
   vec3 p = w.xyz / w.w;
   vec3 n = decode_normal(g.normal.rg);
-  o_color = vec4(lit_color(pixel, p, n, u_camera_pos, g.albedo.rgb, g.material.r, g.material.g, g.material.b, g.emissive.rgb),
-                 alpha);
+  Surface surface = surface_of(g);
+#ifdef FEATURE_TRANSMISSION
+  if (u_transmission.x > 0.0) {
+    Transmission t = material_transmission(s);
+    surface.transmission = t.factor;
+    o_color = vec4(lit_color(pixel, p, n, u_camera_pos, surface) + transmitted(p, n, normalize(u_camera_pos - p), surface, t), alpha);
+    return;
+  }
+#endif
+  o_color = vec4(lit_color(pixel, p, n, u_camera_pos, surface), alpha);
 }

@@ -3,7 +3,6 @@
 // eye's reduced G-buffer (any foveation method). Each texel knows its screen pixel
 // through the method's mapping, so positions are rebuilt from depth at the right place. Output: tone-mapped linear colour.
 #include "common/mapping.glsl"
-#include "common/gbuffer_encoding.glsl"
 #include "common/lighting.glsl"
 
 layout(binding = 0) uniform sampler2D g_albedo;
@@ -11,6 +10,15 @@ layout(binding = 1) uniform sampler2D g_normal;
 layout(binding = 2) uniform sampler2D g_material;
 layout(binding = 3) uniform sampler2D g_emissive;
 layout(binding = 4) uniform sampler2D g_depth;
+#ifdef FEATURE_CLEARCOAT
+layout(binding = CLEARCOAT_UNIT) uniform sampler2D g_clearcoat;
+#endif
+#ifdef FEATURE_SHEEN
+layout(binding = SHEEN_UNIT) uniform sampler2D g_sheen;
+#endif
+#ifdef FEATURE_SPECULAR
+layout(binding = SPECULAR_UNIT) uniform sampler2D g_specular;
+#endif
 
 uniform ivec2 u_origin;  // where this eye's texel (0,0) lies in the render target
 uniform mat4 u_inv_view_proj;
@@ -34,8 +42,19 @@ void main() {
   vec2 ndc = (vec2(pixel) + 0.5) / u_screen_size * 2.0 - 1.0;
   vec4 w = u_inv_view_proj * vec4(ndc, depth * 2.0 - 1.0, 1.0);
   vec3 p = w.xyz / w.w;
-  vec3 n = decode_normal(texelFetch(g_normal, texel, 0).rg);
-  vec4 m = texelFetch(g_material, texel, 0);
-  vec3 emissive = texelFetch(g_emissive, texel, 0).rgb;
-  o_color = vec4(lit_color(pixel, p, n, u_camera_pos, albedo.rgb, m.r, m.g, m.b, emissive), 1.0);
+  GBufferTexel g;
+  g.albedo = albedo;
+  g.normal = texelFetch(g_normal, texel, 0);
+  g.material = texelFetch(g_material, texel, 0);
+  g.emissive = texelFetch(g_emissive, texel, 0);
+#ifdef FEATURE_CLEARCOAT
+  g.clearcoat = texelFetch(g_clearcoat, texel, 0);
+#endif
+#ifdef FEATURE_SHEEN
+  g.sheen = texelFetch(g_sheen, texel, 0);
+#endif
+#ifdef FEATURE_SPECULAR
+  g.specular = texelFetch(g_specular, texel, 0);
+#endif
+  o_color = vec4(lit_color(pixel, p, decode_normal(g.normal.rg), u_camera_pos, surface_of(g)), 1.0);
 }

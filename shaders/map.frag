@@ -15,6 +15,19 @@ layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_material;
 layout(location = 3) out vec4 o_emissive;
 layout(location = 4) out float o_depth;
+// The scene's feature targets (common/gbuffer_outputs.glsl's locations, units 8 on).
+#ifdef FEATURE_CLEARCOAT
+layout(binding = CLEARCOAT_UNIT) uniform sampler2D g_clearcoat;
+layout(location = CLEARCOAT_LOCATION) out vec4 o_clearcoat;
+#endif
+#ifdef FEATURE_SHEEN
+layout(binding = SHEEN_UNIT) uniform sampler2D g_sheen;
+layout(location = SHEEN_LOCATION) out vec4 o_sheen;
+#endif
+#ifdef FEATURE_SPECULAR
+layout(binding = SPECULAR_UNIT) uniform sampler2D g_specular;
+layout(location = SPECULAR_LOCATION) out vec4 o_specular;
+#endif
 
 void main() {
   ivec2 src = source_pixel(ivec2(gl_FragCoord.xy));
@@ -23,4 +36,13 @@ void main() {
   o_material = texelFetch(g_material, src, 0);
   o_emissive = texelFetch(g_emissive, src, 0);
   o_depth = texelFetch(g_depth, src, 0).r;
+#ifdef FEATURE_CLEARCOAT
+  o_clearcoat = texelFetch(g_clearcoat, src, 0);
+#endif
+#ifdef FEATURE_SHEEN
+  o_sheen = texelFetch(g_sheen, src, 0);
+#endif
+#ifdef FEATURE_SPECULAR
+  o_specular = texelFetch(g_specular, src, 0);
+#endif
 }

@@ -23,10 +23,14 @@ uniform mat4 u_view_proj;
 layout(early_fragment_tests) in;
 #endif
 
+#ifdef PATTERN
 layout(location = 0) out vec4 o_albedo;
 layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_material;
 layout(location = 3) out vec4 o_emissive;
+#else
+#include "common/gbuffer_outputs.glsl"
+#endif
 layout(location = 4) out float o_depth;
 
 #ifndef PATTERN
@@ -83,10 +87,6 @@ void main() {
   s.uv1 = mix3(b.l, v0.uv1, v1.uv1, v2.uv1);
   s.color = mix3(b.l, v0.color, v1.color, v2.color);
   s.front_facing = front_facing(c0, c1, c2);
-  GBufferTexel g = evaluate_material(s, material_base(s));
-  o_albedo = g.albedo;
-  o_normal = g.normal;
-  o_material = g.material;
-  o_emissive = g.emissive;
+  write_gbuffer(evaluate_material(s, material_base(s)));
 #endif
 }

@@ -4,7 +4,12 @@
 // pass (lighting.frag, on a G-buffer texel) and the forward pass of alphaMode BLEND
 // surfaces (blend.frag, at a fragment). The includer binds the shadow map to unit 5 and
 // the Lights block to binding 0.
+#include "common/gbuffer_texel.glsl"
 layout(binding = 5) uniform sampler2DShadow u_shadow_map;
+#ifdef FEATURE_SHEEN
+// The Charlie sheen lobe's directional albedo E(n·v, sheen roughness) (sheen_albedo.hpp).
+layout(binding = 11) uniform sampler2D u_sheen_albedo;
+#endif
 
 const int MAX_POINT_LIGHTS = 64;
 const int MAX_FILE_LIGHTS = 64;
@@ -45,17 +50,66 @@ float v_smith(float n_dot_v, float n_dot_l, float a) {
   return 0.5 / max(gv + gl, 1e-5);
 }
 
-vec3 shade(vec3 n, vec3 v, vec3 l, vec3 albedo, float metallic, float roughness) {
+#ifdef FEATURE_SHEEN
+// KHR_materials_sheen: Charlie distribution (α = roughness², kept above 1e-3 as the
+// albedo table is) and Neubelt's visibility, which the specification allows.
+float sheen_alpha(float roughness) { return max(roughness * roughness, 1e-3); }
+float d_charlie(float n_dot_h, float alpha) {
+  float inv = 1.0 / alpha;
+  float sin2 = max(1.0 - n_dot_h * n_dot_h, 0.0);
+  return (2.0 + inv) * pow(sin2, 0.5 * inv) / (2.0 * PI);
+}
+float v_neubelt(float n_dot_v, float n_dot_l) { return 1.0 / (4.0 * (n_dot_l + n_dot_v - n_dot_l * n_dot_v)); }
+// What the sheen layer leaves of the base below it: 1 − max(sheen colour) · E(n·v).
+float sheen_scaling(Surface s, float n_dot_v) {
+  float e = texture(u_sheen_albedo, vec2(n_dot_v, s.sheen_roughness)).r;
+  return 1.0 - max(s.sheen_color.r, max(s.sheen_color.g, s.sheen_color.b)) * e;
+}
+#endif
+#ifdef FEATURE_CLEARCOAT
+// KHR_materials_clearcoat's Fresnel: ior 1.5 (F0 0.04) at the coat normal.
+float coat_fresnel(Surface s, vec3 v) { return 0.04 + 0.96 * pow(1.0 - clamp(dot(s.clearcoat_normal, v), 0.0, 1.0), 5.0); }
+#endif
+
+// The BRDF times n·l for light from l: metal-roughness GGX with the dielectric F0/F90
+// of KHR_materials_specular, under the sheen and clearcoat layers when the scene has them
+// (docs/scenes.md, "Materials").
+vec3 shade(vec3 n, vec3 v, vec3 l, Surface s) {
   float n_dot_l = dot(n, l);
-  if (n_dot_l <= 0.0) return vec3(0.0);
   vec3 h = normalize(v + l);
-  float n_dot_v = max(dot(n, v), 1e-4), n_dot_h = max(dot(n, h), 0.0), v_dot_h = max(dot(v, h), 0.0);
-  float a = max(roughness * roughness, 2e-3);
-  vec3 f0 = mix(vec3(0.04), albedo, metallic);
-  vec3 f = f0 + (1.0 - f0) * pow(1.0 - v_dot_h, 5.0);
-  vec3 specular = d_ggx(n_dot_h, a) * v_smith(n_dot_v, n_dot_l, a) * f;
-  vec3 diffuse = (1.0 - f) * (1.0 - metallic) * albedo / PI;
-  return (diffuse + specular) * n_dot_l;
+  vec3 color = vec3(0.0);
+  if (n_dot_l > 0.0) {
+    float n_dot_v = max(dot(n, v), 1e-4), n_dot_h = max(dot(n, h), 0.0), v_dot_h = max(dot(v, h), 0.0);
+    float a = max(s.roughness * s.roughness, 2e-3);
+    vec3 f0 = mix(s.f0, s.albedo, s.metallic);
+    float f90 = mix(s.f90, 1.0, s.metallic);
+    vec3 f = f0 + (f90 - f0) * pow(1.0 - v_dot_h, 5.0);
+    vec3 specular = d_ggx(n_dot_h, a) * v_smith(n_dot_v, n_dot_l, a) * f;
+    vec3 diffuse = (1.0 - f) * (1.0 - s.metallic) * s.albedo / PI;
+#ifdef FEATURE_TRANSMISSION
+    diffuse *= 1.0 - s.transmission;  // what is transmitted is not diffused (the forward pass adds it)
+#endif
+    color = diffuse + specular;
+#ifdef FEATURE_SHEEN
+    color = color * sheen_scaling(s, n_dot_v) +
+            s.sheen_color * d_charlie(n_dot_h, sheen_alpha(s.sheen_roughness)) * v_neubelt(n_dot_v, n_dot_l);
+#endif
+    color *= n_dot_l;
+  }
+#ifdef FEATURE_CLEARCOAT
+  if (s.clearcoat > 0.0) {
+    vec3 nc = s.clearcoat_normal;
+    float fc = coat_fresnel(s, v);
+    color *= 1.0 - s.clearcoat * fc;
+    float c_dot_l = dot(nc, l);
+    if (c_dot_l > 0.0) {
+      float ac = max(s.clearcoat_roughness * s.clearcoat_roughness, 2e-3);
+      float c_dot_v = max(dot(nc, v), 1e-4);
+      color += s.clearcoat * fc * d_ggx(max(dot(nc, h), 0.0), ac) * v_smith(c_dot_v, c_dot_l, ac) * c_dot_l;
+    }
+  }
+#endif
+  return color;
 }
 
 float sun_visibility(vec3 p, vec3 n) {
@@ -73,9 +127,9 @@ float sun_visibility(vec3 p, vec3 n) {
 // What a file light adds at p: radiance for intensity in cd (point, spot: E = I / d²
 // at normal incidence) or lux (directional: E = I), with the glTF specification's range
 // window max(min(1 − (d/range)⁴, 1), 0) and spot cone sat(cos θ · scale + offset)².
-vec3 file_light(int i, vec3 p, vec3 n, vec3 v, vec3 albedo, float metallic, float roughness) {
+vec3 file_light(int i, vec3 p, vec3 n, vec3 v, Surface s) {
   vec4 c = u_light_color[i];
-  if (c.w == 0.0) return shade(n, v, -u_light_dir[i].xyz, albedo, metallic, roughness) * c.rgb;
+  if (c.w == 0.0) return shade(n, v, -u_light_dir[i].xyz, s) * c.rgb;
   vec3 to_light = u_light_pos_range[i].xyz - p;
   float d2 = max(dot(to_light, to_light), 1e-8);
   float range = u_light_pos_range[i].w;
@@ -89,7 +143,7 @@ vec3 file_light(int i, vec3 p, vec3 n, vec3 v, vec3 albedo, float metallic, floa
   float cone = clamp(dot(u_light_dir[i].xyz, -l) * u_light_dir[i].w + u_light_cone[i].x, 0.0, 1.0);
   cone *= cone;
   if (cone == 0.0) return vec3(0.0);
-  return shade(n, v, l, albedo, metallic, roughness) * c.rgb * (window * cone / d2);
+  return shade(n, v, l, s) * c.rgb * (window * cone / d2);
 }
 
 // ACES filmic fit (Narkowicz 2015), display-referred linear output.
@@ -99,14 +153,28 @@ vec3 tone_map(vec3 x) {
 
 // Tone-mapped colour of a lit surface point p (world) with normal n seen from the camera,
 // at the eye's screen pixel `pixel` (for the tile's light list).
-vec3 lit_color(ivec2 pixel, vec3 p, vec3 n, vec3 camera_pos, vec3 albedo, float metallic, float roughness, float occlusion,
-               vec3 emissive) {
+vec3 lit_color(ivec2 pixel, vec3 p, vec3 n, vec3 camera_pos, Surface s) {
   vec3 v = normalize(camera_pos - p);
   // Ambient: diffuse for dielectrics, a flat specular (F0) so metals are not black.
-  vec3 f0 = mix(vec3(0.04), albedo, metallic);
-  vec3 color = u_ambient.rgb * (albedo * (1.0 - metallic) + f0) * occlusion;
+  vec3 f0 = mix(s.f0, s.albedo, s.metallic);
+  float diffuse_weight = 1.0 - s.metallic;
+#ifdef FEATURE_TRANSMISSION
+  diffuse_weight *= 1.0 - s.transmission;
+#endif
+  vec3 color = u_ambient.rgb * (s.albedo * diffuse_weight + f0) * s.occlusion;
+#ifdef FEATURE_SHEEN
+  float e = texture(u_sheen_albedo, vec2(max(dot(n, v), 0.0), s.sheen_roughness)).r;
+  color = color * sheen_scaling(s, max(dot(n, v), 0.0)) + u_ambient.rgb * s.sheen_color * e * s.occlusion;
+#endif
+  vec3 emissive = s.emissive;
+#ifdef FEATURE_CLEARCOAT
+  // The coat dims what is below it, emission included, and reflects the ambient at F_c.
+  float coat = s.clearcoat * coat_fresnel(s, v);
+  color = color * (1.0 - coat) + u_ambient.rgb * coat * s.occlusion;
+  emissive *= 1.0 - coat;
+#endif
   if (u_counts.z == 0)  // the rig's sun; a file with lights has no rig
-    color += shade(n, v, u_sun_dir.xyz, albedo, metallic, roughness) * u_sun_color.rgb * sun_visibility(p, n);
+    color += shade(n, v, u_sun_dir.xyz, s) * u_sun_color.rgb * sun_visibility(p, n);
   for (int i = 0; i < u_counts.x; ++i) {
     vec3 to_light = u_point_pos_range[i].xyz - p;
     float range = u_point_pos_range[i].w;
@@ -115,16 +183,15 @@ vec3 lit_color(ivec2 pixel, vec3 p, vec3 n, vec3 camera_pos, vec3 albedo, float 
     float x = d2 / (range * range);
     float window = (1.0 - x * x) * (1.0 - x * x);
     float falloff = window / (1.0 + 16.0 * x);
-    color += shade(n, v, to_light * inversesqrt(d2), albedo, metallic, roughness) * u_point_color[i].rgb * falloff;
+    color += shade(n, v, to_light * inversesqrt(d2), s) * u_point_color[i].rgb * falloff;
   }
   if (u_light_grid.w != 0) {
     ivec2 t = clamp(pixel / u_light_grid.z, ivec2(0), u_light_grid.xy - 1);
     int k = t.y * u_light_grid.x + t.x;
     int first = int(texelFetch(u_light_tiles, 2 * k).r), count = int(texelFetch(u_light_tiles, 2 * k + 1).r);
-    for (int j = 0; j < count; ++j)
-      color += file_light(int(texelFetch(u_light_tiles, first + j).r), p, n, v, albedo, metallic, roughness);
+    for (int j = 0; j < count; ++j) color += file_light(int(texelFetch(u_light_tiles, first + j).r), p, n, v, s);
   } else {
-    for (int i = 0; i < u_counts.z; ++i) color += file_light(i, p, n, v, albedo, metallic, roughness);
+    for (int i = 0; i < u_counts.z; ++i) color += file_light(i, p, n, v, s);
   }
   color += emissive;
   return tone_map(color * u_ambient.w);

@@ -4,7 +4,7 @@
 // (material.frag, with the footprint of a reduced-buffer texel). The includer defines
 //   vec4 sample_slot(sampler2D tex, int slot, vec2 uv)
 // after this file: how a material texture is read at that slot's coordinates.
-#include "common/gbuffer_encoding.glsl"
+#include "common/gbuffer_texel.glsl"
 #include "common/spec_gloss.glsl"
 
 // Texture slots, in Material::Slot order.
@@ -13,6 +13,16 @@
 #define SLOT_NORMAL 2
 #define SLOT_OCCLUSION 3
 #define SLOT_EMISSIVE 4
+#define SLOT_CLEARCOAT 5
+#define SLOT_CLEARCOAT_ROUGHNESS 6
+#define SLOT_CLEARCOAT_NORMAL 7
+#define SLOT_SHEEN_COLOR 8
+#define SLOT_SHEEN_ROUGHNESS 9
+#define SLOT_SPECULAR 10
+#define SLOT_SPECULAR_COLOR 11
+#define SLOT_TRANSMISSION 12
+#define SLOT_THICKNESS 13
+#define SLOT_COUNT 14
 
 layout(binding = 0) uniform sampler2D u_base_color_tex;
 layout(binding = 1) uniform sampler2D u_metal_rough_tex;   // spec-gloss: specular rgb, glossiness a
@@ -26,11 +36,41 @@ uniform float u_metallic, u_roughness, u_normal_scale, u_occlusion_strength, u_a
 uniform bool u_unlit, u_double_sided;
 uniform ivec4 u_has_tex;   // base colour, metal-rough, normal, occlusion
 uniform bool u_has_emissive_tex;
-uniform mat3 u_uv_matrix[5];  // KHR_texture_transform per slot (identity without)
-uniform int u_uv_set[5];      // 0: TEXCOORD_0, 1: TEXCOORD_1
+uniform mat3 u_uv_matrix[SLOT_COUNT];  // KHR_texture_transform per slot (identity without)
+uniform int u_uv_set[SLOT_COUNT];      // 0: TEXCOORD_0, 1: TEXCOORD_1
 uniform bool u_spec_gloss;
 uniform vec3 u_specular;
 uniform float u_glossiness;
+
+// The material extensions (docs/scenes.md, "Materials"): compiled in only for a scene
+// whose materials use them. Their textures sit on units 16 + (slot - 5); bit (slot - 5)
+// of u_ext_tex says the material has one.
+uniform int u_ext_tex;
+#ifdef FEATURE_CLEARCOAT
+layout(binding = 16) uniform sampler2D u_clearcoat_tex;            // r
+layout(binding = 17) uniform sampler2D u_clearcoat_roughness_tex;  // g
+layout(binding = 18) uniform sampler2D u_clearcoat_normal_tex;
+uniform vec3 u_clearcoat;  // factor, roughness, normal scale
+#endif
+#ifdef FEATURE_SHEEN
+layout(binding = 19) uniform sampler2D u_sheen_color_tex;      // rgb, sRGB
+layout(binding = 20) uniform sampler2D u_sheen_roughness_tex;  // a
+uniform vec4 u_sheen;  // linear colour, roughness
+#endif
+#ifdef FEATURE_SPECULAR
+layout(binding = 21) uniform sampler2D u_specular_tex;        // a
+layout(binding = 22) uniform sampler2D u_specular_color_tex;  // rgb, sRGB
+uniform vec4 u_specular_layer;  // colour factor, specular factor
+#endif
+uniform float u_ior;   // KHR_materials_ior (1.5 without): F0, and the refraction of transmission
+uniform bool u_blend;  // alphaMode BLEND: the forward pass composites by alpha (else opaque)
+#ifdef FEATURE_TRANSMISSION
+layout(binding = 23) uniform sampler2D u_transmission_tex;  // r
+layout(binding = 24) uniform sampler2D u_thickness_tex;     // g
+uniform vec4 u_transmission;       // factor, thickness (mesh units), attenuation distance (0: none)
+uniform vec3 u_attenuation_color;
+#endif
+bool has_ext_tex(int slot) { return (u_ext_tex & (1 << (slot - SLOT_CLEARCOAT))) != 0; }
 
 // The interpolated vertex attributes at the point.
 struct SurfacePoint {
@@ -39,14 +79,6 @@ struct SurfacePoint {
   vec2 uv0, uv1;
   vec4 color;
   bool front_facing;
-};
-
-// The G-buffer's four colour targets (layout in docs/rmfr.md).
-struct GBufferTexel {
-  vec4 albedo;    // rgb base colour, a = 1 unlit
-  vec4 normal;    // rg octahedral world normal
-  vec4 material;  // metallic, roughness, occlusion
-  vec4 emissive;  // linear rgb
 };
 
 vec4 sample_slot(sampler2D tex, int slot, vec2 uv);
@@ -62,16 +94,21 @@ vec4 material_base(SurfacePoint s) {
 
 bool material_masked_out(vec4 base) { return u_alpha_cutoff >= 0.0 && base.a < u_alpha_cutoff; }
 
+// A tangent-space normal map texel (0..1) applied to geometric normal n.
+vec3 perturbed_normal(vec3 n, vec4 tangent, vec3 texel, float scale) {
+  vec3 t = normalize(tangent.xyz - n * dot(n, tangent.xyz));
+  vec3 b = cross(n, t) * tangent.w;
+  vec3 m = texel * 2.0 - 1.0;
+  m.xy *= scale;
+  return normalize(mat3(t, b, n) * m);
+}
+
 GBufferTexel evaluate_material(SurfacePoint s, vec4 base) {
-  vec3 n = normalize(s.normal);
-  if (u_double_sided && !s.front_facing) n = -n;
-  if (u_has_tex.z != 0) {
-    vec3 t = normalize(s.tangent.xyz - n * dot(n, s.tangent.xyz));
-    vec3 b = cross(n, t) * s.tangent.w;
-    vec3 m = sample_slot(u_normal_tex, SLOT_NORMAL, slot_uv(SLOT_NORMAL, s)).xyz * 2.0 - 1.0;
-    m.xy *= u_normal_scale;
-    n = normalize(mat3(t, b, n) * m);
-  }
+  vec3 geometric = normalize(s.normal);
+  if (u_double_sided && !s.front_facing) geometric = -geometric;
+  vec3 n = geometric;
+  if (u_has_tex.z != 0)
+    n = perturbed_normal(geometric, s.tangent, sample_slot(u_normal_tex, SLOT_NORMAL, slot_uv(SLOT_NORMAL, s)).xyz, u_normal_scale);
   float metallic = u_metallic, roughness = u_roughness, occlusion = 1.0;
   if (u_spec_gloss) {
     vec4 sg = vec4(u_specular, u_glossiness);
@@ -95,5 +132,48 @@ GBufferTexel evaluate_material(SurfacePoint s, vec4 base) {
   g.normal = vec4(encode_normal(n), 0.0, 0.0);
   g.material = vec4(metallic, roughness, occlusion, 0.0);
   g.emissive = vec4(emissive, 0.0);
+#ifdef FEATURE_CLEARCOAT
+  // KHR_materials_clearcoat: the coat's own normal map, else the geometric normal.
+  vec3 cc = u_clearcoat;
+  if (has_ext_tex(SLOT_CLEARCOAT)) cc.x *= sample_slot(u_clearcoat_tex, SLOT_CLEARCOAT, slot_uv(SLOT_CLEARCOAT, s)).r;
+  if (has_ext_tex(SLOT_CLEARCOAT_ROUGHNESS))
+    cc.y *= sample_slot(u_clearcoat_roughness_tex, SLOT_CLEARCOAT_ROUGHNESS, slot_uv(SLOT_CLEARCOAT_ROUGHNESS, s)).g;
+  vec3 coat_n = geometric;
+  if (has_ext_tex(SLOT_CLEARCOAT_NORMAL))
+    coat_n = perturbed_normal(geometric, s.tangent,
+                              sample_slot(u_clearcoat_normal_tex, SLOT_CLEARCOAT_NORMAL, slot_uv(SLOT_CLEARCOAT_NORMAL, s)).xyz, cc.z);
+  g.clearcoat = vec4(cc.x, cc.y, encode_normal(coat_n));
+#endif
+#ifdef FEATURE_SHEEN
+  vec4 sh = u_sheen;
+  if (has_ext_tex(SLOT_SHEEN_COLOR)) sh.rgb *= sample_slot(u_sheen_color_tex, SLOT_SHEEN_COLOR, slot_uv(SLOT_SHEEN_COLOR, s)).rgb;
+  if (has_ext_tex(SLOT_SHEEN_ROUGHNESS))
+    sh.a *= sample_slot(u_sheen_roughness_tex, SLOT_SHEEN_ROUGHNESS, slot_uv(SLOT_SHEEN_ROUGHNESS, s)).a;
+  g.sheen = sh;
+#endif
+#ifdef FEATURE_SPECULAR
+  // KHR_materials_specular / _ior: F0 = min(((ior-1)/(ior+1))² · colour, 1) · specular, F90 = specular.
+  vec3 tint = u_specular_layer.rgb;
+  float weight = u_specular_layer.a;
+  if (has_ext_tex(SLOT_SPECULAR_COLOR)) tint *= sample_slot(u_specular_color_tex, SLOT_SPECULAR_COLOR, slot_uv(SLOT_SPECULAR_COLOR, s)).rgb;
+  if (has_ext_tex(SLOT_SPECULAR)) weight *= sample_slot(u_specular_tex, SLOT_SPECULAR, slot_uv(SLOT_SPECULAR, s)).a;
+  float r = (u_ior - 1.0) / (u_ior + 1.0);
+  vec3 f0 = min(r * r * tint, vec3(1.0)) * weight;
+  g.specular = vec4(sqrt(f0), weight);
+#endif
   return g;
 }
+
+#ifdef FEATURE_TRANSMISSION
+// KHR_materials_transmission and _volume at the point (the forward pass alone reads it).
+struct Transmission {
+  float factor;     // of the dielectric's diffuse part that is transmitted
+  float thickness;  // mesh units; 0: thin-walled
+};
+Transmission material_transmission(SurfacePoint s) {
+  Transmission t = Transmission(u_transmission.x, u_transmission.y);
+  if (has_ext_tex(SLOT_TRANSMISSION)) t.factor *= sample_slot(u_transmission_tex, SLOT_TRANSMISSION, slot_uv(SLOT_TRANSMISSION, s)).r;
+  if (has_ext_tex(SLOT_THICKNESS)) t.thickness *= sample_slot(u_thickness_tex, SLOT_THICKNESS, slot_uv(SLOT_THICKNESS, s)).g;
+  return t;
+}
+#endif

@@ -16,6 +16,7 @@
 #include <meshoptimizer.h>
 
 #include "gl_support.hpp"
+#include "khronos_models.hpp"
 #include "test_support.hpp"
 
 using namespace foveal;
@@ -23,23 +24,11 @@ using nlohmann::json;
 
 namespace {
 
+using test::edited;
+using test::khronos;
+using test::strip_extension;
+
 constexpr int kWidth = 1024, kHeight = 512;  // 512×512 per eye
-
-std::string khronos(const std::string& model) {
-  return test::source_path("tests/render/data/khronos/" + model + "/glTF/" + model + ".gltf");
-}
-
-// A copy of the glTF (and every file beside it) in `dir`, its JSON passed through `edit`.
-std::string edited(test::TempDir& dir, const std::string& gltf, const std::function<void(json&)>& edit) {
-  const std::filesystem::path src(gltf);
-  for (const auto& f : std::filesystem::directory_iterator(src.parent_path()))
-    std::filesystem::copy_file(f.path(), dir.path(f.path().filename().string()));
-  const std::string out = dir.path(src.filename().string());
-  json j = json::parse(std::ifstream(out));
-  edit(j);
-  test::write_file(out, j.dump());
-  return out;
-}
 
 image::Image render_model(const std::string& spec, render::Method m = render::Method::full) {
   render::Compositor c = test::make_compositor(kWidth, kHeight);
@@ -56,25 +45,6 @@ int count(const image::Image& img, const std::function<bool(int, int, int)>& pre
       n += pred(p[0], p[1], p[2]) ? 1 : 0;
     }
   return n;
-}
-
-void strip_extension(json& j, const std::string& ext) {
-  std::function<void(json&)> walk = [&](json& v) {
-    if (v.is_object()) {
-      if (v.contains("extensions")) v["extensions"].erase(ext);
-      for (auto& [k, x] : v.items()) walk(x);
-    } else if (v.is_array()) {
-      for (auto& x : v) walk(x);
-    }
-  };
-  walk(j);
-  for (const char* list : {"extensionsUsed", "extensionsRequired"})
-    if (j.contains(list)) {
-      json kept = json::array();
-      for (const auto& e : j[list])
-        if (e != ext) kept.push_back(e);
-      j[list] = kept;
-    }
 }
 
 bool yellow(int r, int g, int b) { return r > 150 && g > 150 && b < 100; }
@@ -303,13 +273,26 @@ TEST(GltfFeatures, DracoAndQuantizedMatchThePlainModel) {
 }
 
 // Used-but-unsupported extensions are named once each; required ones are refused.
+// The model's clearcoat is drawn now (docs/scenes.md, "Materials"): no warning. An
+// extension foveal does not know, used by several of its materials, is named once.
 TEST(GltfFeatures, IgnoredExtensionsAreNamedOnce) {
   ASSERT_TRUE(test::gl_ready());
+  auto count = [](const render::Scene& s, const std::string& ext) {
+    int n = 0;
+    for (const std::string& w : s.warnings) n += w.find(ext) != std::string::npos;
+    return n;
+  };
   auto s = render::load_scene(khronos("TextureTransformMultiTest"));
   ASSERT_TRUE(s) << s.error().message;
-  int clearcoat = 0;
-  for (const std::string& w : s->warnings) clearcoat += w.find("KHR_materials_clearcoat") != std::string::npos;
-  EXPECT_EQ(clearcoat, 1);
+  EXPECT_EQ(count(*s, "KHR_materials_clearcoat"), 0);
+  test::TempDir d;
+  const std::string unknown = edited(d, khronos("TextureTransformMultiTest"), [](json& j) {
+    j["extensionsUsed"].push_back("FOVEAL_unknown_layer");
+    for (json& m : j["materials"]) m["extensions"]["FOVEAL_unknown_layer"] = json::object();
+  });
+  auto u = render::load_scene(unknown);
+  ASSERT_TRUE(u) << u.error().message;
+  EXPECT_EQ(count(*u, "FOVEAL_unknown_layer"), 1);
 }
 
 namespace {

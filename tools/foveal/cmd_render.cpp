@@ -74,7 +74,7 @@ int run(const Args& a) {
   if (Status s = check_output_is_not_an_input(a.out, {setup->scene, a.render.display}); !s) return cli::report(s.error());
   auto ctx = gl::EglContext::create();
   if (!ctx) return cli::report(ctx.error());
-  auto scene = render::load_scene(setup->scene);
+  auto scene = render::load_scene(setup->scene, setup->scene_options);
   if (!scene) return cli::report(scene.error());
   for (const std::string& w : scene->warnings) cli::warn(w);
   if (a.fill_view) render::fill_view(*scene);
@@ -151,6 +151,9 @@ int run(const Args& a) {
                       {"visibility", mb(mem.visibility)}, {"output", mb(mem.output)}, {"shadow", mb(mem.shadow)},
                       {"total", mb(mem.total())}}},
       {"textures_mb", mb(scene->texture_bytes)},
+      // The shader variant and G-buffer layout the scene's materials chose (docs/scenes.md, "Materials").
+      {"material_variant", {{"shader", comp->shading_variant()}, {"gbuffer_bytes_per_pixel", comp->gbuffer_bytes_per_pixel()},
+                            {"variants", scene->variants}, {"variant", scene->variant}}},
       {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0},
       {"auto_f", auto_f},
       {"head", head_json(*setup)},
@@ -173,6 +176,8 @@ int run(const Args& a) {
       std::printf("  %-5s %s  buffer %dx%d  shaded %zu\n", eye_name(e), render::method_name(plan.method), b[0], b[1],
                   plan.shaded_samples());
     }
+    std::printf("  shading %s, G-buffer %zu B/px%s%s\n", comp->shading_variant().c_str(), comp->gbuffer_bytes_per_pixel(),
+                scene->variant.empty() ? "" : ", variant ", scene->variant.c_str());
     std::printf("  %s pipeline, ms (median of %d): shadow %.2f  %s %.2f  %s %.2f  lighting %.2f  inverse %.2f  blend %.2f  GPU total %.2f  CPU frame %.2f\n",
                 render::pipeline_name(setup->frame.pipeline), a.frames, med.shadow, pass[0], med.gbuffer, pass[1], med.mapping,
                 med.lighting, med.inverse, med.blend, med.gpu_total, med.cpu);

@@ -16,6 +16,8 @@ std::string default_scene() { return data_path("data/scenes/Dungeon/dungeon_simp
 
 void add_render_options(CLI::App& sub, RenderArgs& a) {
   sub.add_option("--scene", a.scene, "glTF file or pattern:NAME[@DEG] (checker, stripes-h, stripes-v, noise); default: the bundled Dungeon");
+  sub.add_option("--variant", a.variant,
+                 "KHR_materials_variants variant to draw (by name); default: the file's default materials");
   sub.add_option("--method", a.method, "One of " + render::method_names_joined(", ") + " (full: the reference)")
       ->check(CLI::IsMember(render::method_names()))
       ->capture_default_str();
@@ -97,6 +99,7 @@ Status resolve_head(const RenderArgs& a, RenderSetup& s) {
 Result<RenderSetup> resolve(const RenderArgs& a) {
   RenderSetup s;
   s.scene = a.scene.empty() ? default_scene() : a.scene;
+  s.scene_options.variant = a.variant;
   auto method = render::parse_method(a.method);
   if (!method) return method.error();
   if (!(a.sigma_d >= 1.0)) return bad_input("--sigma-d must be >= 1");

@@ -6,6 +6,7 @@
 
 #include "foveal/core/display_model.hpp"
 #include "foveal/render/compositor.hpp"
+#include "foveal/render/scene.hpp"
 
 namespace CLI {
 class App;
@@ -15,6 +16,7 @@ namespace foveal::cmd {
 
 struct RenderArgs {
   std::string scene;  ///< default: the bundled Dungeon
+  std::string variant;  ///< --variant: a KHR_materials_variants variant of the scene
   std::string method = "rmfr";
   std::string pipeline = render::kDefaultPipelineName;
   double sigma_d = 2.0, sigma_nd = 3.0;
@@ -44,6 +46,7 @@ struct HeadSource {
 /// What the options mean once checked: the compositor's options and the frame.
 struct RenderSetup {
   std::string scene;
+  render::SceneOptions scene_options;
   render::CompositorOptions compositor;
   render::FrameParams frame;
   bool auto_f = false;

@@ -66,6 +66,7 @@ class Builder {
 
   Result<GltfScene> build() {
     if (Status s = materials(); !s) return s.error();
+    if (Status s = variant_names(); !s) return s.error();
     if (m_.scenes.empty()) return bad_input(file_ + ": no scene");
     const std::size_t root = m_.defaultScene >= 0 ? static_cast<std::size_t>(m_.defaultScene) : 0;
     if (root >= m_.scenes.size()) return bad_input(file_ + ": scene: out of range");
@@ -234,10 +235,53 @@ class Builder {
   }
 
   static bool reads_uv1(const Material& m) {
-    const int tex[] = {m.base_color_tex, m.metal_rough_tex, m.normal_tex, m.occlusion_tex, m.emissive_tex};
-    for (std::size_t i = 0; i < m.uv.size(); ++i)
-      if (tex[i] >= 0 && m.uv[i].set == 1) return true;
+    for (int i = 0; i < Material::slot_count; ++i)
+      if (m.texture(static_cast<Material::Slot>(i)) >= 0 && m.uv[static_cast<std::size_t>(i)].set == 1) return true;
     return false;
+  }
+
+  // KHR_materials_variants: the variants' names (the model's list), then per primitive
+  // the material each mapping gives it under which variants.
+  Status variant_names() {
+    auto it = m_.extensions.find("KHR_materials_variants");
+    if (it == m_.extensions.end()) return {};
+    const tinygltf::Value& v = it->second;
+    if (!v.Has("variants") || !v.Get("variants").IsArray())
+      return fail("extensions.KHR_materials_variants", "no variants array");
+    const tinygltf::Value& list = v.Get("variants");
+    for (std::size_t i = 0; i < list.ArrayLen(); ++i) {
+      const tinygltf::Value& e = list.Get(static_cast<int>(i));
+      if (!e.Has("name") || !e.Get("name").IsString())
+        return fail("extensions.KHR_materials_variants.variants[" + std::to_string(i) + "]", "no name");
+      out_.variants.push_back({e.Get("name").Get<std::string>(), {}});
+    }
+    return {};
+  }
+
+  Status primitive_variants(const tinygltf::Primitive& gp, const std::string& where, int primitive) {
+    auto it = gp.extensions.find("KHR_materials_variants");
+    if (it == gp.extensions.end()) return {};
+    const std::string at = where + ".extensions.KHR_materials_variants";
+    const tinygltf::Value& v = it->second;
+    if (!v.Has("mappings") || !v.Get("mappings").IsArray()) return fail(at, "no mappings array");
+    const tinygltf::Value& maps = v.Get("mappings");
+    for (std::size_t k = 0; k < maps.ArrayLen(); ++k) {
+      const tinygltf::Value& m = maps.Get(static_cast<int>(k));
+      const std::string mat_at = at + ".mappings[" + std::to_string(k) + "]";
+      if (!m.Has("material") || !m.Get("material").IsInt() || m.Get("material").Get<int>() < 0 ||
+          static_cast<std::size_t>(m.Get("material").Get<int>()) >= out_.materials.size())
+        return fail(mat_at + ".material", "missing or out of range (" + std::to_string(out_.materials.size()) + " materials)");
+      if (!m.Has("variants") || !m.Get("variants").IsArray()) return fail(mat_at, "no variants array");
+      const tinygltf::Value& vs = m.Get("variants");
+      for (std::size_t j = 0; j < vs.ArrayLen(); ++j) {
+        const tinygltf::Value& x = vs.Get(static_cast<int>(j));
+        if (!x.IsInt() || x.Get<int>() < 0 || static_cast<std::size_t>(x.Get<int>()) >= out_.variants.size())
+          return fail(mat_at + ".variants[" + std::to_string(j) + "]",
+                      "not a variant index (" + std::to_string(out_.variants.size()) + " variants)");
+        out_.variants[static_cast<std::size_t>(x.Get<int>())].primitive_material.emplace_back(primitive, m.Get("material").Get<int>());
+      }
+    }
+    return {};
   }
 
   // Hands every primitive of mesh `index` to the sink once; returns the sink's indices.
@@ -325,6 +369,7 @@ class Builder {
       if (!*has_n) generate_normals(v, idx);
       if (!*has_t) generate_tangents(v, idx);
       const int p = sink_.add_primitive(v, idx, gp.material >= 0 ? gp.material : -1);
+      if (Status s = primitive_variants(gp, where, p); !s) return s.error();
       out_.triangles += idx.size() / 3;
       out.push_back(p);
       bounds_[p] = minmax(v);

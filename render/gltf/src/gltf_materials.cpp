@@ -1,6 +1,9 @@
 #include "gltf_materials.hpp"
 
 #include <cmath>
+#include <functional>
+
+#include <glm/common.hpp>
 
 namespace foveal::render::detail {
 
@@ -77,6 +80,86 @@ TextureRef ref(const tinygltf::Value& ext, const char* key) {
   return {static_cast<int>(number(v, "index", -1)), static_cast<int>(number(v, "texCoord", 0)), nullptr, &v};
 }
 
+// A factor of an extension in [lo, hi]: out-of-range values are clamped, with a warning.
+float factor(const tinygltf::Value& ext, const char* key, double fallback, double lo, double hi, const std::string& where,
+             std::vector<std::string>& warnings) {
+  const double v = number(ext, key, fallback);
+  if (v >= lo && v <= hi) return static_cast<float>(v);
+  warnings.push_back(where + ": " + key + " " + std::to_string(v) + " is outside [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "]; clamped");
+  return static_cast<float>(v < lo ? lo : hi);
+}
+
+using SlotReader = std::function<Status(const TextureRef&, bool srgb, Material::Slot, int&)>;
+
+// KHR_materials_clearcoat, _sheen, _specular and _ior: factors, textures and the
+// feature bits the compositor's shader variant is chosen by (docs/scenes.md, "Materials").
+Status read_material_layers(const tinygltf::Material& gm, const std::string& where, std::vector<std::string>& warnings,
+                            Material& mat, const SlotReader& tex) {
+  auto read = [&](const tinygltf::Value& ext, const char* key, bool srgb, Material::Slot slot) {
+    return tex(ref(ext, key), srgb, slot, mat.ext_tex[static_cast<std::size_t>(slot - Material::kCoreSlots)]);
+  };
+  auto find = [&](const char* name) -> const tinygltf::Value* {
+    auto it = gm.extensions.find(name);
+    return it == gm.extensions.end() ? nullptr : &it->second;
+  };
+  constexpr double kLarge = 1e6;
+  if (const tinygltf::Value* cc = find("KHR_materials_clearcoat")) {
+    const std::string at = where + ".extensions.KHR_materials_clearcoat";
+    mat.clearcoat = factor(*cc, "clearcoatFactor", 0.0, 0.0, 1.0, at, warnings);
+    mat.clearcoat_roughness = factor(*cc, "clearcoatRoughnessFactor", 0.0, 0.0, 1.0, at, warnings);
+    if (cc->Has("clearcoatNormalTexture"))
+      mat.clearcoat_normal_scale = static_cast<float>(number(cc->Get("clearcoatNormalTexture"), "scale", 1.0));
+    if (Status s = read(*cc, "clearcoatTexture", false, Material::clearcoat_slot); !s) return s;
+    if (Status s = read(*cc, "clearcoatRoughnessTexture", false, Material::clearcoat_roughness_slot); !s) return s;
+    if (Status s = read(*cc, "clearcoatNormalTexture", false, Material::clearcoat_normal_slot); !s) return s;
+    if (mat.clearcoat > 0.0f) mat.features |= feature_clearcoat;  // a zero factor is no coat, texture or not
+  }
+  if (const tinygltf::Value* sh = find("KHR_materials_sheen")) {
+    const std::string at = where + ".extensions.KHR_materials_sheen";
+    glm::vec3 color(0.0f);
+    numbers(*sh, "sheenColorFactor", 3, color);
+    mat.sheen_color = glm::clamp(color, glm::vec3(0.0f), glm::vec3(1.0f));
+    mat.sheen_roughness = factor(*sh, "sheenRoughnessFactor", 0.0, 0.0, 1.0, at, warnings);
+    if (Status s = read(*sh, "sheenColorTexture", true, Material::sheen_color_slot); !s) return s;
+    if (Status s = read(*sh, "sheenRoughnessTexture", false, Material::sheen_roughness_slot); !s) return s;
+    if (glm::max(mat.sheen_color.r, glm::max(mat.sheen_color.g, mat.sheen_color.b)) > 0.0f) mat.features |= feature_sheen;
+  }
+  if (const tinygltf::Value* sp = find("KHR_materials_specular")) {
+    const std::string at = where + ".extensions.KHR_materials_specular";
+    mat.specular_factor = factor(*sp, "specularFactor", 1.0, 0.0, 1.0, at, warnings);
+    glm::vec3 color(1.0f);
+    numbers(*sp, "specularColorFactor", 3, color);
+    mat.specular_color = glm::clamp(color, glm::vec3(0.0f), glm::vec3(static_cast<float>(kLarge)));
+    if (Status s = read(*sp, "specularTexture", false, Material::specular_slot); !s) return s;
+    if (Status s = read(*sp, "specularColorTexture", true, Material::specular_color_slot); !s) return s;
+    mat.features |= feature_specular;
+  }
+  if (const tinygltf::Value* tr = find("KHR_materials_transmission")) {
+    mat.transmission = factor(*tr, "transmissionFactor", 0.0, 0.0, 1.0, where + ".extensions.KHR_materials_transmission", warnings);
+    if (Status s = read(*tr, "transmissionTexture", false, Material::transmission_slot); !s) return s;
+    if (mat.transmission > 0.0f) mat.features |= feature_transmission;
+  }
+  if (const tinygltf::Value* vo = find("KHR_materials_volume")) {
+    const std::string at = where + ".extensions.KHR_materials_volume";
+    mat.thickness = factor(*vo, "thicknessFactor", 0.0, 0.0, kLarge, at, warnings);
+    // The specification's default distance is +infinity: no attenuation, held as 0 here.
+    if (vo->Has("attenuationDistance"))
+      mat.attenuation_distance = factor(*vo, "attenuationDistance", 0.0, 1e-6, kLarge, at, warnings);
+    glm::vec3 color(1.0f);
+    numbers(*vo, "attenuationColor", 3, color);
+    mat.attenuation_color = glm::clamp(color, glm::vec3(0.0f), glm::vec3(1.0f));
+    if (Status s = read(*vo, "thicknessTexture", false, Material::thickness_slot); !s) return s;
+    if (!(mat.features & feature_transmission))
+      warnings.push_back(at + ": a volume without KHR_materials_transmission is drawn as its surface only");
+  }
+  if (const tinygltf::Value* io = find("KHR_materials_ior")) {
+    mat.ior = factor(*io, "ior", 1.5, 1.0, kLarge, where + ".extensions.KHR_materials_ior", warnings);
+    mat.features |= feature_specular;
+  }
+  return {};
+}
+
 }  // namespace
 
 Result<Material> read_material(const tinygltf::Material& gm, const TextureUploader& upload, const std::string& where,
@@ -124,6 +207,8 @@ Result<Material> read_material(const tinygltf::Material& gm, const TextureUpload
   if (Status s = tex(ref(gm.normalTexture), false, Material::normal_slot, mat.normal_tex); !s) return s.error();
   if (Status s = tex(ref(gm.occlusionTexture), false, Material::occlusion_slot, mat.occlusion_tex); !s) return s.error();
   if (Status s = tex(ref(gm.emissiveTexture), true, Material::emissive_slot, mat.emissive_tex); !s) return s.error();
+  if (mat.unlit) return mat;  // an unlit material has no layers to shade
+  if (Status s = read_material_layers(gm, where, warnings, mat, tex); !s) return s.error();
   return mat;
 }
 

@@ -16,6 +16,7 @@
 #include "foveal/rmfr.hpp"
 #include "pass_uniforms.hpp"
 #include "render_targets.hpp"
+#include "sheen_albedo.hpp"
 #include "visibility_pipeline.hpp"
 
 namespace foveal::render {
@@ -150,9 +151,9 @@ const Material& material_of(const Scene& scene, int material) {
   return material >= 0 ? scene.materials[static_cast<std::size_t>(material)] : kDefault;
 }
 
-bool has_blended_draws(const Scene& scene) {
+bool has_forward_draws(const Scene& scene) {
   for (const DrawItem& d : scene.draws)
-    if (material_of(scene, scene.primitives[static_cast<std::size_t>(d.primitive)].material).blend) return true;
+    if (material_of(scene, scene.primitives[static_cast<std::size_t>(d.primitive)].material).forward()) return true;
   return false;
 }
 
@@ -177,9 +178,23 @@ void set_material(GLuint p, const Scene& scene, const Material& m) {
   set(p, "u_spec_gloss", m.spec_gloss ? 1 : 0);
   set(p, "u_specular", m.specular);
   set(p, "u_glossiness", m.glossiness);
-  const int texs[] = {m.base_color_tex, m.metal_rough_tex, m.normal_tex, m.occlusion_tex, m.emissive_tex};
-  for (GLuint unit = 0; unit < 5; ++unit)
-    glBindTextureUnit(unit, texs[unit] >= 0 ? scene.textures[static_cast<std::size_t>(texs[unit])].id() : 0);
+  // The extensions' (material.glsl, FEATURE_*).
+  int ext = 0;
+  for (std::size_t i = 0; i < m.ext_tex.size(); ++i)
+    if (m.ext_tex[i] >= 0) ext |= 1 << i;
+  set(p, "u_ext_tex", ext);
+  set(p, "u_clearcoat", glm::vec3(m.features & feature_clearcoat ? m.clearcoat : 0.0f, m.clearcoat_roughness, m.clearcoat_normal_scale));
+  set(p, "u_sheen", glm::vec4(m.features & feature_sheen ? m.sheen_color : glm::vec3(0.0f), m.sheen_roughness));
+  set(p, "u_specular_layer", glm::vec4(m.specular_color, m.specular_factor));
+  set(p, "u_ior", m.ior);
+  set(p, "u_blend", m.blend ? 1 : 0);
+  set(p, "u_transmission", glm::vec4(m.features & feature_transmission ? m.transmission : 0.0f, m.thickness, m.attenuation_distance, 0.0f));
+  set(p, "u_attenuation_color", m.attenuation_color);
+  const bool any_ext = ext != 0;
+  for (int slot = 0; slot < (any_ext ? Material::slot_count : Material::kCoreSlots); ++slot) {
+    const int t = m.texture(static_cast<Material::Slot>(slot));
+    glBindTextureUnit(material_texture_unit(slot), t >= 0 ? scene.textures[static_cast<std::size_t>(t)].id() : 0);
+  }
 }
 
 }  // namespace detail
@@ -253,6 +268,12 @@ struct Compositor::Impl {
   gl::Buffer light_tiles_buffer;
   gl::Texture light_tiles_texture;
   glm::ivec4 light_grid{0};
+  // The programs and targets that depend on the scene's material features (its shader
+  // variant, docs/scenes.md "Materials"): remade when a scene with other features comes.
+  gl::ShaderLoader shaders;
+  detail::SurfaceLayout layout;
+  gl::Texture sheen_albedo;  // sheen_albedo.hpp, made for the first scene with sheen
+  std::optional<detail::ColorTarget> behind;  // the eye's opaque result under transmission (first use)
   std::optional<detail::SurfaceTargets> gbuffer;  // made by the first G-buffer-pipeline frame
   std::array<std::optional<detail::SurfaceTargets>, 2> transformed;
   std::optional<detail::VisibilityPipeline> visibility;
@@ -271,7 +292,7 @@ struct Compositor::Impl {
     for (const DrawItem& d : scene.draws) {
       const Primitive& prim = scene.primitives[static_cast<std::size_t>(d.primitive)];
       const Material& mat = detail::material_of(scene, prim.material);
-      if (mat.blend) continue;  // the blend pass draws it over the lit result
+      if (mat.forward()) continue;  // the forward pass draws it over the lit result
       set(p, "u_model", d.world);
       set(p, "u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(d.world))));
       detail::set_material(p, scene, mat);
@@ -304,11 +325,60 @@ struct Compositor::Impl {
       const Primitive& prim = scene.primitives[static_cast<std::size_t>(d.primitive)];
       // Blended surfaces cast no shadow: an opaque one from a pane of glass would be
       // wrong, and a partial one needs a translucent shadow map (docs/scenes.md).
-      if (detail::material_of(scene, prim.material).blend) continue;
+      if (detail::material_of(scene, prim.material).forward()) continue;
       set(p, "u_model", d.world);
       glBindVertexArray(prim.vao.id());
       glDrawElements(GL_TRIANGLES, prim.index_count, GL_UNSIGNED_INT, nullptr);
     }
+  }
+
+  Status build(gl::Program& out, const std::vector<gl::ShaderStage>& stages, const std::string& defines) const {
+    auto p = shaders.program(stages, defines);
+    if (!p) return p.error();
+    out = std::move(*p);
+    return {};
+  }
+
+  // The shader variant and G-buffer layout for material features `features`.
+  Status use_features(unsigned features) {
+    if (features == layout.features && gbuffer_prog) return {};
+    const detail::SurfaceLayout next = detail::SurfaceLayout::for_features(features);
+    if (features) {
+      GLint units = 0, buffers = 0;
+      glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
+      glGetIntegerv(GL_MAX_DRAW_BUFFERS, &buffers);
+      const GLint need_units = static_cast<GLint>(detail::material_texture_unit(Material::slot_count - 1)) + 1;
+      const GLint need_buffers = static_cast<GLint>(detail::SurfaceLayout::kFirstLocation + next.targets.size());
+      if (units < need_units || buffers < need_buffers)
+        return Error{ErrorKind::unsupported, "the material variant " + next.variant_name() + " needs " + std::to_string(need_units) +
+                                                 " fragment texture units and " + std::to_string(need_buffers) +
+                                                 " draw buffers; this GL has " + std::to_string(units) + " and " + std::to_string(buffers)};
+    }
+    const std::string d = next.defines();
+    if (Status s = build(gbuffer_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "gbuffer.frag"}}, d); !s) return s;
+    if (Status s = build(blend_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "blend.frag"}}, d); !s) return s;
+    for (std::size_t m = 0; m < 3; ++m) {
+      const std::string mapping = "#define MAPPING " + std::to_string(m) + "\n";
+      const gl::ShaderStage vert{GL_VERTEX_SHADER, "fullscreen.vert"};
+      if (Status s = build(lighting_progs[m], {vert, {GL_FRAGMENT_SHADER, "lighting.frag"}}, mapping + d); !s) return s;
+      if (m != 0)  // RMFR maps through foveal-rmfr, which maps every attachment
+        if (Status s = build(map_progs[m], {vert, {GL_FRAGMENT_SHADER, "map.frag"}}, mapping + d); !s) return s;
+    }
+    if (Status s = visibility->use_layout(shaders, next); !s) return s;
+    if ((features & feature_sheen) && !sheen_albedo) {
+      constexpr int kSize = 32;
+      const std::vector<float> table = detail::sheen_albedo_table(kSize);
+      sheen_albedo = gl::make_texture_2d(GL_R32F, kSize, kSize);
+      glTextureSubImage2D(sheen_albedo.id(), 0, 0, 0, kSize, kSize, GL_RED, GL_FLOAT, table.data());
+      glTextureParameteri(sheen_albedo.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTextureParameteri(sheen_albedo.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTextureParameteri(sheen_albedo.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glTextureParameteri(sheen_albedo.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    layout = next;
+    gbuffer.reset();
+    for (auto& t : transformed) t.reset();
+    return {};
   }
 
   // Lighting from `src` (G-buffer or reduced buffer) into the bound framebuffer, with
@@ -322,6 +392,7 @@ struct Compositor::Impl {
     src.bind_textures();
     glBindTextureUnit(5, shadow.texture.id());
     glBindTextureUnit(7, light_tiles_texture.id());
+    glBindTextureUnit(11, sheen_albedo.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, lights_ubo.id());
     glBindVertexArray(empty_vao.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -332,16 +403,37 @@ struct Compositor::Impl {
   // its bounds' centre from the eye, composited "over" it (straight alpha), tested
   // against the eye's opaque depth `depth` (W×H) without writing depth, into the eye's
   // viewport at `origin` of `fbo`.
-  void blend_pass(const Scene& scene, const EyeView& v, GLuint fbo, glm::ivec2 origin, GLuint depth) {
+  // Transmission shows the opaque result behind: a mipmapped copy of the eye's region of
+  // `color` at `origin` (the roughness blurs by level).
+  void copy_behind(GLuint color, glm::ivec2 origin) {
+    if (!behind) {
+      const int levels = 1 + static_cast<int>(std::floor(std::log2(static_cast<double>(std::max(eye_w, eye_h)))));
+      detail::ColorTarget t;
+      t.width = eye_w, t.height = eye_h;
+      t.bytes_per_pixel = opt.float_output ? 16 : 4;
+      t.texture = gl::make_texture_2d(reduced_format(), eye_w, eye_h, levels);
+      glTextureParameteri(t.texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+      glTextureParameteri(t.texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTextureParameteri(t.texture.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glTextureParameteri(t.texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+      behind = std::move(t);
+    }
+    glCopyImageSubData(color, GL_TEXTURE_2D, 0, origin.x, origin.y, 0, behind->texture.id(), GL_TEXTURE_2D, 0, 0, 0, 0, eye_w, eye_h, 1);
+    glGenerateTextureMipmap(behind->texture.id());
+  }
+
+  void blend_pass(const Scene& scene, const EyeView& v, GLuint fbo, GLuint color, glm::ivec2 origin, GLuint depth) {
     std::vector<std::pair<float, std::size_t>> order;  // (distance, draw)
     for (std::size_t i = 0; i < scene.draws.size(); ++i) {
       const DrawItem& d = scene.draws[i];
       const Primitive& prim = scene.primitives[static_cast<std::size_t>(d.primitive)];
-      if (!detail::material_of(scene, prim.material).blend) continue;
+      if (!detail::material_of(scene, prim.material).forward()) continue;
       const glm::vec3 centre(d.world * glm::vec4(prim.local_bounds.center(), 1.0f));
       order.emplace_back(glm::length(centre - v.position), i);
     }
     if (order.empty()) return;
+    const bool transmission = (layout.features & feature_transmission) != 0;
+    if (transmission) copy_behind(color, origin);
     // Farthest first; equal distances keep the file's order.
     std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
@@ -358,6 +450,8 @@ struct Compositor::Impl {
     set(p, "u_eye_size", glm::vec2(eye_w, eye_h));
     set(p, "u_light_grid", light_grid);
     glBindTextureUnit(7, light_tiles_texture.id());
+    glBindTextureUnit(11, sheen_albedo.id());
+    glBindTextureUnit(12, transmission ? behind->texture.id() : 0);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, lights_ubo.id());
     for (const auto& [distance, i] : order) {
       const DrawItem& d = scene.draws[i];
@@ -365,7 +459,8 @@ struct Compositor::Impl {
       const Material& mat = detail::material_of(scene, prim.material);
       set(p, "u_model", d.world);
       set(p, "u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(d.world))));
-      detail::set_material(p, scene, mat);  // textures on units 0-4
+      set(p, "u_model_scale", glm::vec3(glm::length(glm::vec3(d.world[0])), glm::length(glm::vec3(d.world[1])), glm::length(glm::vec3(d.world[2]))));
+      detail::set_material(p, scene, mat);
       glBindTextureUnit(5, shadow.texture.id());
       glBindTextureUnit(6, depth);
       // Single-sided: back faces culled, as glTF says; a mirroring transform flips the winding.
@@ -394,7 +489,7 @@ struct Compositor::Impl {
   void ensure_transformed(std::size_t eye, int w, int h, bool grow_only) {
     const auto& t = transformed[eye];
     if (auto size = detail::realloc_size(t.has_value(), t ? t->width : 0, t ? t->height : 0, w, h, grow_only))
-      transformed[eye] = detail::SurfaceTargets::create(size->first, size->second, true);
+      transformed[eye] = detail::SurfaceTargets::create(size->first, size->second, true, layout);
   }
   void ensure_undistorted() {
     if (!undistorted) undistorted = detail::ColorTarget::create(eye_w, eye_h, reduced_format(), true);
@@ -407,7 +502,7 @@ struct Compositor::Impl {
 
   Result<const detail::SurfaceTargets*> gbuffer_targets() {
     if (!gbuffer) {
-      gbuffer = detail::SurfaceTargets::create(eye_w, eye_h, false);
+      gbuffer = detail::SurfaceTargets::create(eye_w, eye_h, false, layout);
       if (glCheckNamedFramebufferStatus(gbuffer->fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         return Error{ErrorKind::unsupported, "the G-buffer framebuffer is incomplete on this GL implementation"};
     }
@@ -509,29 +604,18 @@ Result<Compositor> Compositor::create(const CompositorOptions& o, const gl::Shad
   impl->opt = o;
   impl->eye_w = o.width / 2;
   impl->eye_h = o.height;
-  auto build = [&](gl::Program& out, std::vector<gl::ShaderStage> stages, const std::string& defines = {}) -> Status {
-    auto p = shaders.program(stages, defines);
-    if (!p) return p.error();
-    out = std::move(*p);
-    return {};
-  };
+  impl->shaders = shaders;
   const std::vector<std::pair<gl::Program*, std::vector<gl::ShaderStage>>> programs = {
-      {&impl->gbuffer_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "gbuffer.frag"}}},
       {&impl->pattern_prog, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "pattern.frag"}}},
       {&impl->shadow_prog, {{GL_VERTEX_SHADER, "shadow.vert"}}},
-      {&impl->blend_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "blend.frag"}}},
   };
   for (const auto& [prog, stages] : programs)
-    if (Status s = build(*prog, stages); !s) return s.error();
-  for (std::size_t m = 0; m < 3; ++m) {
+    if (Status s = impl->build(*prog, stages, {}); !s) return s.error();
+  for (std::size_t m = 1; m < 3; ++m) {  // RMFR's resolve is foveal-rmfr's
     const std::string mapping = "#define MAPPING " + std::to_string(m) + "\n";
-    const gl::ShaderStage vert{GL_VERTEX_SHADER, "fullscreen.vert"};
-    if (Status s = build(impl->lighting_progs[m], {vert, {GL_FRAGMENT_SHADER, "lighting.frag"}}, mapping); !s) return s.error();
-    if (m == 0) continue;
-    if (Status s = build(impl->map_progs[m], {vert, {GL_FRAGMENT_SHADER, "map.frag"}}, mapping); !s) return s.error();
     for (std::size_t lens = 0; lens < 2; ++lens)
-      if (Status s = build(impl->resolve_progs[m][lens], {vert, {GL_FRAGMENT_SHADER, "resolve.frag"}},
-                           mapping + (lens ? "#define DISTORTION 1\n" : ""));
+      if (Status s = impl->build(impl->resolve_progs[m][lens], {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "resolve.frag"}},
+                                 mapping + (lens ? "#define DISTORTION 1\n" : ""));
           !s)
         return s.error();
   }
@@ -551,6 +635,7 @@ Result<Compositor> Compositor::create(const CompositorOptions& o, const gl::Shad
   auto visibility = detail::VisibilityPipeline::create(shaders, impl->eye_w, impl->eye_h);
   if (!visibility) return visibility.error();
   impl->visibility.emplace(std::move(*visibility));
+  if (Status s = impl->use_features(0); !s) return s.error();  // a plain scene's variant
   impl->output = detail::ColorTarget::create(o.width, o.height, o.float_output ? GL_RGBA32F : GL_SRGB8_ALPHA8, false);
   impl->shadow = detail::ColorTarget::create_shadow(o.shadow_map_size);
   if (glCheckNamedFramebufferStatus(impl->output.fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
@@ -567,6 +652,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
   Impl& m = *impl_;
   const auto camera = frame_camera(params, m.opt.model);
   if (!camera) return camera.error();
+  if (Status s = m.use_features(scene.features); !s) return s.error();
   const auto cpu_start = Clock::now();
   PassTimes times;
   times.pipeline = params.pipeline;
@@ -589,7 +675,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
   // The eyes' fovea points as of the latch, after the left eye's full-resolution pass:
   // the right eye's could come later still, but both eyes show one gaze sample.
   std::array<EyeFoveation, 2> eyes = params.eyes;
-  const bool blended = detail::has_blended_draws(scene);
+  const bool blended = detail::has_forward_draws(scene);
   for (Eye e : kEyes) {
     const std::size_t i = static_cast<std::size_t>(e);
     const LensDistortion& lens = m.opt.model.distortion[i];
@@ -651,7 +737,8 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
       // pass's end when its last tile is done: without a flush the previous pass's stamp
       // would fall after most of this pass (measured: the blend pass read 0 ms in full).
       glFlush();
-      m.blend_pass(scene, view, resolve_fbo, resolve_origin, m.opaque_depth(params.pipeline));
+      m.blend_pass(scene, view, resolve_fbo, blend_under_lens ? m.undistorted->texture.id() : m.output.texture.id(), resolve_origin,
+                   m.opaque_depth(params.pipeline));
       if (blend_under_lens) {
         rmfr::Plan identity = rmfr_plan(plan);
         identity.buffer_w = identity.screen_w, identity.buffer_h = identity.screen_h;
@@ -784,7 +871,8 @@ TargetMemory Compositor::memory(Pipeline p) const {
   TargetMemory t;
   for (std::size_t i = 0; i < 2; ++i)
     if (m.reduced[i]) t.reduced += m.reduced[i]->bytes();
-  t.output = m.output.bytes() + (m.undistorted ? m.undistorted->bytes() : 0);  // the blend target under the lens
+  // The blend target under the lens, and the copy transmission reads (its mips: a third more).
+  t.output = m.output.bytes() + (m.undistorted ? m.undistorted->bytes() : 0) + (m.behind ? m.behind->bytes() * 4 / 3 : 0);
   t.shadow = m.shadow.bytes();
   if (p == Pipeline::visibility) {
     t.visibility = m.visibility->visibility_bytes();
@@ -797,6 +885,9 @@ TargetMemory Compositor::memory(Pipeline p) const {
     if (m.transformed[i]) t.transformed += m.transformed[i]->bytes();
   return t;
 }
+
+std::string Compositor::shading_variant() const { return impl_->layout.variant_name(); }
+std::size_t Compositor::gbuffer_bytes_per_pixel() const { return impl_->layout.bytes_per_pixel(); }
 
 std::string Compositor::renderer() const {
   auto str = [](GLenum e) {

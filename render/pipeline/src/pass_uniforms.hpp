@@ -30,14 +30,23 @@ inline void set(GLuint p, const char* n, glm::ivec4 v) { glProgramUniform4i(p, l
 inline void set(GLuint p, const char* n, const glm::mat3& m) { glProgramUniformMatrix3fv(p, loc(p, n), 1, GL_FALSE, glm::value_ptr(m)); }
 inline void set(GLuint p, const char* n, const glm::mat4& m) { glProgramUniformMatrix4fv(p, loc(p, n), 1, GL_FALSE, glm::value_ptr(m)); }
 
-/// The material's uniforms of shaders/common/material.glsl, and its textures on units 0-4.
+/// The material's uniforms of shaders/common/material.glsl, and its textures on their
+/// units (material_texture_unit). Uniforms of features the program lacks are skipped (GL
+/// ignores location -1).
 void set_material(GLuint program, const Scene& scene, const Material& m);
+
+/// The texture unit of a Material::Slot: 0-4 for the core slots, 16 on for the
+/// extensions' (shaders/common/material.glsl).
+inline GLuint material_texture_unit(int slot) {
+  return slot < Material::kCoreSlots ? static_cast<GLuint>(slot) : 16u + static_cast<GLuint>(slot - Material::kCoreSlots);
+}
 
 /// The material of a primitive (the default one for -1).
 const Material& material_of(const Scene& scene, int material);
 
-/// Whether any draw's material is alphaMode BLEND (drawn by the blend pass only).
-bool has_blended_draws(const Scene& scene);
+/// Whether any draw's material is drawn forward (Material::forward: alphaMode BLEND or
+/// transmission), by the blend pass only.
+bool has_forward_draws(const Scene& scene);
 
 }  // namespace detail
 

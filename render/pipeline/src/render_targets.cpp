@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include "foveal/render/scene_types.hpp"
+
 namespace foveal::render::detail {
 
 namespace {
@@ -13,35 +15,95 @@ void nearest_clamped(GLuint t) {
 }
 }  // namespace
 
-SurfaceTargets SurfaceTargets::create(int width, int height, bool depth_as_color) {
+SurfaceLayout SurfaceLayout::for_features(unsigned features) {
+  // Coat: factor, roughness and its own normal (octahedral, signed); sheen: colour and
+  // roughness; specular: √F0 (resolution where F0 is small) and F90 (docs/scenes.md).
+  static const Target kTargets[] = {
+      {feature_clearcoat, "clearcoat", GL_RGBA16_SNORM, 8},
+      {feature_sheen, "sheen", GL_RGBA8, 4},
+      {feature_specular, "specular", GL_RGBA8, 4},
+  };
+  SurfaceLayout l;
+  l.features = features;
+  for (const Target& t : kTargets)
+    if (features & t.feature) l.targets.push_back(t);
+  if (features & feature_transmission) l.forward.push_back("transmission");
+  return l;
+}
+
+std::size_t SurfaceLayout::bytes_per_pixel() const {
+  std::size_t b = kCoreBytesPerPixel;
+  for (const Target& t : targets) b += t.bytes_per_pixel;
+  return b;
+}
+
+namespace {
+std::string upper(const char* name) {
+  std::string u = name;
+  for (char& c : u) c = static_cast<char>(c - 'a' + 'A');
+  return u;
+}
+}  // namespace
+
+std::string SurfaceLayout::defines() const {
+  std::string d;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const std::string u = upper(targets[i].name);
+    d += "#define FEATURE_" + u + " 1\n#define " + u + "_LOCATION " + std::to_string(kFirstLocation + i) + "\n#define " + u +
+         "_UNIT " + std::to_string(kFirstUnit + i) + "\n";
+  }
+  for (const char* f : forward) d += "#define FEATURE_" + upper(f) + " 1\n";
+  return d;
+}
+
+std::string SurfaceLayout::variant_name() const {
+  std::string n = "metal-rough";
+  for (const Target& t : targets) n += std::string("+") + t.name;
+  for (const char* f : forward) n += std::string("+") + f;
+  return n;
+}
+
+SurfaceTargets SurfaceTargets::create(int width, int height, bool depth_as_color, const SurfaceLayout& layout) {
   SurfaceTargets s;
   s.width = width;
   s.height = height;
+  s.bytes_per_pixel = layout.bytes_per_pixel();
   s.albedo = gl::make_texture_2d(GL_SRGB8_ALPHA8, width, height);
   s.normal = gl::make_texture_2d(GL_RG16_SNORM, width, height);
   s.material = gl::make_texture_2d(GL_RGBA8, width, height);
   s.emissive = gl::make_texture_2d(GL_R11F_G11F_B10F, width, height);
   s.depth = gl::make_texture_2d(depth_as_color ? GL_R32F : GL_DEPTH_COMPONENT32F, width, height);
+  for (const SurfaceLayout::Target& t : layout.targets) s.features.push_back(gl::make_texture_2d(t.format, width, height));
   s.fbo = gl::Framebuffer::create();
   const GLuint f = s.fbo.id();
-  const GLuint color[] = {s.albedo.id(), s.normal.id(), s.material.id(), s.emissive.id(), s.depth.id()};
-  for (GLuint t : color) nearest_clamped(t);
-  for (int i = 0; i < 4; ++i) glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i), color[i], 0);
-  if (depth_as_color) {
-    glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT4, s.depth.id(), 0);
-    const GLenum bufs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
-    glNamedFramebufferDrawBuffers(f, 5, bufs);
-  } else {
-    glNamedFramebufferTexture(f, GL_DEPTH_ATTACHMENT, s.depth.id(), 0);
-    const GLenum bufs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
-    glNamedFramebufferDrawBuffers(f, 4, bufs);
+  const std::vector<GLuint> all = s.textures();
+  for (GLuint t : all) nearest_clamped(t);
+  std::vector<GLenum> bufs;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const GLenum attachment = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
+    if (i == 4 && !depth_as_color) {  // depth as the depth attachment; location 4 writes nothing
+      glNamedFramebufferTexture(f, GL_DEPTH_ATTACHMENT, all[i], 0);
+      bufs.push_back(GL_NONE);
+      continue;
+    }
+    glNamedFramebufferTexture(f, attachment, all[i], 0);
+    bufs.push_back(attachment);
   }
+  if (!depth_as_color && bufs.size() == 5) bufs.pop_back();  // no trailing GL_NONE
+  glNamedFramebufferDrawBuffers(f, static_cast<GLsizei>(bufs.size()), bufs.data());
   return s;
 }
 
+std::vector<GLuint> SurfaceTargets::textures() const {
+  std::vector<GLuint> t = {albedo.id(), normal.id(), material.id(), emissive.id(), depth.id()};
+  for (const gl::Texture& f : features) t.push_back(f.id());
+  return t;
+}
+
 void SurfaceTargets::bind_textures() const {
-  const std::array<GLuint, 5> t = textures();
-  glBindTextures(0, static_cast<GLsizei>(t.size()), t.data());
+  const std::vector<GLuint> t = textures();
+  glBindTextures(0, 5, t.data());
+  if (t.size() > 5) glBindTextures(SurfaceLayout::kFirstUnit, static_cast<GLsizei>(t.size() - 5), t.data() + 5);
 }
 
 ColorTarget ColorTarget::create(int width, int height, GLenum format, bool linear_filter) {
@@ -93,9 +155,9 @@ VisibilityTarget VisibilityTarget::create(int width, int height) {
   return v;
 }
 
-MaterialSurface MaterialSurface::create(int width, int height) {
+MaterialSurface MaterialSurface::create(int width, int height, const SurfaceLayout& layout) {
   MaterialSurface m;
-  m.surface = SurfaceTargets::create(width, height, true);
+  m.surface = SurfaceTargets::create(width, height, true, layout);
   m.material_depth = gl::make_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
   nearest_clamped(m.material_depth.id());
   glNamedFramebufferTexture(m.surface.fbo.id(), GL_DEPTH_ATTACHMENT, m.material_depth.id(), 0);

@@ -3,7 +3,9 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "foveal/render/gl_objects.hpp"
 
@@ -19,18 +21,49 @@ inline std::optional<std::pair<int, int>> realloc_size(bool exists, int have_w, 
   return std::pair{w, h};
 }
 
+/// What a scene's G-buffer holds: the core targets (albedo, normal, material, emissive:
+/// locations and units 0-3; depth 4) and one target per material feature its materials
+/// use (MaterialFeature), at locations 5, 6, ... and, for the passes that read them,
+/// texture units 8, 9, .... A plain metal-rough scene has no feature target.
+struct SurfaceLayout {
+  struct Target {
+    unsigned feature;  ///< MaterialFeature
+    const char* name;  ///< "clearcoat": the shader's FEATURE_CLEARCOAT, CLEARCOAT_LOCATION, CLEARCOAT_UNIT
+    GLenum format;
+    std::size_t bytes_per_pixel;
+  };
+  unsigned features = 0;
+  std::vector<Target> targets;  ///< the feature targets, in location order
+  /// Features of the forward pass alone (transmission): a shader define, no target.
+  std::vector<const char*> forward;
+
+  static SurfaceLayout for_features(unsigned features);
+  static constexpr std::size_t kCoreBytesPerPixel = 20;  ///< the core targets and depth
+  static constexpr GLuint kFirstLocation = 5, kFirstUnit = 8;
+  std::size_t bytes_per_pixel() const;
+  /// The shader defines of the features: FEATURE_X, X_LOCATION and X_UNIT per target,
+  /// FEATURE_X for a forward feature.
+  std::string defines() const;
+  /// "metal-rough" plus "+name" per feature: the shader variant's name.
+  std::string variant_name() const;
+};
+
 /// A G-buffer (full size, with a depth buffer) or a transformed G-buffer (w×h, depth as
-/// an R32F colour target written by the mapping pass). Texture units 0-4 in that order.
+/// an R32F colour target written by the mapping pass), in `layout`.
 struct SurfaceTargets {
   gl::Texture albedo, normal, material, emissive, depth;
+  std::vector<gl::Texture> features;  ///< SurfaceLayout::targets
   gl::Framebuffer fbo;
   int width = 0, height = 0;
+  std::size_t bytes_per_pixel = SurfaceLayout::kCoreBytesPerPixel;
 
-  static SurfaceTargets create(int width, int height, bool depth_as_color);
-  /// albedo, normal, material, emissive, depth: the texture units' order.
-  std::array<GLuint, 5> textures() const { return {albedo.id(), normal.id(), material.id(), emissive.id(), depth.id()}; }
+  static SurfaceTargets create(int width, int height, bool depth_as_color, const SurfaceLayout& layout);
+  /// albedo, normal, material, emissive, depth, then the feature targets: the order of
+  /// the reduced buffers' attachments (foveal-rmfr maps texture k to attachment k).
+  std::vector<GLuint> textures() const;
+  /// Core targets on units 0-4, feature targets on units 8, 9, ....
   void bind_textures() const;
-  std::size_t bytes() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 20; }
+  std::size_t bytes() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * bytes_per_pixel; }
 };
 
 /// One colour target (the reduced lit buffer, the output) or a depth-only shadow map.
@@ -79,7 +112,7 @@ struct MaterialSurface {
   gl::Texture material_depth;
   MaterialTiles tiles;
 
-  static MaterialSurface create(int width, int height);
+  static MaterialSurface create(int width, int height, const SurfaceLayout& layout);
   int width() const { return surface.width; }
   int height() const { return surface.height; }
   std::size_t bytes() const {

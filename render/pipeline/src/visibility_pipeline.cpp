@@ -33,7 +33,7 @@ std::vector<std::size_t> used_materials(const Scene& scene) {
   std::vector<bool> used(scene.materials.size() + 1, false);
   for (const DrawItem& d : scene.draws) {
     const int m = scene.primitives[static_cast<std::size_t>(d.primitive)].material;
-    if (material_of(scene, m).blend) continue;  // never in the visibility target
+    if (material_of(scene, m).forward()) continue;  // never in the visibility target
     used[m >= 0 ? static_cast<std::size_t>(m) : scene.materials.size()] = true;
   }
   std::vector<std::size_t> out;
@@ -42,11 +42,21 @@ std::vector<std::size_t> used_materials(const Scene& scene) {
   return out;
 }
 
-MaterialSurface& ensure(std::optional<MaterialSurface>& slot, int w, int h, bool grow_only) {
+MaterialSurface& ensure(std::optional<MaterialSurface>& slot, int w, int h, bool grow_only, const SurfaceLayout& layout) {
   if (auto size = realloc_size(slot.has_value(), slot ? slot->width() : 0, slot ? slot->height() : 0, w, h, grow_only))
-    slot = MaterialSurface::create(size->first, size->second);
+    slot = MaterialSurface::create(size->first, size->second, layout);
   return *slot;
 }
+
+Status build_program(const gl::ShaderLoader& shaders, gl::Program& out, const std::vector<gl::ShaderStage>& stages,
+                     const std::string& defines) {
+  auto p = shaders.program(stages, defines);
+  if (!p) return p.error();
+  out = std::move(*p);
+  return {};
+}
+
+std::string mapping_define(std::size_t m) { return "#define MAPPING " + std::to_string(m) + "\n"; }
 
 }  // namespace
 
@@ -54,29 +64,36 @@ Result<VisibilityPipeline> VisibilityPipeline::create(const gl::ShaderLoader& sh
   VisibilityPipeline v;
   v.eye_w_ = eye_width;
   v.eye_h_ = eye_height;
-  auto build = [&](gl::Program& out, std::vector<gl::ShaderStage> stages, const std::string& defines) -> Status {
-    auto p = shaders.program(stages, defines);
-    if (!p) return p.error();
-    out = std::move(*p);
-    return {};
+  auto build = [&](gl::Program& out, std::vector<gl::ShaderStage> stages, const std::string& defines) {
+    return build_program(shaders, out, stages, defines);
   };
   const gl::ShaderStage geometry{GL_VERTEX_SHADER, "gbuffer.vert"}, visibility{GL_FRAGMENT_SHADER, "visibility.frag"};
   if (Status s = build(v.visibility_prog_, {geometry, visibility}, ""); !s) return s.error();
   if (Status s = build(v.visibility_mask_prog_, {geometry, visibility}, "#define ALPHA_MASK 1\n"); !s) return s.error();
   const gl::ShaderStage fullscreen{GL_VERTEX_SHADER, "fullscreen.vert"};
   for (std::size_t m = 0; m < 3; ++m) {
-    const std::string mapping = "#define MAPPING " + std::to_string(m) + "\n";
-    if (Status s = build(v.classify_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "classify.frag"}}, mapping); !s) return s.error();
-    if (Status s = build(v.material_progs_[m], {{GL_VERTEX_SHADER, "material_tile.vert"}, {GL_FRAGMENT_SHADER, "material.frag"}},
-                         mapping + tile_defines());
+    if (Status s = build(v.classify_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "classify.frag"}}, mapping_define(m)); !s)
+      return s.error();
+    if (Status s = build(v.pattern_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "material.frag"}}, mapping_define(m) + "#define PATTERN 1\n");
         !s)
       return s.error();
-    if (Status s = build(v.pattern_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "material.frag"}}, mapping + "#define PATTERN 1\n"); !s)
-      return s.error();
   }
+  if (Status s = v.use_layout(shaders, SurfaceLayout{}); !s) return s.error();
   if (Status s = build(v.tiles_prog_, {{GL_COMPUTE_SHADER, "material_tiles.comp"}}, tile_defines()); !s) return s.error();
   v.empty_vao_ = gl::VertexArray::create();
   return v;
+}
+
+Status VisibilityPipeline::use_layout(const gl::ShaderLoader& shaders, const SurfaceLayout& layout) {
+  for (std::size_t m = 0; m < 3; ++m)
+    if (Status s = build_program(shaders, material_progs_[m], {{GL_VERTEX_SHADER, "material_tile.vert"}, {GL_FRAGMENT_SHADER, "material.frag"}},
+                                 mapping_define(m) + tile_defines() + layout.defines());
+        !s)
+      return s;
+  layout_ = layout;
+  full_.reset();
+  for (auto& e : eyes_) e.reset();
+  return {};
 }
 
 void VisibilityPipeline::visibility_pass(const Scene& scene, const EyeView& view) {
@@ -97,7 +114,7 @@ void VisibilityPipeline::visibility_pass(const Scene& scene, const EyeView& view
     const DrawItem& d = scene.draws[i];
     const Primitive& prim = scene.primitives[static_cast<std::size_t>(d.primitive)];
     const Material& m = material_of(scene, prim.material);
-    if (m.blend) continue;  // the compositor's blend pass draws it over the lit result
+    if (m.forward()) continue;  // the compositor's forward pass draws it over the lit result
     const bool masked = m.alpha_cutoff >= 0.0f;
     const GLuint p = masked ? visibility_mask_prog_.id() : visibility_prog_.id();
     glUseProgram(p);
@@ -194,9 +211,10 @@ void VisibilityPipeline::material_pass(const Scene& scene, const EyeView& view, 
   for (std::size_t m : used_materials(scene)) {
     const Material& mat = material_of(scene, m < scene.materials.size() ? static_cast<int>(m) : -1);
     set_material(p, scene, mat);
-    const int texs[] = {mat.base_color_tex, mat.metal_rough_tex, mat.normal_tex, mat.occlusion_tex, mat.emissive_tex};
-    for (GLuint unit = 0; unit < 5; ++unit)
-      glBindSampler(unit, texs[unit] >= 0 ? scene.isotropic_samplers[static_cast<std::size_t>(texs[unit])].id() : 0);
+    for (int slot = 0; slot < Material::slot_count; ++slot) {
+      const int t = mat.texture(static_cast<Material::Slot>(slot));
+      glBindSampler(material_texture_unit(slot), t >= 0 ? scene.isotropic_samplers[static_cast<std::size_t>(t)].id() : 0);
+    }
     const std::size_t slot = std::min(m, kMaterialSlots - 1);
     set(p, "u_list_base", static_cast<unsigned>(slot * tiles.count()));
     const float z = material_depth(m);
@@ -209,7 +227,7 @@ void VisibilityPipeline::material_pass(const Scene& scene, const EyeView& view, 
   }
   glDisable(GL_SCISSOR_TEST);
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-  glBindSamplers(0, 5, nullptr);
+  for (int slot = 0; slot < Material::slot_count; ++slot) glBindSampler(material_texture_unit(slot), 0);
   glBindTextures(8, 4, nullptr);
   glDepthRangef(0.0f, 1.0f);
   glDepthMask(GL_TRUE);
@@ -217,10 +235,10 @@ void VisibilityPipeline::material_pass(const Scene& scene, const EyeView& view, 
   glDisable(GL_DEPTH_TEST);
 }
 
-MaterialSurface& VisibilityPipeline::full_surface() { return ensure(full_, eye_w_, eye_h_, false); }
+MaterialSurface& VisibilityPipeline::full_surface() { return ensure(full_, eye_w_, eye_h_, false, layout_); }
 
 MaterialSurface& VisibilityPipeline::eye_surface(std::size_t eye, int w, int h, bool grow_only) {
-  return ensure(eyes_[eye], w, h, grow_only);
+  return ensure(eyes_[eye], w, h, grow_only, layout_);
 }
 
 std::size_t VisibilityPipeline::eye_surface_bytes() const {

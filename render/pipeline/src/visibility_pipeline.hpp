@@ -29,6 +29,11 @@ class VisibilityPipeline {
   /// Compiles its programs. Targets are made on first use.
   static Result<VisibilityPipeline> create(const gl::ShaderLoader& shaders, int eye_width, int eye_height);
 
+  /// Recompiles the material pass for `layout` (the scene's material features) and drops
+  /// the surfaces, which are remade in it on next use. Errors: the shaders' (compile).
+  Status use_layout(const gl::ShaderLoader& shaders, const SurfaceLayout& layout);
+  const SurfaceLayout& layout() const { return layout_; }
+
   /// Depth and (draw + 1, triangle) of every pixel of one eye. Nothing for patterns.
   void visibility_pass(const Scene& scene, const EyeView& view);
 
@@ -53,6 +58,7 @@ class VisibilityPipeline {
 
  private:
   int eye_w_ = 0, eye_h_ = 0;
+  SurfaceLayout layout_;
   gl::Program visibility_prog_, visibility_mask_prog_, tiles_prog_;
   std::array<gl::Program, 3> classify_progs_, material_progs_, pattern_progs_;  // per MAPPING
   gl::VertexArray empty_vao_;

@@ -55,7 +55,39 @@ class UploadSink : public GltfSink {
 
 }  // namespace
 
-Result<Scene> load_gltf_scene(const std::string& path) {
+namespace {
+
+// KHR_materials_variants: the primitives' materials under variant `name`.
+Status select_variant(Scene& scene, const std::vector<MaterialVariant>& variants, const std::string& path, const std::string& name) {
+  for (const MaterialVariant& v : variants) scene.variants.push_back(v.name);
+  if (name.empty()) return {};
+  std::string names;
+  for (const MaterialVariant& v : variants) {
+    if (v.name == name) {
+      for (const auto& [primitive, material] : v.primitive_material)
+        scene.primitives[static_cast<std::size_t>(primitive)].material = material;
+      scene.variant = name;
+      return {};
+    }
+    names += (names.empty() ? "" : ", ") + v.name;
+  }
+  return bad_input(path + ": no material variant '" + name + "' (" +
+                   (variants.empty() ? std::string("the file has no KHR_materials_variants") : "the file's variants: " + names) + ")");
+}
+
+// What the drawn materials use beyond metal-roughness (MaterialFeature bits).
+unsigned drawn_features(const Scene& scene) {
+  unsigned f = 0;
+  for (const DrawItem& d : scene.draws) {
+    const int m = scene.primitives[static_cast<std::size_t>(d.primitive)].material;
+    if (m >= 0) f |= scene.materials[static_cast<std::size_t>(m)].features;
+  }
+  return f;
+}
+
+}  // namespace
+
+Result<Scene> load_gltf_scene(const std::string& path, const std::string& variant) {
   GltfLimits limits;
   GLint max_texture = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
@@ -77,6 +109,8 @@ Result<Scene> load_gltf_scene(const std::string& path) {
                              std::to_string(kMaxFileLights) + " are used");
     scene.lights.resize(static_cast<std::size_t>(kMaxFileLights));
   }
+  if (Status st = select_variant(scene, loaded->variants, path, variant); !st) return st.error();
+  scene.features = drawn_features(scene);
   upload_geometry(scene, sink.all_vertices, sink.all_indices);
   return scene;
 }

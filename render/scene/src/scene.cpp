@@ -32,9 +32,12 @@ ViewPose framing_view(const Bounds& b) {
 
 }  // namespace
 
-Result<Scene> load_scene(const std::string& spec) {
-  if (spec.rfind("pattern:", 0) == 0) return detail::make_pattern_scene(spec);
-  auto scene = detail::load_gltf_scene(spec);
+Result<Scene> load_scene(const std::string& spec, const SceneOptions& options) {
+  if (spec.rfind("pattern:", 0) == 0) {
+    if (!options.variant.empty()) return bad_input(spec + ": a pattern has no material variants");
+    return detail::make_pattern_scene(spec);
+  }
+  auto scene = detail::load_gltf_scene(spec, options.variant);
   if (!scene) return scene;
   const std::filesystem::path view = std::filesystem::path(spec).replace_extension(".view.json");
   if (std::filesystem::exists(view)) {

@@ -22,7 +22,7 @@ gl::Sampler isotropic_sampler(GLenum wrap_s, GLenum wrap_t);
 gl::Texture upload_rgba8(const std::uint8_t* rgba, int width, int height, bool srgb, GLenum wrap_s, GLenum wrap_t,
                          std::size_t* bytes);
 
-Result<Scene> load_gltf_scene(const std::string& path);
+Result<Scene> load_gltf_scene(const std::string& path, const std::string& variant);
 Result<Scene> make_pattern_scene(const std::string& spec);
 
 }  // namespace foveal::render::detail

@@ -60,6 +60,7 @@ struct GltfScene {
   ViewPose view;  ///< the file's first camera, else source "framing"
   std::size_t triangles = 0;
   std::vector<PunctualLight> lights;  ///< KHR_lights_punctual, one per node that has one
+  std::vector<MaterialVariant> variants;  ///< KHR_materials_variants, in the file's order
   std::vector<std::string> warnings;  ///< what the file uses that is ignored, once each ("FILE: ...")
 };
 

@@ -3,6 +3,8 @@
 // by the glTF loader (CPU only, gltf_loader.hpp) and the compositor's Scene.
 #include <array>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -25,12 +27,32 @@ struct TextureUv {
   int set = 0;  ///< 0: TEXCOORD_0, 1: TEXCOORD_1
 };
 
+/// The material extensions a material uses beyond metal-roughness: each one a shader
+/// feature and, in the deferred pipelines, one G-buffer attachment (docs/scenes.md,
+/// "Materials"). A scene's shaders and G-buffer carry only the features its materials use.
+enum MaterialFeature : unsigned {
+  feature_clearcoat = 1u << 0,  ///< KHR_materials_clearcoat
+  feature_sheen = 1u << 1,      ///< KHR_materials_sheen
+  feature_specular = 1u << 2,   ///< KHR_materials_specular and/or KHR_materials_ior
+  /// KHR_materials_transmission (with KHR_materials_volume): drawn by the forward pass
+  /// over the opaque result it transmits, so it needs no G-buffer target.
+  feature_transmission = 1u << 3,
+};
+
 /// glTF 2.0 metal-roughness material. Texture indices point into Scene::textures (-1: none).
 /// A KHR_materials_pbrSpecularGlossiness material keeps its diffuse factor and texture in
 /// base_color, its specular-glossiness texture in metal_rough_tex, and is converted to
 /// metal-roughness per fragment (docs/scenes.md).
 struct Material {
-  enum Slot { base_color_slot, metal_rough_slot, normal_slot, occlusion_slot, emissive_slot, slot_count };
+  enum Slot {
+    base_color_slot, metal_rough_slot, normal_slot, occlusion_slot, emissive_slot,
+    clearcoat_slot, clearcoat_roughness_slot, clearcoat_normal_slot,  // KHR_materials_clearcoat
+    sheen_color_slot, sheen_roughness_slot,                           // KHR_materials_sheen
+    specular_slot, specular_color_slot,                               // KHR_materials_specular
+    transmission_slot, thickness_slot,                                // KHR_materials_transmission, _volume
+    slot_count
+  };
+  static constexpr int kCoreSlots = 5;  ///< the metal-roughness slots, base colour to emissive
   glm::vec4 base_color{1.0f};
   float metallic = 1.0f, roughness = 1.0f;
   glm::vec3 emissive{0.0f};
@@ -46,6 +68,38 @@ struct Material {
   bool spec_gloss = false;                 ///< KHR_materials_pbrSpecularGlossiness
   glm::vec3 specular{1.0f};                ///< its specularFactor
   float glossiness = 1.0f;                 ///< its glossinessFactor
+
+  /// MaterialFeature bits of what follows; 0 for a plain metal-roughness material.
+  unsigned features = 0;
+  /// Extension textures (Scene::textures, -1: none), indexed by Slot - kCoreSlots.
+  std::array<int, slot_count - kCoreSlots> ext_tex{-1, -1, -1, -1, -1, -1, -1, -1, -1};
+  float clearcoat = 0.0f, clearcoat_roughness = 0.0f, clearcoat_normal_scale = 1.0f;  ///< KHR_materials_clearcoat
+  glm::vec3 sheen_color{0.0f};                                                          ///< KHR_materials_sheen
+  float sheen_roughness = 0.0f;
+  float specular_factor = 1.0f;                ///< KHR_materials_specular
+  glm::vec3 specular_color{1.0f};
+  float ior = 1.5f;                            ///< KHR_materials_ior
+  float transmission = 0.0f;                   ///< KHR_materials_transmission
+  float thickness = 0.0f;                      ///< KHR_materials_volume: mesh units, 0 thin-walled
+  float attenuation_distance = 0.0f;           ///< world units; 0: no attenuation (the spec's +inf)
+  glm::vec3 attenuation_color{1.0f};
+
+  /// Drawn by the forward pass after the opaque result, not by the opaque passes:
+  /// alphaMode BLEND, or transmission (docs/scenes.md, "Transparency", "Materials").
+  bool forward() const { return blend || (features & feature_transmission) != 0; }
+
+  /// The texture of any slot (-1: none).
+  int texture(Slot s) const {
+    const int core[kCoreSlots] = {base_color_tex, metal_rough_tex, normal_tex, occlusion_tex, emissive_tex};
+    return s < kCoreSlots ? core[s] : ext_tex[static_cast<std::size_t>(s - kCoreSlots)];
+  }
+};
+
+/// A KHR_materials_variants variant: per primitive (the loader sink's index), the
+/// material it takes when the variant is chosen.
+struct MaterialVariant {
+  std::string name;
+  std::vector<std::pair<int, int>> primitive_material;  ///< (primitive, material index)
 };
 
 struct DrawItem {

@@ -151,6 +151,12 @@ class Compositor {
   /// "vendor / renderer / version".
   std::string renderer() const;
 
+  /// The shader variant the last frame's scene was drawn with: "metal-rough", plus
+  /// "+clearcoat", "+sheen", "+specular" for the material features its materials use
+  /// (docs/scenes.md, "Materials"), and the bytes per pixel of its G-buffer layout.
+  std::string shading_variant() const;
+  std::size_t gbuffer_bytes_per_pixel() const;
+
  private:
   struct Impl;
   explicit Compositor(std::unique_ptr<Impl> impl);

@@ -79,6 +79,12 @@ struct Scene {
   /// KHR_lights_punctual lights (at most kMaxFileLights, light_rig.hpp); empty: the rig lights it.
   std::vector<PunctualLight> lights;
   std::vector<std::string> warnings;  ///< what the file uses that is ignored, once each
+  /// KHR_materials_variants: the file's variants and the one drawn ("": the default materials).
+  std::vector<std::string> variants;
+  std::string variant;
+  /// MaterialFeature bits of the drawn materials: the compositor's shader variant and
+  /// G-buffer layout for the scene (docs/scenes.md, "Materials").
+  unsigned features = 0;
 
   bool is_pattern() const { return pattern.has_value(); }
 };
@@ -88,7 +94,13 @@ struct Scene {
 /// (docs/scenes.md); else the file's first camera; else a framing camera.
 /// Errors name the file: malformed glTF, a missing or undecodable image, an unsupported
 /// required extension, unsupported primitive modes or accessors.
-Result<Scene> load_scene(const std::string& spec);
+struct SceneOptions {
+  std::string variant;  ///< KHR_materials_variants variant to draw; "": the default materials
+};
+
+/// Loads `spec` with `options`; an unknown variant (or one asked of a pattern) is
+/// bad_input naming the file's variants.
+Result<Scene> load_scene(const std::string& spec, const SceneOptions& options = {});
 
 /// Moves the viewer along its line of sight to 1.05 bounding radii from the scene's
 /// centre, so that an object scene fills the view (the benchmarks' "filled" framing; an
