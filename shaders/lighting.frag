@@ -19,6 +19,9 @@ layout(binding = SHEEN_UNIT) uniform sampler2D g_sheen;
 #ifdef FEATURE_SPECULAR
 layout(binding = SPECULAR_UNIT) uniform sampler2D g_specular;
 #endif
+#ifdef FEATURE_ANISOTROPY
+layout(binding = ANISOTROPY_UNIT) uniform sampler2D g_anisotropy;
+#endif
 
 uniform ivec2 u_origin;  // where this eye's texel (0,0) lies in the render target
 uniform mat4 u_inv_view_proj;
@@ -55,6 +58,9 @@ void main() {
 #endif
 #ifdef FEATURE_SPECULAR
   g.specular = texelFetch(g_specular, texel, 0);
+#endif
+#ifdef FEATURE_ANISOTROPY
+  g.anisotropy = texelFetch(g_anisotropy, texel, 0);
 #endif
   o_color = vec4(lit_color(pixel, p, decode_normal(g.normal.rg), u_camera_pos, surface_of(g)), 1.0);
 }

@@ -28,6 +28,10 @@ layout(location = SHEEN_LOCATION) out vec4 o_sheen;
 layout(binding = SPECULAR_UNIT) uniform sampler2D g_specular;
 layout(location = SPECULAR_LOCATION) out vec4 o_specular;
 #endif
+#ifdef FEATURE_ANISOTROPY
+layout(binding = ANISOTROPY_UNIT) uniform sampler2D g_anisotropy;
+layout(location = ANISOTROPY_LOCATION) out vec4 o_anisotropy;
+#endif
 
 void main() {
   ivec2 src = source_pixel(ivec2(gl_FragCoord.xy));
@@ -44,5 +48,8 @@ void main() {
 #endif
 #ifdef FEATURE_SPECULAR
   o_specular = texelFetch(g_specular, src, 0);
+#endif
+#ifdef FEATURE_ANISOTROPY
+  o_anisotropy = texelFetch(g_anisotropy, src, 0);
 #endif
 }

@@ -17,6 +17,9 @@ layout(location = SHEEN_LOCATION) out vec4 o_sheen;
 #ifdef FEATURE_SPECULAR
 layout(location = SPECULAR_LOCATION) out vec4 o_specular;
 #endif
+#ifdef FEATURE_ANISOTROPY
+layout(location = ANISOTROPY_LOCATION) out vec4 o_anisotropy;
+#endif
 
 void write_gbuffer(GBufferTexel g) {
   o_albedo = g.albedo;
@@ -31,6 +34,9 @@ void write_gbuffer(GBufferTexel g) {
 #endif
 #ifdef FEATURE_SPECULAR
   o_specular = g.specular;
+#endif
+#ifdef FEATURE_ANISOTROPY
+  o_anisotropy = g.anisotropy;
 #endif
 }
 #endif

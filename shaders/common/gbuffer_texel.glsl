@@ -20,6 +20,9 @@ struct GBufferTexel {
 #ifdef FEATURE_SPECULAR
   vec4 specular;   // sqrt of the dielectric F0 (rgb), F90
 #endif
+#ifdef FEATURE_ANISOTROPY
+  vec4 anisotropy;  // strength, unused, ba octahedral world direction
+#endif
 };
 
 // What the BRDF needs at a point (common/lighting.glsl).
@@ -39,6 +42,10 @@ struct Surface {
 #endif
 #ifdef FEATURE_TRANSMISSION
   float transmission;  // set by the forward pass; the G-buffer never holds a transmissive surface
+#endif
+#ifdef FEATURE_ANISOTROPY
+  float anisotropy;
+  vec3 anisotropy_direction;  // world space, not yet orthogonal to the shading normal
 #endif
 };
 
@@ -66,6 +73,10 @@ Surface surface_of(GBufferTexel g) {
 #ifdef FEATURE_SHEEN
   s.sheen_color = g.sheen.rgb;
   s.sheen_roughness = g.sheen.a;
+#endif
+#ifdef FEATURE_ANISOTROPY
+  s.anisotropy = g.anisotropy.r;
+  s.anisotropy_direction = decode_normal(g.anisotropy.ba);
 #endif
   return s;
 }

@@ -71,6 +71,21 @@ float sheen_scaling(Surface s, float n_dot_v) {
 float coat_fresnel(Surface s, vec3 v) { return 0.04 + 0.96 * pow(1.0 - clamp(dot(s.clearcoat_normal, v), 0.0, 1.0), 5.0); }
 #endif
 
+#ifdef FEATURE_ANISOTROPY
+// KHR_materials_anisotropy: GGX stretched along t (α_t = mix(α, 1, strength²)), α_b = α.
+float d_ggx_anisotropic(float n_dot_h, float t_dot_h, float b_dot_h, float at, float ab) {
+  float a2 = at * ab;
+  vec3 f = vec3(ab * t_dot_h, at * b_dot_h, a2 * n_dot_h);
+  float w2 = a2 / dot(f, f);
+  return a2 * w2 * w2 / PI;
+}
+float v_smith_anisotropic(float n_dot_l, float n_dot_v, vec3 tbv, vec3 tbl, float at, float ab) {
+  float gv = n_dot_l * length(vec3(at * tbv.x, ab * tbv.y, n_dot_v));
+  float gl = n_dot_v * length(vec3(at * tbl.x, ab * tbl.y, n_dot_l));
+  return clamp(0.5 / max(gv + gl, 1e-5), 0.0, 1.0);
+}
+#endif
+
 // The BRDF times n·l for light from l: metal-roughness GGX with the dielectric F0/F90
 // of KHR_materials_specular, under the sheen and clearcoat layers when the scene has them
 // (docs/scenes.md, "Materials").
@@ -85,6 +100,15 @@ vec3 shade(vec3 n, vec3 v, vec3 l, Surface s) {
     float f90 = mix(s.f90, 1.0, s.metallic);
     vec3 f = f0 + (f90 - f0) * pow(1.0 - v_dot_h, 5.0);
     vec3 specular = d_ggx(n_dot_h, a) * v_smith(n_dot_v, n_dot_l, a) * f;
+#ifdef FEATURE_ANISOTROPY
+    if (s.anisotropy > 0.0) {
+      vec3 t = normalize(s.anisotropy_direction - n * dot(n, s.anisotropy_direction));
+      vec3 b = cross(n, t);
+      float at = mix(a, 1.0, s.anisotropy * s.anisotropy);
+      specular = d_ggx_anisotropic(n_dot_h, dot(t, h), dot(b, h), at, a) *
+                 v_smith_anisotropic(n_dot_l, n_dot_v, vec3(dot(t, v), dot(b, v), 0.0), vec3(dot(t, l), dot(b, l), 0.0), at, a) * f;
+    }
+#endif
     vec3 diffuse = (1.0 - f) * (1.0 - s.metallic) * s.albedo / PI;
 #ifdef FEATURE_TRANSMISSION
     diffuse *= 1.0 - s.transmission;  // what is transmitted is not diffused (the forward pass adds it)

@@ -22,7 +22,8 @@
 #define SLOT_SPECULAR_COLOR 11
 #define SLOT_TRANSMISSION 12
 #define SLOT_THICKNESS 13
-#define SLOT_COUNT 14
+#define SLOT_ANISOTROPY 14
+#define SLOT_COUNT 15
 
 layout(binding = 0) uniform sampler2D u_base_color_tex;
 layout(binding = 1) uniform sampler2D u_metal_rough_tex;   // spec-gloss: specular rgb, glossiness a
@@ -61,6 +62,10 @@ uniform vec4 u_sheen;  // linear colour, roughness
 layout(binding = 21) uniform sampler2D u_specular_tex;        // a
 layout(binding = 22) uniform sampler2D u_specular_color_tex;  // rgb, sRGB
 uniform vec4 u_specular_layer;  // colour factor, specular factor
+#endif
+#ifdef FEATURE_ANISOTROPY
+layout(binding = 25) uniform sampler2D u_anisotropy_tex;  // rg direction (tangent space), b strength
+uniform vec2 u_anisotropy;  // strength, rotation (radians, counter-clockwise in tangent space)
 #endif
 uniform float u_ior;   // KHR_materials_ior (1.5 without): F0, and the refraction of transmission
 uniform bool u_blend;  // alphaMode BLEND: the forward pass composites by alpha (else opaque)
@@ -160,6 +165,22 @@ GBufferTexel evaluate_material(SurfacePoint s, vec4 base) {
   float r = (u_ior - 1.0) / (u_ior + 1.0);
   vec3 f0 = min(r * r * tint, vec3(1.0)) * weight;
   g.specular = vec4(sqrt(f0), weight);
+#endif
+#ifdef FEATURE_ANISOTROPY
+  // KHR_materials_anisotropy: the direction (tangent space, rotated) into world space
+  // along the geometric tangent frame, and the strength.
+  vec2 dir = vec2(1.0, 0.0);
+  float strength = u_anisotropy.x;
+  if (has_ext_tex(SLOT_ANISOTROPY)) {
+    vec3 a = sample_slot(u_anisotropy_tex, SLOT_ANISOTROPY, slot_uv(SLOT_ANISOTROPY, s)).rgb;
+    dir = a.rg * 2.0 - 1.0;
+    strength *= a.b;
+  }
+  float rc = cos(u_anisotropy.y), rs = sin(u_anisotropy.y);
+  dir = mat2(rc, rs, -rs, rc) * dir;
+  vec3 tg = normalize(s.tangent.xyz - geometric * dot(geometric, s.tangent.xyz));
+  vec3 bt = cross(geometric, tg) * s.tangent.w;
+  g.anisotropy = vec4(strength, 0.0, encode_normal(normalize(mat3(tg, bt, geometric) * vec3(dir, 0.0))));
 #endif
   return g;
 }

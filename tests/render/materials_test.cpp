@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -45,8 +46,16 @@ struct Rendered {
   std::size_t gbuffer_bytes_per_pixel = 0;
 };
 
+// One compositor for the whole test program: it recompiles its variant only when a
+// scene's features change (as a user's does), so a test that renders a model through
+// every case pays for its shaders once.
+render::Compositor& compositor() {
+  static render::Compositor c = test::make_compositor(kWidth, kHeight);
+  return c;
+}
+
 Rendered render_case(const std::string& spec, const Case& c, const render::SceneOptions& options = {}) {
-  render::Compositor comp = test::make_compositor(kWidth, kHeight);
+  render::Compositor& comp = compositor();
   auto s = render::load_scene(spec, options);
   if (!s) {
     ADD_FAILURE() << s.error().message;
@@ -87,6 +96,7 @@ const FeatureModel kModels[] = {
     {"SpecularTest", "KHR_materials_specular", "metal-rough+specular", 300},
     {"SheenChair", "KHR_materials_sheen", "metal-rough+sheen", 300},
     {"AttenuationTest", "KHR_materials_transmission", "metal-rough+transmission", 300},
+    {"AnisotropyStrengthTest", "KHR_materials_anisotropy", "metal-rough+anisotropy", 300},
 };
 
 // A unit quad of material `front` at z = 1 (half size 0.6) before an unlit background
@@ -142,13 +152,16 @@ TEST(Materials, EachExtensionChangesItsModelInBothPipelines) {
     const std::string with = test::khronos(m.model);
     const std::string without = test::edited(dir, with, [&](json& j) { test::strip_extension(j, m.extension); });
     std::array<image::Image, 2> full;  // per pipeline, with the extension
-    for (const Case& c : kCases) {
-      const Rendered a = render_case(with, c), b = render_case(without, c);
-      EXPECT_EQ(a.variant, m.variant) << m.model << " " << describe(c);
-      EXPECT_EQ(b.variant, "metal-rough") << m.model << " without " << m.extension;
-      const int d = changed_pixels(a.image, b.image, 8);
+    std::vector<Rendered> a, b;
+    for (const Case& c : kCases) a.push_back(render_case(with, c));
+    for (const Case& c : kCases) b.push_back(render_case(without, c));
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const Case& c = kCases[i];
+      EXPECT_EQ(a[i].variant, m.variant) << m.model << " " << describe(c);
+      EXPECT_EQ(b[i].variant, "metal-rough") << m.model << " without " << m.extension;
+      const int d = changed_pixels(a[i].image, b[i].image, 8);
       EXPECT_GT(d, m.min_changed) << m.model << " " << describe(c) << ": pixels the extension changes";
-      if (c.method == render::Method::full) full[c.pipeline == render::Pipeline::gbuffer ? 0 : 1] = a.image;
+      if (c.method == render::Method::full) full[c.pipeline == render::Pipeline::gbuffer ? 0 : 1] = a[i].image;
     }
     EXPECT_GT(image::psnr(full[0], full[1]), 35.0) << m.model << ": the visibility pipeline against the G-buffer one";
   }
@@ -162,8 +175,12 @@ TEST(Materials, ClearcoatAddsASharpHighlight) {
   test::TempDir dir;
   const std::string with = test::khronos("ClearCoatTest");
   const std::string without = test::edited(dir, with, [](json& j) { test::strip_extension(j, "KHR_materials_clearcoat"); });
-  for (const Case& c : kCases) {
-    const image::Image coated = render_case(with, c).image, plain = render_case(without, c).image;
+  std::vector<image::Image> coated_images;
+  for (const Case& c : kCases) coated_images.push_back(render_case(with, c).image);
+  for (std::size_t i = 0; i < coated_images.size(); ++i) {
+    const Case& c = kCases[i];
+    const image::Image& coated = coated_images[i];
+    const image::Image plain = render_case(without, c).image;
     const int brighter = changed_pixels(coated, plain, 24, true), darker = changed_pixels(plain, coated, 24, true);
     EXPECT_GT(brighter, 150) << describe(c) << ": pixels the coat brightens by more than 24 levels";
     EXPECT_GT(brighter, 4 * darker) << describe(c) << ": the coat mostly adds light (brighter / darker " << brighter << " / " << darker << ")";
@@ -308,4 +325,25 @@ TEST(Materials, VolumeAttenuatesByThicknessOverDistance) {
       const auto px = centre(render_case(pane, c).image);
       EXPECT_NEAR(px[0] / px[1], expected, 0.05) << describe(c) << " attenuation distance " << distance;
     }
+}
+
+// Four layered features on one material: the G-buffer holds three (GL promises eight
+// colour attachments); the last in SurfaceLayout's order is dropped with a warning.
+TEST(Materials, AScenePastThreeLayersIsDrawnWithoutTheLastAndWarned) {
+  test::TempDir dir;
+  json front = pane_material(0.0f);
+  front["extensions"] = {{"KHR_materials_clearcoat", {{"clearcoatFactor", 1.0}}},
+                         {"KHR_materials_sheen", {{"sheenColorFactor", {1.0, 1.0, 1.0}}}},
+                         {"KHR_materials_specular", {{"specularFactor", 0.5}}},
+                         {"KHR_materials_anisotropy", {{"anisotropyStrength", 0.5}}}};
+  const std::string pane = write_pane(dir, "layers", front, {1, 0, 0});
+  auto r = test::run(test::bin("foveal") + " render --size 64x32 --frames 1 --warmup 0 --json --out " + dir.path("f.png") + " --scene " + pane);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["material_variant"]["shader"], "metal-rough+clearcoat+specular+sheen");
+  EXPECT_EQ(j["material_variant"]["gbuffer_bytes_per_pixel"], 36);
+  bool warned = false;
+  for (const json& w : j["warnings"]) warned = warned || w.get<std::string>().find("drawn without: anisotropy") != std::string::npos;
+  EXPECT_TRUE(warned) << j["warnings"].dump();
+  EXPECT_NE(r.err.find("drawn without: anisotropy"), std::string::npos) << r.err;
 }

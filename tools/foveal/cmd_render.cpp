@@ -106,6 +106,12 @@ int run(const Args& a) {
     progress.update(static_cast<std::uint64_t>(i + 1));
   }
   progress.finish();
+  // A scene with more material layers than the G-buffer holds is drawn without the rest.
+  if (const unsigned dropped = scene->features & ~comp->material_features()) {
+    scene->warnings.push_back(setup->scene + ": uses more material layers than the G-buffer holds (three); drawn without: " +
+                              render::material_feature_names(dropped));
+    cli::warn(scene->warnings.back());
+  }
   const image::Image img = comp->read_image();
   if (Status s = image::save_png(a.out, img); !s) return cli::report(s.error());
 

@@ -153,6 +153,14 @@ Status read_material_layers(const tinygltf::Material& gm, const std::string& whe
     if (!(mat.features & feature_transmission))
       warnings.push_back(at + ": a volume without KHR_materials_transmission is drawn as its surface only");
   }
+  if (const tinygltf::Value* an = find("KHR_materials_anisotropy")) {
+    const std::string at = where + ".extensions.KHR_materials_anisotropy";
+    mat.anisotropy = factor(*an, "anisotropyStrength", 0.0, 0.0, 1.0, at, warnings);
+    mat.anisotropy_rotation = static_cast<float>(number(*an, "anisotropyRotation", 0.0));
+    if (!std::isfinite(mat.anisotropy_rotation)) mat.anisotropy_rotation = 0.0f;
+    if (Status s = read(*an, "anisotropyTexture", false, Material::anisotropy_slot); !s) return s;
+    if (mat.anisotropy > 0.0f) mat.features |= feature_anisotropy;
+  }
   if (const tinygltf::Value* io = find("KHR_materials_ior")) {
     mat.ior = factor(*io, "ior", 1.5, 1.0, kLarge, where + ".extensions.KHR_materials_ior", warnings);
     mat.features |= feature_specular;

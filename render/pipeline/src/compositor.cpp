@@ -190,6 +190,7 @@ void set_material(GLuint p, const Scene& scene, const Material& m) {
   set(p, "u_blend", m.blend ? 1 : 0);
   set(p, "u_transmission", glm::vec4(m.features & feature_transmission ? m.transmission : 0.0f, m.thickness, m.attenuation_distance, 0.0f));
   set(p, "u_attenuation_color", m.attenuation_color);
+  set(p, "u_anisotropy", glm::vec2(m.features & feature_anisotropy ? m.anisotropy : 0.0f, m.anisotropy_rotation));
   const bool any_ext = ext != 0;
   for (int slot = 0; slot < (any_ext ? Material::slot_count : Material::kCoreSlots); ++slot) {
     const int t = m.texture(static_cast<Material::Slot>(slot));
@@ -271,7 +272,8 @@ struct Compositor::Impl {
   // The programs and targets that depend on the scene's material features (its shader
   // variant, docs/scenes.md "Materials"): remade when a scene with other features comes.
   gl::ShaderLoader shaders;
-  detail::SurfaceLayout layout;
+  detail::SurfaceLayout layout;     // what the scene's features got (at most SurfaceLayout::kMaxTargets)
+  unsigned requested_features = 0;  // the scene's
   gl::Texture sheen_albedo;  // sheen_albedo.hpp, made for the first scene with sheen
   std::optional<detail::ColorTarget> behind;  // the eye's opaque result under transmission (first use)
   std::optional<detail::SurfaceTargets> gbuffer;  // made by the first G-buffer-pipeline frame
@@ -341,7 +343,7 @@ struct Compositor::Impl {
 
   // The shader variant and G-buffer layout for material features `features`.
   Status use_features(unsigned features) {
-    if (features == layout.features && gbuffer_prog) return {};
+    if (features == requested_features && gbuffer_prog) return {};
     const detail::SurfaceLayout next = detail::SurfaceLayout::for_features(features);
     if (features) {
       GLint units = 0, buffers = 0;
@@ -376,6 +378,7 @@ struct Compositor::Impl {
       glTextureParameteri(sheen_albedo.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     }
     layout = next;
+    requested_features = features;
     gbuffer.reset();
     for (auto& t : transformed) t.reset();
     return {};
@@ -888,6 +891,7 @@ TargetMemory Compositor::memory(Pipeline p) const {
 
 std::string Compositor::shading_variant() const { return impl_->layout.variant_name(); }
 std::size_t Compositor::gbuffer_bytes_per_pixel() const { return impl_->layout.bytes_per_pixel(); }
+unsigned Compositor::material_features() const { return impl_->layout.features; }
 
 std::string Compositor::renderer() const {
   auto str = [](GLenum e) {

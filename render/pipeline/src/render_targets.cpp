@@ -18,15 +18,20 @@ void nearest_clamped(GLuint t) {
 SurfaceLayout SurfaceLayout::for_features(unsigned features) {
   // Coat: factor, roughness and its own normal (octahedral, signed); sheen: colour and
   // roughness; specular: √F0 (resolution where F0 is small) and F90 (docs/scenes.md).
+  // Anisotropy: strength and the world-space direction of the stretched lobe (octahedral).
   static const Target kTargets[] = {
       {feature_clearcoat, "clearcoat", GL_RGBA16_SNORM, 8},
-      {feature_sheen, "sheen", GL_RGBA8, 4},
       {feature_specular, "specular", GL_RGBA8, 4},
+      {feature_sheen, "sheen", GL_RGBA8, 4},
+      {feature_anisotropy, "anisotropy", GL_RGBA16_SNORM, 8},
   };
   SurfaceLayout l;
-  l.features = features;
   for (const Target& t : kTargets)
-    if (features & t.feature) l.targets.push_back(t);
+    if ((features & t.feature) && l.targets.size() < kMaxTargets) {
+      l.targets.push_back(t);
+      l.features |= t.feature;
+    }
+  l.features |= features & feature_transmission;
   if (features & feature_transmission) l.forward.push_back("transmission");
   return l;
 }

@@ -37,8 +37,13 @@ struct SurfaceLayout {
   /// Features of the forward pass alone (transmission): a shader define, no target.
   std::vector<const char*> forward;
 
+  /// The layout of `features`; `features` of the result says which it holds: at most
+  /// kMaxTargets feature targets (GL 4.5 promises 8 colour attachments: 4 core, the
+  /// reduced buffers' depth, 3 more), in the order clearcoat, specular, sheen,
+  /// anisotropy; a scene with more is drawn without the rest (the caller warns).
   static SurfaceLayout for_features(unsigned features);
   static constexpr std::size_t kCoreBytesPerPixel = 20;  ///< the core targets and depth
+  static constexpr std::size_t kMaxTargets = 3;
   static constexpr GLuint kFirstLocation = 5, kFirstUnit = 8;
   std::size_t bytes_per_pixel() const;
   /// The shader defines of the features: FEATURE_X, X_LOCATION and X_UNIT per target,

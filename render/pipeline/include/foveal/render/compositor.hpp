@@ -152,10 +152,13 @@ class Compositor {
   std::string renderer() const;
 
   /// The shader variant the last frame's scene was drawn with: "metal-rough", plus
-  /// "+clearcoat", "+sheen", "+specular" for the material features its materials use
+  /// "+clearcoat", "+specular", "+sheen", "+anisotropy", "+transmission" for the material features its materials use
   /// (docs/scenes.md, "Materials"), and the bytes per pixel of its G-buffer layout.
   std::string shading_variant() const;
   std::size_t gbuffer_bytes_per_pixel() const;
+  /// The MaterialFeature bits the variant draws: the scene's, less those past the G-buffer
+  /// targets GL promises (SurfaceLayout in render_targets.hpp: at most three layers).
+  unsigned material_features() const;
 
  private:
   struct Impl;
