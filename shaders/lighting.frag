@@ -22,6 +22,9 @@ layout(binding = SPECULAR_UNIT) uniform sampler2D g_specular;
 #ifdef FEATURE_ANISOTROPY
 layout(binding = ANISOTROPY_UNIT) uniform sampler2D g_anisotropy;
 #endif
+#ifdef FEATURE_IRIDESCENCE
+layout(binding = IRIDESCENCE_UNIT) uniform sampler2D g_iridescence;
+#endif
 
 uniform ivec2 u_origin;  // where this eye's texel (0,0) lies in the render target
 uniform mat4 u_inv_view_proj;
@@ -61,6 +64,9 @@ void main() {
 #endif
 #ifdef FEATURE_ANISOTROPY
   g.anisotropy = texelFetch(g_anisotropy, texel, 0);
+#endif
+#ifdef FEATURE_IRIDESCENCE
+  g.iridescence = texelFetch(g_iridescence, texel, 0);
 #endif
   o_color = vec4(lit_color(pixel, p, decode_normal(g.normal.rg), u_camera_pos, surface_of(g)), 1.0);
 }

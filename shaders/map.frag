@@ -32,6 +32,10 @@ layout(location = SPECULAR_LOCATION) out vec4 o_specular;
 layout(binding = ANISOTROPY_UNIT) uniform sampler2D g_anisotropy;
 layout(location = ANISOTROPY_LOCATION) out vec4 o_anisotropy;
 #endif
+#ifdef FEATURE_IRIDESCENCE
+layout(binding = IRIDESCENCE_UNIT) uniform sampler2D g_iridescence;
+layout(location = IRIDESCENCE_LOCATION) out vec4 o_iridescence;
+#endif
 
 void main() {
   ivec2 src = source_pixel(ivec2(gl_FragCoord.xy));
@@ -51,5 +55,8 @@ void main() {
 #endif
 #ifdef FEATURE_ANISOTROPY
   o_anisotropy = texelFetch(g_anisotropy, src, 0);
+#endif
+#ifdef FEATURE_IRIDESCENCE
+  o_iridescence = texelFetch(g_iridescence, src, 0);
 #endif
 }

@@ -20,6 +20,9 @@ layout(location = SPECULAR_LOCATION) out vec4 o_specular;
 #ifdef FEATURE_ANISOTROPY
 layout(location = ANISOTROPY_LOCATION) out vec4 o_anisotropy;
 #endif
+#ifdef FEATURE_IRIDESCENCE
+layout(location = IRIDESCENCE_LOCATION) out vec4 o_iridescence;
+#endif
 
 void write_gbuffer(GBufferTexel g) {
   o_albedo = g.albedo;
@@ -37,6 +40,9 @@ void write_gbuffer(GBufferTexel g) {
 #endif
 #ifdef FEATURE_ANISOTROPY
   o_anisotropy = g.anisotropy;
+#endif
+#ifdef FEATURE_IRIDESCENCE
+  o_iridescence = g.iridescence;
 #endif
 }
 #endif

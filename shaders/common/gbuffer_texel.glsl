@@ -23,6 +23,9 @@ struct GBufferTexel {
 #ifdef FEATURE_ANISOTROPY
   vec4 anisotropy;  // strength, unused, ba octahedral world direction
 #endif
+#ifdef FEATURE_IRIDESCENCE
+  vec4 iridescence;  // factor, film thickness / 2000 nm, (film ior - 1) / 4
+#endif
 };
 
 // What the BRDF needs at a point (common/lighting.glsl).
@@ -46,6 +49,10 @@ struct Surface {
 #ifdef FEATURE_ANISOTROPY
   float anisotropy;
   vec3 anisotropy_direction;  // world space, not yet orthogonal to the shading normal
+#endif
+#ifdef FEATURE_IRIDESCENCE
+  float iridescence, film_thickness_nm, film_ior;
+  vec3 film_fresnel;  // at n·v, set by lit_color for every light
 #endif
 };
 
@@ -77,6 +84,12 @@ Surface surface_of(GBufferTexel g) {
 #ifdef FEATURE_ANISOTROPY
   s.anisotropy = g.anisotropy.r;
   s.anisotropy_direction = decode_normal(g.anisotropy.ba);
+#endif
+#ifdef FEATURE_IRIDESCENCE
+  s.iridescence = g.iridescence.r;
+  s.film_thickness_nm = g.iridescence.g * 2000.0;
+  s.film_ior = 1.0 + 4.0 * g.iridescence.b;
+  s.film_fresnel = vec3(0.0);
 #endif
   return s;
 }

@@ -86,6 +86,55 @@ float v_smith_anisotropic(float n_dot_l, float n_dot_v, vec3 tbv, vec3 tbl, floa
 }
 #endif
 
+#ifdef FEATURE_IRIDESCENCE
+// KHR_materials_iridescence: the thin-film Fresnel of Belcour and Barla (2017, "A
+// Practical Extension to Microfacet Theory for the Modeling of Varying Iridescence") as
+// the specification's reference does it: a film of index eta and thickness d (nm) over a
+// base whose index follows from its F0; the Airy sum's orders 0-2, each order's
+// interference integrated against the CIE 1931 sensitivities in Fourier space (the
+// paper's Gaussian fit), then XYZ to linear Rec. 709.
+vec3 film_sensitivity(float opd_nm, vec3 shift) {
+  float phase = 2.0 * PI * opd_nm * 1e-9;
+  const vec3 amplitude = vec3(5.4856e-13, 4.4201e-13, 5.2481e-13);
+  const vec3 centre = vec3(1.6810e+06, 1.7953e+06, 2.2084e+06);
+  const vec3 variance = vec3(4.3278e+09, 9.3046e+09, 6.6121e+09);
+  vec3 xyz = amplitude * sqrt(2.0 * PI * variance) * cos(centre * phase + shift) * exp(-phase * phase * variance);
+  xyz.x += 9.7470e-14 * sqrt(2.0 * PI * 4.5282e+09) * cos(2.2399e+06 * phase + shift.x) * exp(-4.5282e+09 * phase * phase);
+  const mat3 xyz_to_rec709 = mat3(3.2404542, -0.9692660, 0.0556434, -1.5371385, 1.8760108, -0.2040259, -0.4985314, 0.0415560, 1.0572252);
+  return xyz_to_rec709 * (xyz / 1.0685e-7);
+}
+
+vec3 film_fresnel(float cos1, float film_ior, float thickness_nm, vec3 base_f0) {
+  float eta = mix(1.0, film_ior, smoothstep(0.0, 0.03, thickness_nm));  // no film at thickness 0
+  float cos2_sq = 1.0 - (1.0 - cos1 * cos1) / (eta * eta);
+  if (cos2_sq < 0.0) return vec3(1.0);  // total internal reflection
+  float cos2 = sqrt(cos2_sq);
+  // Air to film: Schlick's reflectance, its transmission and phase change.
+  float r0 = (eta - 1.0) / (eta + 1.0);
+  float r12 = r0 * r0 + (1.0 - r0 * r0) * pow(1.0 - cos1, 5.0);
+  float t121 = 1.0 - r12;
+  float phi21 = eta < 1.0 ? 0.0 : PI;
+  // Film to base.
+  vec3 root = sqrt(clamp(base_f0, 0.0, 0.9999));
+  vec3 base_eta = (1.0 + root) / (1.0 - root);
+  vec3 r1 = (base_eta - eta) / (base_eta + eta);
+  vec3 r23 = r1 * r1 + (1.0 - r1 * r1) * pow(1.0 - cos2, 5.0);
+  vec3 phi23 = mix(vec3(0.0), vec3(PI), lessThan(base_eta, vec3(eta)));
+  // The Airy sum: the DC term, then orders 1 and 2 with their spectral interference.
+  float opd = 2.0 * eta * thickness_nm * cos2;
+  vec3 phi = vec3(phi21) + phi23;
+  vec3 r123 = clamp(r12 * r23, 1e-5, 0.9999);
+  vec3 rs = t121 * t121 * r23 / (1.0 - r123);
+  vec3 sum = r12 + rs;
+  vec3 cm = rs - t121;
+  for (int m = 1; m <= 2; ++m) {
+    cm *= sqrt(r123);
+    sum += cm * 2.0 * film_sensitivity(float(m) * opd, float(m) * phi);
+  }
+  return max(sum, vec3(0.0));  // out-of-gamut colours clamp at 0
+}
+#endif
+
 // The BRDF times n·l for light from l: metal-roughness GGX with the dielectric F0/F90
 // of KHR_materials_specular, under the sheen and clearcoat layers when the scene has them
 // (docs/scenes.md, "Materials").
@@ -99,6 +148,9 @@ vec3 shade(vec3 n, vec3 v, vec3 l, Surface s) {
     vec3 f0 = mix(s.f0, s.albedo, s.metallic);
     float f90 = mix(s.f90, 1.0, s.metallic);
     vec3 f = f0 + (f90 - f0) * pow(1.0 - v_dot_h, 5.0);
+#ifdef FEATURE_IRIDESCENCE
+    f = mix(f, s.film_fresnel, s.iridescence);
+#endif
     vec3 specular = d_ggx(n_dot_h, a) * v_smith(n_dot_v, n_dot_l, a) * f;
 #ifdef FEATURE_ANISOTROPY
     if (s.anisotropy > 0.0) {
@@ -179,8 +231,15 @@ vec3 tone_map(vec3 x) {
 // at the eye's screen pixel `pixel` (for the tile's light list).
 vec3 lit_color(ivec2 pixel, vec3 p, vec3 n, vec3 camera_pos, Surface s) {
   vec3 v = normalize(camera_pos - p);
+#ifdef FEATURE_IRIDESCENCE
+  if (s.iridescence > 0.0)
+    s.film_fresnel = film_fresnel(clamp(dot(n, v), 0.0, 1.0), s.film_ior, s.film_thickness_nm, mix(s.f0, s.albedo, s.metallic));
+#endif
   // Ambient: diffuse for dielectrics, a flat specular (F0) so metals are not black.
   vec3 f0 = mix(s.f0, s.albedo, s.metallic);
+#ifdef FEATURE_IRIDESCENCE
+  f0 = mix(f0, s.film_fresnel, s.iridescence);  // the film's colour in the ambient reflection too
+#endif
   float diffuse_weight = 1.0 - s.metallic;
 #ifdef FEATURE_TRANSMISSION
   diffuse_weight *= 1.0 - s.transmission;

@@ -23,7 +23,9 @@
 #define SLOT_TRANSMISSION 12
 #define SLOT_THICKNESS 13
 #define SLOT_ANISOTROPY 14
-#define SLOT_COUNT 15
+#define SLOT_IRIDESCENCE 15
+#define SLOT_IRIDESCENCE_THICKNESS 16
+#define SLOT_COUNT 17
 
 layout(binding = 0) uniform sampler2D u_base_color_tex;
 layout(binding = 1) uniform sampler2D u_metal_rough_tex;   // spec-gloss: specular rgb, glossiness a
@@ -66,6 +68,11 @@ uniform vec4 u_specular_layer;  // colour factor, specular factor
 #ifdef FEATURE_ANISOTROPY
 layout(binding = 25) uniform sampler2D u_anisotropy_tex;  // rg direction (tangent space), b strength
 uniform vec2 u_anisotropy;  // strength, rotation (radians, counter-clockwise in tangent space)
+#endif
+#ifdef FEATURE_IRIDESCENCE
+layout(binding = 26) uniform sampler2D u_iridescence_tex;            // r
+layout(binding = 27) uniform sampler2D u_iridescence_thickness_tex;  // g
+uniform vec4 u_iridescence;  // factor, film ior, thickness minimum, maximum (nm)
 #endif
 uniform float u_ior;   // KHR_materials_ior (1.5 without): F0, and the refraction of transmission
 uniform bool u_blend;  // alphaMode BLEND: the forward pass composites by alpha (else opaque)
@@ -165,6 +172,15 @@ GBufferTexel evaluate_material(SurfacePoint s, vec4 base) {
   float r = (u_ior - 1.0) / (u_ior + 1.0);
   vec3 f0 = min(r * r * tint, vec3(1.0)) * weight;
   g.specular = vec4(sqrt(f0), weight);
+#endif
+#ifdef FEATURE_IRIDESCENCE
+  // KHR_materials_iridescence: factor and film thickness (the maximum without a texture).
+  float film = u_iridescence.x, thickness_nm = u_iridescence.w;
+  if (has_ext_tex(SLOT_IRIDESCENCE)) film *= sample_slot(u_iridescence_tex, SLOT_IRIDESCENCE, slot_uv(SLOT_IRIDESCENCE, s)).r;
+  if (has_ext_tex(SLOT_IRIDESCENCE_THICKNESS))
+    thickness_nm = mix(u_iridescence.z, u_iridescence.w,
+                       sample_slot(u_iridescence_thickness_tex, SLOT_IRIDESCENCE_THICKNESS, slot_uv(SLOT_IRIDESCENCE_THICKNESS, s)).g);
+  g.iridescence = vec4(film, clamp(thickness_nm / 2000.0, 0.0, 1.0), clamp((u_iridescence.y - 1.0) / 4.0, 0.0, 1.0), 0.0);
 #endif
 #ifdef FEATURE_ANISOTROPY
   // KHR_materials_anisotropy: the direction (tangent space, rotated) into world space

@@ -5,6 +5,7 @@
 // keeps the plain variant and its memory), and KHR_materials_variants by name.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -89,14 +90,17 @@ struct FeatureModel {
   const char* model;
   const char* extension;
   const char* variant;
+  const char* variant_without;  // with the extension taken out
   int min_changed;  // left-eye pixels (of 256×256) changed by more than 8 levels without the extension
 };
 const FeatureModel kModels[] = {
-    {"ClearCoatTest", "KHR_materials_clearcoat", "metal-rough+clearcoat", 300},
-    {"SpecularTest", "KHR_materials_specular", "metal-rough+specular", 300},
-    {"SheenChair", "KHR_materials_sheen", "metal-rough+sheen", 300},
-    {"AttenuationTest", "KHR_materials_transmission", "metal-rough+transmission", 300},
-    {"AnisotropyStrengthTest", "KHR_materials_anisotropy", "metal-rough+anisotropy", 300},
+    {"ClearCoatTest", "KHR_materials_clearcoat", "metal-rough+clearcoat", "metal-rough", 300},
+    {"SpecularTest", "KHR_materials_specular", "metal-rough+specular", "metal-rough", 300},
+    {"SheenChair", "KHR_materials_sheen", "metal-rough+sheen", "metal-rough", 300},
+    {"AttenuationTest", "KHR_materials_transmission", "metal-rough+transmission", "metal-rough", 300},
+    {"AnisotropyStrengthTest", "KHR_materials_anisotropy", "metal-rough+anisotropy", "metal-rough", 300},
+    {"IridescenceSuzanne", "KHR_materials_iridescence", "metal-rough+specular+iridescence+transmission",
+     "metal-rough+specular+transmission", 100},
 };
 
 // A unit quad of material `front` at z = 1 (half size 0.6) before an unlit background
@@ -158,7 +162,7 @@ TEST(Materials, EachExtensionChangesItsModelInBothPipelines) {
     for (std::size_t i = 0; i < a.size(); ++i) {
       const Case& c = kCases[i];
       EXPECT_EQ(a[i].variant, m.variant) << m.model << " " << describe(c);
-      EXPECT_EQ(b[i].variant, "metal-rough") << m.model << " without " << m.extension;
+      EXPECT_EQ(b[i].variant, m.variant_without) << m.model << " without " << m.extension;
       const int d = changed_pixels(a[i].image, b[i].image, 8);
       EXPECT_GT(d, m.min_changed) << m.model << " " << describe(c) << ": pixels the extension changes";
       if (c.method == render::Method::full) full[c.pipeline == render::Pipeline::gbuffer ? 0 : 1] = a[i].image;
@@ -346,4 +350,35 @@ TEST(Materials, AScenePastThreeLayersIsDrawnWithoutTheLastAndWarned) {
   for (const json& w : j["warnings"]) warned = warned || w.get<std::string>().find("drawn without: anisotropy") != std::string::npos;
   EXPECT_TRUE(warned) << j["warnings"].dump();
   EXPECT_NE(r.err.find("drawn without: anisotropy"), std::string::npos) << r.err;
+}
+
+// KHR_materials_iridescence: a film of thickness 0 is no film (the Airy sum falls back
+// to the base's Fresnel); 400 nm of film (ior 1.33) colours a grey metal's reflection,
+// which is grey without it. Both pipelines.
+TEST(Materials, IridescenceColoursTheReflectionAndVanishesAtZeroThickness) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir dir;
+  auto pane = [&](const std::string& name, float thickness) {
+    json m = pane_material(0.0f);
+    // A grey metal (F0 0.5): a film over a perfect mirror (F0 1) would change nothing.
+    m["pbrMetallicRoughness"]["metallicFactor"] = 1.0;
+    m["pbrMetallicRoughness"]["baseColorFactor"] = {0.5, 0.5, 0.5, 1.0};
+    m["pbrMetallicRoughness"]["roughnessFactor"] = 0.6;
+    if (thickness >= 0.0f)
+      m["extensions"]["KHR_materials_iridescence"] = {{"iridescenceFactor", 1.0},
+                                                      {"iridescenceThicknessMinimum", thickness},
+                                                      {"iridescenceThicknessMaximum", thickness}};
+    return write_pane(dir, name, m, {0.2f, 0.2f, 0.2f});
+  };
+  const std::string none = pane("none", -1.0f), zero = pane("zero", 0.0f), film = pane("film", 400.0f);
+  for (const Case& c : {kCases[0], kCases[3]}) {
+    const auto a = centre(render_case(none, c).image), b = centre(render_case(zero, c).image);
+    const Rendered f = render_case(film, c);
+    EXPECT_EQ(f.variant, "metal-rough+iridescence") << describe(c);
+    const auto x = centre(f.image);
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(a[static_cast<std::size_t>(ch)], b[static_cast<std::size_t>(ch)], 0.01) << describe(c) << " channel " << ch;
+    const double chroma = std::max({x[0], x[1], x[2]}) - std::min({x[0], x[1], x[2]});
+    const double grey = std::max({a[0], a[1], a[2]}) - std::min({a[0], a[1], a[2]});
+    EXPECT_GT(chroma, grey + 0.01) << describe(c) << ": film " << x[0] << " " << x[1] << " " << x[2] << ", none " << a[0] << " " << a[1] << " " << a[2];
+  }
 }

@@ -150,7 +150,7 @@ Status read_material_layers(const tinygltf::Material& gm, const std::string& whe
     numbers(*vo, "attenuationColor", 3, color);
     mat.attenuation_color = glm::clamp(color, glm::vec3(0.0f), glm::vec3(1.0f));
     if (Status s = read(*vo, "thicknessTexture", false, Material::thickness_slot); !s) return s;
-    if (!(mat.features & feature_transmission))
+    if (!find("KHR_materials_transmission"))
       warnings.push_back(at + ": a volume without KHR_materials_transmission is drawn as its surface only");
   }
   if (const tinygltf::Value* an = find("KHR_materials_anisotropy")) {
@@ -160,6 +160,16 @@ Status read_material_layers(const tinygltf::Material& gm, const std::string& whe
     if (!std::isfinite(mat.anisotropy_rotation)) mat.anisotropy_rotation = 0.0f;
     if (Status s = read(*an, "anisotropyTexture", false, Material::anisotropy_slot); !s) return s;
     if (mat.anisotropy > 0.0f) mat.features |= feature_anisotropy;
+  }
+  if (const tinygltf::Value* ir = find("KHR_materials_iridescence")) {
+    const std::string at = where + ".extensions.KHR_materials_iridescence";
+    mat.iridescence = factor(*ir, "iridescenceFactor", 0.0, 0.0, 1.0, at, warnings);
+    mat.iridescence_ior = factor(*ir, "iridescenceIor", 1.3, 1.0, 10.0, at, warnings);
+    mat.iridescence_thickness_min = factor(*ir, "iridescenceThicknessMinimum", 100.0, 0.0, 1e5, at, warnings);
+    mat.iridescence_thickness_max = factor(*ir, "iridescenceThicknessMaximum", 400.0, 0.0, 1e5, at, warnings);
+    if (Status s = read(*ir, "iridescenceTexture", false, Material::iridescence_slot); !s) return s;
+    if (Status s = read(*ir, "iridescenceThicknessTexture", false, Material::iridescence_thickness_slot); !s) return s;
+    if (mat.iridescence > 0.0f) mat.features |= feature_iridescence;
   }
   if (const tinygltf::Value* io = find("KHR_materials_ior")) {
     mat.ior = factor(*io, "ior", 1.5, 1.0, kLarge, where + ".extensions.KHR_materials_ior", warnings);

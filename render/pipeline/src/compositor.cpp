@@ -191,6 +191,8 @@ void set_material(GLuint p, const Scene& scene, const Material& m) {
   set(p, "u_transmission", glm::vec4(m.features & feature_transmission ? m.transmission : 0.0f, m.thickness, m.attenuation_distance, 0.0f));
   set(p, "u_attenuation_color", m.attenuation_color);
   set(p, "u_anisotropy", glm::vec2(m.features & feature_anisotropy ? m.anisotropy : 0.0f, m.anisotropy_rotation));
+  set(p, "u_iridescence", glm::vec4(m.features & feature_iridescence ? m.iridescence : 0.0f, m.iridescence_ior,
+                                    m.iridescence_thickness_min, m.iridescence_thickness_max));
   const bool any_ext = ext != 0;
   for (int slot = 0; slot < (any_ext ? Material::slot_count : Material::kCoreSlots); ++slot) {
     const int t = m.texture(static_cast<Material::Slot>(slot));

@@ -18,12 +18,15 @@ void nearest_clamped(GLuint t) {
 SurfaceLayout SurfaceLayout::for_features(unsigned features) {
   // Coat: factor, roughness and its own normal (octahedral, signed); sheen: colour and
   // roughness; specular: √F0 (resolution where F0 is small) and F90 (docs/scenes.md).
-  // Anisotropy: strength and the world-space direction of the stretched lobe (octahedral).
+  // Anisotropy: strength and the world-space direction of the stretched lobe (octahedral);
+  // iridescence: factor, film thickness / 2000 nm, (film ior − 1) / 4 (16 bits: the film's
+  // colour cycles every ~200 nm of thickness).
   static const Target kTargets[] = {
       {feature_clearcoat, "clearcoat", GL_RGBA16_SNORM, 8},
       {feature_specular, "specular", GL_RGBA8, 4},
       {feature_sheen, "sheen", GL_RGBA8, 4},
       {feature_anisotropy, "anisotropy", GL_RGBA16_SNORM, 8},
+      {feature_iridescence, "iridescence", GL_RGBA16, 8},
   };
   SurfaceLayout l;
   for (const Target& t : kTargets)

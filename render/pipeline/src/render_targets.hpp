@@ -40,7 +40,7 @@ struct SurfaceLayout {
   /// The layout of `features`; `features` of the result says which it holds: at most
   /// kMaxTargets feature targets (GL 4.5 promises 8 colour attachments: 4 core, the
   /// reduced buffers' depth, 3 more), in the order clearcoat, specular, sheen,
-  /// anisotropy; a scene with more is drawn without the rest (the caller warns).
+  /// anisotropy, iridescence; a scene with more is drawn without the rest (the caller warns).
   static SurfaceLayout for_features(unsigned features);
   static constexpr std::size_t kCoreBytesPerPixel = 20;  ///< the core targets and depth
   static constexpr std::size_t kMaxTargets = 3;

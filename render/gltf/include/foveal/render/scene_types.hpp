@@ -38,11 +38,12 @@ enum MaterialFeature : unsigned {
   /// over the opaque result it transmits, so it needs no G-buffer target.
   feature_transmission = 1u << 3,
   feature_anisotropy = 1u << 4,  ///< KHR_materials_anisotropy
+  feature_iridescence = 1u << 5,  ///< KHR_materials_iridescence
 };
 
 /// "clearcoat, sheen" for MaterialFeature bits (in bit order).
 inline std::string material_feature_names(unsigned features) {
-  static const char* const kNames[] = {"clearcoat", "sheen", "specular", "transmission", "anisotropy"};
+  static const char* const kNames[] = {"clearcoat", "sheen", "specular", "transmission", "anisotropy", "iridescence"};
   std::string out;
   for (unsigned i = 0; i < sizeof kNames / sizeof kNames[0]; ++i)
     if (features & (1u << i)) out += (out.empty() ? "" : ", ") + std::string(kNames[i]);
@@ -61,6 +62,7 @@ struct Material {
     specular_slot, specular_color_slot,                               // KHR_materials_specular
     transmission_slot, thickness_slot,                                // KHR_materials_transmission, _volume
     anisotropy_slot,                                                  // KHR_materials_anisotropy
+    iridescence_slot, iridescence_thickness_slot,                     // KHR_materials_iridescence
     slot_count
   };
   static constexpr int kCoreSlots = 5;  ///< the metal-roughness slots, base colour to emissive
@@ -83,7 +85,7 @@ struct Material {
   /// MaterialFeature bits of what follows; 0 for a plain metal-roughness material.
   unsigned features = 0;
   /// Extension textures (Scene::textures, -1: none), indexed by Slot - kCoreSlots.
-  std::array<int, slot_count - kCoreSlots> ext_tex{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
+  std::array<int, slot_count - kCoreSlots> ext_tex{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
   float clearcoat = 0.0f, clearcoat_roughness = 0.0f, clearcoat_normal_scale = 1.0f;  ///< KHR_materials_clearcoat
   glm::vec3 sheen_color{0.0f};                                                          ///< KHR_materials_sheen
   float sheen_roughness = 0.0f;
@@ -95,6 +97,8 @@ struct Material {
   float attenuation_distance = 0.0f;           ///< world units; 0: no attenuation (the spec's +inf)
   glm::vec3 attenuation_color{1.0f};
   float anisotropy = 0.0f, anisotropy_rotation = 0.0f;  ///< KHR_materials_anisotropy: strength, radians
+  float iridescence = 0.0f, iridescence_ior = 1.3f;       ///< KHR_materials_iridescence
+  float iridescence_thickness_min = 100.0f, iridescence_thickness_max = 400.0f;  ///< nanometres
 
   /// Drawn by the forward pass after the opaque result, not by the opaque passes:
   /// alphaMode BLEND, or transmission (docs/scenes.md, "Transparency", "Materials").
