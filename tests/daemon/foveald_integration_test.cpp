@@ -542,6 +542,8 @@ TEST_F(Foveald, AFullStderrPipeSilencesNeitherSocketNorHeartbeatNorSigterm) {
 TEST_F(Foveald, AStoppedFovealdWithAFullBacklogTimesClientsOut) {
   start({"--loop", "--end", "5", "-q", "--no-shm", "--no-render", "--out", dir_.path("out")});
   ASSERT_EQ(::kill(pid_, SIGSTOP), 0);
+  // Filled before a thread still inside accept() stops, the backlog would gain a slot.
+  ASSERT_TRUE(test::wait_until_stopped(pid_, 5000)) << "foveald did not stop";
   std::vector<int> queued;  // connections it will never accept while stopped
   sockaddr_un a{};
   a.sun_family = AF_UNIX;

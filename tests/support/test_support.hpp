@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -41,6 +42,26 @@ inline int wait_for_exit(pid_t pid, int ms) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   return -1;
+}
+
+/// Waits up to `ms` until every thread of `pid` is stopped (state T in /proc): kill(SIGSTOP)
+/// returns before a thread preempted inside a syscall (an accept(), say) has finished it.
+/// True once all are stopped.
+inline bool wait_until_stopped(pid_t pid, int ms) {
+  const std::filesystem::path tasks = "/proc/" + std::to_string(pid) + "/task";
+  for (int i = 0; i < ms; ++i) {
+    bool all = true;
+    std::error_code ec;
+    for (const auto& t : std::filesystem::directory_iterator(tasks, ec)) {
+      std::ifstream in(t.path() / "stat");
+      std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      const auto paren = stat.rfind(')');  // the name may hold spaces and parentheses
+      if (paren == std::string::npos || paren + 2 >= stat.size() || stat[paren + 2] != 'T') all = false;
+    }
+    if (!ec && all) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return false;
 }
 
 inline std::string source_path(const std::string& rel) { return std::string(FOVEAL_SOURCE_DIR) + "/" + rel; }
