@@ -4,19 +4,23 @@
 // the speedups against the faster full pipeline, the Amdahl limit the full-resolution
 // pass leaves, the theoretical lighting speedup 2 / (1/σ_d² + 1/σ_nd²), each pipeline's
 // render-target memory at the EFR pair, peak RSS, and the cost of folding lens
-// distortion into the inverse pass (the example lens model).
+// distortion into the inverse pass (the example lens model). Then a plain scene under its
+// own shader variant against the same scene under a layered one (issue 30).
 //
 //   build/bin/foveal_render_bench                      (Dungeon, σ_d 2, σ_nd 3, f 0.3)
 //   FOVEAL_BENCH_SCENE=pattern:noise build/bin/foveal_render_bench
 //   FOVEAL_BENCH_SCENE=PATH.gltf FOVEAL_BENCH_FILL=1 build/bin/foveal_render_bench
 //       (an object scene with the camera moved in until the object fills the view)
 //   FOVEAL_BENCH_FRAMES=N              (timed frames per configuration, medians; default 5)
+//   --benchmark_filter=PlainScene      (only the plain variant against a layered one)
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "foveal/render/compositor.hpp"
 #include "foveal/render/egl_context.hpp"
@@ -129,6 +133,58 @@ void BM_PipelinesFullVsRmfrEfr(benchmark::State& state) {
   state.SetLabel(f.comp->renderer());
 }
 BENCHMARK(BM_PipelinesFullVsRmfrEfr)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// A plain metal-rough scene (Dungeon) pays nothing for the material features it does not
+// use (docs/scenes.md, "Materials"): its own variant against the same scene drawn as if
+// its materials used clearcoat, specular and sheen (three layer targets, the code of
+// each compiled in: what one shader for every scene would cost it; the layers' factors
+// are 0, so the picture is the same). Two compositors, frames interleaved, RMFR + EFR and
+// full through both pipelines; counters: GPU frame medians, the layered / plain ratio
+// and each one's render-target memory.
+void BM_PlainSceneVariantAgainstLayered(benchmark::State& state) {
+  static Fixture f;
+  if (!f.error.empty()) {
+    state.SkipWithError(f.error.c_str());
+    return;
+  }
+  const unsigned layered = render::feature_clearcoat | render::feature_specular | render::feature_sheen;
+  auto plain_comp = render::Compositor::create({}, gl::ShaderLoader(test::source_path("shaders")));
+  auto layered_comp = render::Compositor::create({}, gl::ShaderLoader(test::source_path("shaders")));
+  if (!plain_comp || !layered_comp) {
+    state.SkipWithError("compositor");
+    return;
+  }
+  const unsigned own = f.scene->features;
+  for (auto _ : state) {
+    for (Pipeline p : render::all_pipelines())
+      for (Method m : {Method::full, Method::rmfr}) {
+        render::FrameParams fp = m == Method::full ? render::FrameParams{} : render::efr_frame(m, Eye::right, 2.0, 3.0, 0.3, 0.3);
+        fp.pipeline = p;
+        std::vector<double> a, b;
+        for (int i = 0; i <= frames(); ++i) {
+          f.scene->features = own;
+          auto ta = plain_comp->render(*f.scene, fp);
+          f.scene->features = own | layered;
+          auto tb = layered_comp->render(*f.scene, fp);
+          f.scene->features = own;
+          if (!ta || !tb) {
+            state.SkipWithError((ta ? tb.error() : ta.error()).message.c_str());
+            return;
+          }
+          if (i > 0) a.push_back(ta->gpu_total), b.push_back(tb->gpu_total);  // the first compiles
+        }
+        std::sort(a.begin(), a.end()), std::sort(b.begin(), b.end());
+        const std::string n = std::string(render::pipeline_name(p)) + "_" + render::method_name(m);
+        state.counters[n + "_plain_gpu_ms"] = a[a.size() / 2];
+        state.counters[n + "_layered_gpu_ms"] = b[b.size() / 2];
+        state.counters[n + "_layered_over_plain"] = b[b.size() / 2] / a[a.size() / 2];
+        state.counters[n + "_plain_targets_MB"] = static_cast<double>(plain_comp->memory(p).total()) / 1e6;
+        state.counters[n + "_layered_targets_MB"] = static_cast<double>(layered_comp->memory(p).total()) / 1e6;
+      }
+  }
+  state.SetLabel(plain_comp->shading_variant() + " against " + layered_comp->shading_variant());
+}
+BENCHMARK(BM_PlainSceneVariantAgainstLayered)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 

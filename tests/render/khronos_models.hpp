@@ -16,11 +16,10 @@ inline std::string khronos(const std::string& model) {
   return source_path("tests/render/data/khronos/" + model + "/glTF/" + model + ".gltf");
 }
 
-/// A copy of the glTF (and every file beside it) in `dir`, its JSON passed through `edit`.
+/// A copy of the glTF (and every file and folder beside it) in `dir`, its JSON passed through `edit`.
 inline std::string edited(TempDir& dir, const std::string& gltf, const std::function<void(nlohmann::json&)>& edit) {
   const std::filesystem::path src(gltf);
-  for (const auto& f : std::filesystem::directory_iterator(src.parent_path()))
-    std::filesystem::copy_file(f.path(), dir.path(f.path().filename().string()));
+  std::filesystem::copy(src.parent_path(), dir.path(), std::filesystem::copy_options::recursive);
   const std::string out = dir.path(src.filename().string());
   nlohmann::json j = nlohmann::json::parse(std::ifstream(out));
   edit(j);

@@ -20,6 +20,7 @@
 #include "foveal/render/light_tiles.hpp"
 #include "gl_support.hpp"
 #include "gltf_test_models.hpp"
+#include "khronos_models.hpp"
 #include "test_support.hpp"
 
 using namespace foveal;
@@ -258,5 +259,38 @@ TEST(LightTiles, LightingThroughTheListsIsLightingWithEveryLightInBothPipelines)
     for (std::size_t k = 0; k < images[0].size(); ++k) worst = std::max(worst, std::fabs(double(images[0][k]) - images[1][k]));
     EXPECT_LE(worst, 1e-6) << describe(c) << ": the lists leave out only lights that add nothing";
     EXPECT_GT(*std::max_element(images[1].begin(), images[1].end()), 0.2f) << describe(c) << ": the short-range lights light the plane";
+  }
+}
+
+// The Khronos LightsPunctualLamp (tests/render/data/khronos): five point lights of its own,
+// warm ones (colour (1, 0.63, 0.24) at 15 cd in the shade, (1, 0.63, 0.5) at 180 cd in
+// front) and two teal ones at 80 cd. Lit by them the brass frame shows warm highlights,
+// which the rig's white lights (the file without KHR_lights_punctual) do not give it.
+// Both pipelines, full and RMFR.
+TEST(Lights, LightsPunctualLampIsLitByItsOwnLights) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir dir;
+  const std::string with = test::khronos("LightsPunctualLamp");
+  const std::string without = test::edited(dir, with, [](json& j) { test::strip_extension(j, "KHR_lights_punctual"); });
+  render::Scene file_lit = test::scene(with), rig_lit = test::scene(without);
+  ASSERT_EQ(file_lit.lights.size(), 5u);
+  EXPECT_TRUE(rig_lit.lights.empty());
+  // Warm, bright pixels of the left eye.
+  auto warm = [](const image::Image& img) {
+    int n = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width / 2; ++x) {
+        const std::uint8_t* p = img.at(x, y);
+        n += (p[0] > 150 && p[0] > p[2] + 60) ? 1 : 0;
+      }
+    return n;
+  };
+  render::Compositor comp = test::make_compositor(512, 256);
+  for (const Case& c : kCases) {
+    render::FrameParams p = test::frame(c.method, c.sigma);
+    p.pipeline = c.pipeline;
+    const int a = warm(test::render_frame(comp, file_lit, p)), b = warm(test::render_frame(comp, rig_lit, p));
+    // Measured 430-489 against 38-82.
+    EXPECT_GT(a, 3 * b + 100) << describe(c) << ": warm pixels lit by the file's lights (" << a << ") and by the rig (" << b << ")";
   }
 }

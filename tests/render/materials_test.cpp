@@ -98,6 +98,7 @@ const FeatureModel kModels[] = {
     {"SpecularTest", "KHR_materials_specular", "metal-rough+specular", "metal-rough", 300},
     {"SheenChair", "KHR_materials_sheen", "metal-rough+sheen", "metal-rough", 300},
     {"AttenuationTest", "KHR_materials_transmission", "metal-rough+transmission", "metal-rough", 300},
+    {"TransmissionTest", "KHR_materials_transmission", "metal-rough+transmission", "metal-rough", 300},
     {"AnisotropyStrengthTest", "KHR_materials_anisotropy", "metal-rough+anisotropy", "metal-rough", 300},
     {"IridescenceSuzanne", "KHR_materials_iridescence", "metal-rough+specular+iridescence+transmission",
      "metal-rough+specular+transmission", 100},

@@ -1,13 +1,17 @@
 // The stability matrix (docs/stability.md): every method, the fovea on every corner,
 // border and one pixel inside it, extreme levels and f, odd and non-square viewports,
-// NaN/Inf/off-viewport fovea input. Every output pixel is written (the output is first
+// NaN/Inf/off-viewport fovea input, on patterns, a glTF scene and scenes with blended
+// and transmissive surfaces. Every output pixel is written (the output is first
 // filled with a sentinel), none is NaN or Inf, and the fovea patch stays within a stated
 // bound of the centred case.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "gl_support.hpp"
+#include "khronos_models.hpp"
 #include "test_support.hpp"
 
 using namespace foveal;
@@ -82,6 +86,27 @@ TEST_P(Stability, EveryMethodAndFoveaOnAScene) {
       for (auto [x, y] : foveae(w, h))
         EXPECT_EQ(bad_values(c, s, params(m, sigma, 0.3, 0.3, x, y)), 0u)
             << render::method_name(m) << " sigma " << sigma << " fovea " << x << "," << y;
+}
+
+// Surfaces drawn after the inverse pass: alphaMode BLEND (AlphaBlendModeTest) and
+// KHR_materials_transmission (TransmissionTest, which also reads the mipmapped copy of
+// the opaque result), through the same foveae, every method, the extreme levels and
+// NaN/Inf/off-viewport fovea input.
+TEST_P(Stability, EveryMethodAndFoveaOnBlendedAndTransmissiveSurfaces) {
+  ASSERT_TRUE(test::gl_ready());
+  const int w = 97, h = 61;
+  render::Compositor c = test::make_compositor(2 * w, h, true);
+  const double inf = INFINITY;
+  std::vector<std::pair<double, double>> inputs = foveae(w, h);
+  for (auto xy : std::vector<std::pair<double, double>>{{NAN, 0.5}, {inf, -inf}, {-3, 0.5}}) inputs.push_back(xy);
+  for (const char* model : {"AlphaBlendModeTest", "TransmissionTest"}) {
+    render::Scene s = test::scene(test::khronos(model));
+    for (Method m : render::all_methods())
+      for (double sigma : {1.0, 8.0})  // the extremes (the scene test above has 2.6)
+        for (auto [x, y] : inputs)
+          EXPECT_EQ(bad_values(c, s, params(m, sigma, 0.3, 0.3, x, y)), 0u)
+              << model << " " << render::method_name(m) << " sigma " << sigma << " fovea " << x << "," << y;
+  }
 }
 
 TEST_P(Stability, RmfrAtExtremeF) {
