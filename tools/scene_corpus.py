@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Renders every glTF/GLB under the given folders through `foveal render` and prints a
 Markdown table: model, loaded / refused (with the reason) / incomplete (files missing),
-warnings, seconds. Usage:
+what it was drawn with (shader variant, G-buffer bytes per pixel, the file's lights or
+the rig, a blend pass), warnings, seconds. Usage:
 
     tools/scene_corpus.py [--foveal build/bin/foveal] [--size 256x128] [--timeout 300] DIR...
 
@@ -85,7 +86,8 @@ def render(foveal, path, size, timeout):
         try:
             p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
         except subprocess.TimeoutExpired:
-            return {"rc": None, "seconds": time.monotonic() - start, "warnings": [], "error": f"timed out after {timeout} s"}
+            return {"rc": None, "seconds": time.monotonic() - start, "warnings": [], "error": f"timed out after {timeout} s",
+                    "drawn": ""}
         seconds = time.monotonic() - start
     warnings, errors = [], []
     for line in p.stderr.splitlines():
@@ -93,13 +95,23 @@ def render(foveal, path, size, timeout):
             warnings.append(line.split(": warning: ", 1)[1].replace(path + ": ", ""))
         elif ": error: " in line:
             errors.append(line.split(": error: ", 1)[1].replace(path + ": ", ""))
-    renderer = None
+    renderer, drawn = None, ""
     if p.returncode == 0:
         try:
-            renderer = json.loads(p.stdout).get("renderer")
+            j = json.loads(p.stdout)
+            renderer = j.get("renderer")
+            # What the scene was drawn with: its shader variant and G-buffer bytes per
+            # pixel (docs/scenes.md, "Materials") and whose lights ("Lights").
+            v, lights = j.get("material_variant", {}), j.get("lights", {})
+            drawn = f"{v.get('shader', '?')}, {v.get('gbuffer_bytes_per_pixel', '?')} B/px; lights: {lights.get('source', '?')}"
+            if lights.get("source") == "file":
+                drawn += f" ({lights.get('count')})"
+            if j.get("passes_ms", {}).get("blend", 0) > 0:
+                drawn += "; blend pass"
         except ValueError:
             pass
-    return {"rc": p.returncode, "seconds": seconds, "warnings": warnings, "error": "; ".join(errors), "renderer": renderer}
+    return {"rc": p.returncode, "seconds": seconds, "warnings": warnings, "error": "; ".join(errors), "renderer": renderer,
+            "drawn": drawn}
 
 
 def cell(text):
@@ -122,15 +134,15 @@ def main():
                        for f in files if f.lower().endswith((".gltf", ".glb"))]
     models.sort()
 
-    print("| model | result | warnings | s |")
-    print("|---|---|---|---|")
+    print("| model | result | drawn with | warnings | s |")
+    print("|---|---|---|---|---|")
     counts = {"loaded": 0, "refused": 0, "ktx2": 0, "incomplete": 0}
     renderer = None
     for name, path in models:
         missing = missing_files(path)
         if missing:
             counts["incomplete"] += 1
-            print(f"| {cell(name)} | incomplete: {cell(', '.join(missing[:3]))}{' ...' if len(missing) > 3 else ''} absent | | |")
+            print(f"| {cell(name)} | incomplete: {cell(', '.join(missing[:3]))}{' ...' if len(missing) > 3 else ''} absent | | | |")
             continue
         r = render(a.foveal, path, a.size, a.timeout)
         renderer = renderer or r.get("renderer")
@@ -139,7 +151,8 @@ def main():
         text = {"loaded": "loaded", "ktx2": "KTX2 images only (no decoder on Debian 12)"}.get(result, "refused")
         if r["rc"] != 0:
             text += f" (exit {r['rc']}): {r['error']}"
-        print(f"| {cell(name)} | {cell(text)} | {cell('; '.join(r['warnings']))} | {r['seconds']:.1f} |", flush=True)
+        print(f"| {cell(name)} | {cell(text)} | {cell(r['drawn'])} | {cell('; '.join(r['warnings']))} | {r['seconds']:.1f} |",
+              flush=True)
     print()
     print(f"{len(models)} files: {counts['loaded']} loaded, {counts['refused']} refused, {counts['ktx2']} KTX2-only, "
           f"{counts['incomplete']} incomplete (not rendered). Renderer: {renderer}; host: {platform.node()} "

@@ -394,15 +394,21 @@ class Builder {
     if (n.mesh >= 0) {
       auto prims = mesh(n.mesh);
       if (!prims) return prims.error();
-      for (int p : *prims) {
-        out_.draws.push_back({p, world});
-        const auto [lo, hi] = bounds_[p];
-        for (int corner = 0; corner < 8; ++corner) {
-          const glm::vec3 c((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
-          const glm::vec3 w(world * glm::vec4(c, 1.0f));
-          if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))
-            return fail(path, "its mesh's bounds are not finite in world space");
-          grow(w);
+      auto placed = instances(n, path);
+      if (!placed) return placed.error();
+      for (const glm::mat4& instance : *placed) {
+        const glm::mat4 at = world * instance;
+        if (!finite(at)) return fail(path, "an instance's world transform is not finite");
+        for (int p : *prims) {
+          out_.draws.push_back({p, at});
+          const auto [lo, hi] = bounds_[p];
+          for (int corner = 0; corner < 8; ++corner) {
+            const glm::vec3 c((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
+            const glm::vec3 w(at * glm::vec4(c, 1.0f));
+            if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))
+              return fail(path, "its mesh's bounds are not finite in world space");
+            grow(w);
+          }
         }
       }
     }
@@ -424,6 +430,62 @@ class Builder {
       if (Status s = node(child, world, depth + 1); !s) return s;
     return {};
   }
+
+  // EXT_mesh_gpu_instancing: the node's mesh is drawn once per instance, at the node's
+  // transform times the instance's T·R·S (attributes TRANSLATION, ROTATION (a unit
+  // quaternion, float or normalised integers), SCALE; each optional, all of one count;
+  // custom "_..." attributes are ignored). Without the extension: one, the identity.
+  // Each instance is its own draw item (no hardware instancing): at most kMaxInstances.
+  Result<std::vector<glm::mat4>> instances(const tinygltf::Node& n, const std::string& path) {
+    const auto ext = n.extensions.find("EXT_mesh_gpu_instancing");
+    if (ext == n.extensions.end()) return std::vector<glm::mat4>{glm::mat4(1.0f)};
+    const std::string where = path + ".extensions.EXT_mesh_gpu_instancing.attributes";
+    const tinygltf::Value& attributes = ext->second.Get("attributes");
+    // (tinygltf reads an empty object as null: that is "none" below.)
+    if (!attributes.IsObject() && attributes.Type() != tinygltf::NULL_TYPE) return fail(where, "is not an object");
+    std::vector<float> t, r, s;
+    std::size_t count = 0;
+    const struct {
+      const char* name;
+      int comps;
+      std::initializer_list<int> types;
+      std::vector<float>* out;
+    } kinds[] = {{"TRANSLATION", 3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, &t},
+                 {"ROTATION", 4, {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT}, &r},
+                 {"SCALE", 3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, &s}};
+    for (const auto& k : kinds) {
+      if (!attributes.Has(k.name)) continue;
+      const tinygltf::Value& index = attributes.Get(k.name);
+      const double d = index.IsInt() ? index.Get<int>() : index.IsReal() ? index.Get<double>() : -1.0;
+      if (!(d >= 0 && d < static_cast<double>(m_.accessors.size()) && d == std::floor(d)))
+        return fail(where + "." + k.name, "is not an accessor index (" + std::to_string(m_.accessors.size()) + " accessors)");
+      auto values = floats(static_cast<int>(d), k.comps, k.types, where + "." + k.name);
+      if (!values) return values.error();
+      const std::size_t c = values->size() / static_cast<std::size_t>(k.comps);
+      if (count && c != count)
+        return fail(where + "." + k.name, std::to_string(c) + " instances where the other attributes have " + std::to_string(count));
+      count = c;
+      *k.out = std::move(*values);
+    }
+    if (!count) return fail(where, "has none of TRANSLATION, ROTATION, SCALE");
+    if (out_.draws.size() + count > kMaxInstances)
+      return fail(where, std::to_string(count) + " instances take the scene past the " + std::to_string(kMaxInstances) +
+                             " draws foveal accepts");
+    std::vector<glm::mat4> out(count, glm::mat4(1.0f));
+    for (std::size_t i = 0; i < count; ++i) {
+      glm::mat4& m = out[i];
+      if (!t.empty()) m = glm::translate(m, glm::vec3(t[3 * i], t[3 * i + 1], t[3 * i + 2]));
+      if (!r.empty()) {
+        const glm::quat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);  // glm: w first; glTF: x, y, z, w
+        const float len = glm::length(q);
+        if (!(len > 0.0f)) return fail(where + ".ROTATION", "element " + std::to_string(i) + " is not a rotation (zero quaternion)");
+        m *= glm::mat4_cast(q / len);
+      }
+      if (!s.empty()) m = glm::scale(m, glm::vec3(s[3 * i], s[3 * i + 1], s[3 * i + 2]));
+    }
+    return out;
+  }
+  static constexpr std::size_t kMaxInstances = std::size_t{1} << 20;
 
   static glm::mat4 local_matrix(const tinygltf::Node& n) {
     if (n.matrix.size() == 16) {

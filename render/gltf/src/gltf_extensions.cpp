@@ -6,13 +6,16 @@ namespace foveal::render::detail {
 
 const std::vector<std::string>& supported_gltf_extensions() {
   static const std::vector<std::string> kSupported = {
-      "EXT_meshopt_compression",        "KHR_draco_mesh_compression",         "KHR_lights_punctual",
+      "EXT_mesh_gpu_instancing",        "EXT_meshopt_compression",            "KHR_draco_mesh_compression",
+      "KHR_lights_punctual",
       "KHR_materials_anisotropy",       "KHR_materials_clearcoat",            "KHR_materials_emissive_strength",
       "KHR_materials_ior",              "KHR_materials_iridescence",
       "KHR_materials_pbrSpecularGlossiness", "KHR_materials_sheen",          "KHR_materials_specular",
       "KHR_materials_transmission",     "KHR_materials_unlit",                "KHR_materials_variants",
       "KHR_materials_volume",           "KHR_mesh_quantization",
       "KHR_texture_transform",
+      // Metadata only: nothing in it changes the picture.
+      "KHR_xmp",                        "KHR_xmp_json_ld",
   };
   return kSupported;
 }
