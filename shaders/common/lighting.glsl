@@ -140,13 +140,20 @@ vec3 film_fresnel(float cos1, float film_ior, float thickness_nm, vec3 base_f0) 
 // (docs/scenes.md, "Materials").
 vec3 shade(vec3 n, vec3 v, vec3 l, Surface s) {
   float n_dot_l = dot(n, l);
-  vec3 h = normalize(v + l);
   vec3 color = vec3(0.0);
+  // Everything per light stays inside the test: lights behind the surface (most of a
+  // room's 64) cost one dot product, as in the plain metal-rough shader before the layers.
   if (n_dot_l > 0.0) {
+    vec3 h = normalize(v + l);
     float n_dot_v = max(dot(n, v), 1e-4), n_dot_h = max(dot(n, h), 0.0), v_dot_h = max(dot(v, h), 0.0);
     float a = max(s.roughness * s.roughness, 2e-3);
+#ifdef FEATURE_SPECULAR
     vec3 f0 = mix(s.f0, s.albedo, s.metallic);
     float f90 = mix(s.f90, 1.0, s.metallic);
+#else
+    vec3 f0 = mix(vec3(0.04), s.albedo, s.metallic);  // ior 1.5
+    const float f90 = 1.0;
+#endif
     vec3 f = f0 + (f90 - f0) * pow(1.0 - v_dot_h, 5.0);
 #ifdef FEATURE_IRIDESCENCE
     f = mix(f, s.film_fresnel, s.iridescence);
@@ -181,6 +188,7 @@ vec3 shade(vec3 n, vec3 v, vec3 l, Surface s) {
     if (c_dot_l > 0.0) {
       float ac = max(s.clearcoat_roughness * s.clearcoat_roughness, 2e-3);
       float c_dot_v = max(dot(nc, v), 1e-4);
+      vec3 h = normalize(v + l);
       color += s.clearcoat * fc * d_ggx(max(dot(nc, h), 0.0), ac) * v_smith(c_dot_v, c_dot_l, ac) * c_dot_l;
     }
   }
@@ -256,8 +264,20 @@ vec3 lit_color(ivec2 pixel, vec3 p, vec3 n, vec3 camera_pos, Surface s) {
   color = color * (1.0 - coat) + u_ambient.rgb * coat * s.occlusion;
   emissive *= 1.0 - coat;
 #endif
-  if (u_counts.z == 0)  // the rig's sun; a file with lights has no rig
-    color += shade(n, v, u_sun_dir.xyz, s) * u_sun_color.rgb * sun_visibility(p, n);
+#ifdef FILE_LIGHTS
+  // The file's KHR_lights_punctual lights (the compositor compiles this for a scene that
+  // has them, the rig below for one that has none).
+  if (u_light_grid.w != 0) {
+    ivec2 t = clamp(pixel / u_light_grid.z, ivec2(0), u_light_grid.xy - 1);
+    int k = t.y * u_light_grid.x + t.x;
+    int first = int(texelFetch(u_light_tiles, 2 * k).r), count = int(texelFetch(u_light_tiles, 2 * k + 1).r);
+    for (int j = 0; j < count; ++j) color += file_light(int(texelFetch(u_light_tiles, first + j).r), p, n, v, s);
+  } else {
+    for (int i = 0; i < u_counts.z; ++i) color += file_light(i, p, n, v, s);
+  }
+#else
+  // The rig: its sun, then its point lights.
+  color += shade(n, v, u_sun_dir.xyz, s) * u_sun_color.rgb * sun_visibility(p, n);
   for (int i = 0; i < u_counts.x; ++i) {
     vec3 to_light = u_point_pos_range[i].xyz - p;
     float range = u_point_pos_range[i].w;
@@ -268,14 +288,7 @@ vec3 lit_color(ivec2 pixel, vec3 p, vec3 n, vec3 camera_pos, Surface s) {
     float falloff = window / (1.0 + 16.0 * x);
     color += shade(n, v, to_light * inversesqrt(d2), s) * u_point_color[i].rgb * falloff;
   }
-  if (u_light_grid.w != 0) {
-    ivec2 t = clamp(pixel / u_light_grid.z, ivec2(0), u_light_grid.xy - 1);
-    int k = t.y * u_light_grid.x + t.x;
-    int first = int(texelFetch(u_light_tiles, 2 * k).r), count = int(texelFetch(u_light_tiles, 2 * k + 1).r);
-    for (int j = 0; j < count; ++j) color += file_light(int(texelFetch(u_light_tiles, first + j).r), p, n, v, s);
-  } else {
-    for (int i = 0; i < u_counts.z; ++i) color += file_light(i, p, n, v, s);
-  }
+#endif
   color += emissive;
   return tone_map(color * u_ambient.w);
 }
