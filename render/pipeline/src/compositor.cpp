@@ -355,15 +355,7 @@ struct Compositor::Impl {
     const bool same_features = features == requested_features && gbuffer_prog;
     if (same_features && file_lights == requested_file_lights && lighting_progs[0]) return {};
     const detail::SurfaceLayout next = same_features ? layout : detail::SurfaceLayout::for_features(features);
-    const std::string d = next.defines();
-    const std::string lit = d + (file_lights ? "#define FILE_LIGHTS 1\n" : "");
-    if (Status s = build(blend_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "blend.frag"}}, lit); !s) return s;
-    const gl::ShaderStage vert{GL_VERTEX_SHADER, "fullscreen.vert"};
-    for (std::size_t m = 0; m < 3; ++m)
-      if (Status s = build(lighting_progs[m], {vert, {GL_FRAGMENT_SHADER, "lighting.frag"}}, mapping_define(m) + lit); !s) return s;
-    requested_file_lights = file_lights;
-    if (same_features) return {};
-    if (features) {
+    if (!same_features && features) {
       GLint units = 0, buffers = 0;
       glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
       glGetIntegerv(GL_MAX_DRAW_BUFFERS, &buffers);
@@ -374,6 +366,17 @@ struct Compositor::Impl {
                                                  " fragment texture units and " + std::to_string(need_buffers) +
                                                  " draw buffers; this GL has " + std::to_string(units) + " and " + std::to_string(buffers)};
     }
+    // A features change that fails part way leaves no G-buffer program, so the next frame
+    // builds every program again rather than keep lighting built for a layout not in use.
+    if (!same_features) gbuffer_prog.reset();
+    const std::string d = next.defines();
+    const std::string lit = d + (file_lights ? "#define FILE_LIGHTS 1\n" : "");
+    if (Status s = build(blend_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "blend.frag"}}, lit); !s) return s;
+    const gl::ShaderStage vert{GL_VERTEX_SHADER, "fullscreen.vert"};
+    for (std::size_t m = 0; m < 3; ++m)
+      if (Status s = build(lighting_progs[m], {vert, {GL_FRAGMENT_SHADER, "lighting.frag"}}, mapping_define(m) + lit); !s) return s;
+    requested_file_lights = file_lights;
+    if (same_features) return {};  // the rest depends on the features only
     if (Status s = build(gbuffer_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "gbuffer.frag"}}, d); !s) return s;
     for (std::size_t m = 1; m < 3; ++m)  // RMFR maps through foveal-rmfr, which maps every attachment
       if (Status s = build(map_progs[m], {vert, {GL_FRAGMENT_SHADER, "map.frag"}}, mapping_define(m) + d); !s) return s;
