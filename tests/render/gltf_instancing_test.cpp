@@ -93,3 +93,17 @@ TEST(GltfInstancing, BadAttributesAreRefusedWithTheirPath) {
   j["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = {{"_ID", 0}};
   expect_refused(j, "has none of TRANSLATION, ROTATION, SCALE");
 }
+
+// Draws are bounded: 2^20 instances (an accessor without a buffer view: all at the
+// origin) of a mesh of two primitives would make 2^21 draw items.
+TEST(GltfInstancing, InstancesPastTheDrawLimitAreRefused) {
+  json j = instanced({{"TRANSLATION", {0, 0, 0}}});
+  j["accessors"].push_back({{"componentType", 5126}, {"count", 1 << 20}, {"type", "VEC3"}});
+  j["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["TRANSLATION"] = j["accessors"].size() - 1;
+  j["meshes"][0]["primitives"].push_back(j["meshes"][0]["primitives"][0]);
+  expect_refused(j, "1048576 instances of 2 primitives take the scene past the 1048576 draws foveal accepts");
+  j["meshes"][0]["primitives"].erase(1);  // one primitive: exactly the limit
+  auto r = load(j);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_EQ(r->draws.size(), std::size_t{1} << 20);
+}

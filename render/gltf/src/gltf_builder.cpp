@@ -394,7 +394,7 @@ class Builder {
     if (n.mesh >= 0) {
       auto prims = mesh(n.mesh);
       if (!prims) return prims.error();
-      auto placed = instances(n, path);
+      auto placed = instances(n, path, prims->size());
       if (!placed) return placed.error();
       for (const glm::mat4& instance : *placed) {
         const glm::mat4 at = world * instance;
@@ -435,8 +435,9 @@ class Builder {
   // transform times the instance's T·R·S (attributes TRANSLATION, ROTATION (a unit
   // quaternion, float or normalised integers), SCALE; each optional, all of one count;
   // custom "_..." attributes are ignored). Without the extension: one, the identity.
-  // Each instance is its own draw item (no hardware instancing): at most kMaxInstances.
-  Result<std::vector<glm::mat4>> instances(const tinygltf::Node& n, const std::string& path) {
+  // Each instance draws the mesh's `primitives` as draw items of their own (no hardware
+  // instancing): at most kMaxDraws in the scene.
+  Result<std::vector<glm::mat4>> instances(const tinygltf::Node& n, const std::string& path, std::size_t primitives) {
     const auto ext = n.extensions.find("EXT_mesh_gpu_instancing");
     if (ext == n.extensions.end()) return std::vector<glm::mat4>{glm::mat4(1.0f)};
     const std::string where = path + ".extensions.EXT_mesh_gpu_instancing.attributes";
@@ -468,9 +469,9 @@ class Builder {
       *k.out = std::move(*values);
     }
     if (!count) return fail(where, "has none of TRANSLATION, ROTATION, SCALE");
-    if (out_.draws.size() + count > kMaxInstances)
-      return fail(where, std::to_string(count) + " instances take the scene past the " + std::to_string(kMaxInstances) +
-                             " draws foveal accepts");
+    if (out_.draws.size() + count * primitives > kMaxDraws)
+      return fail(where, std::to_string(count) + " instances of " + std::to_string(primitives) +
+                             " primitives take the scene past the " + std::to_string(kMaxDraws) + " draws foveal accepts");
     std::vector<glm::mat4> out(count, glm::mat4(1.0f));
     for (std::size_t i = 0; i < count; ++i) {
       glm::mat4& m = out[i];
@@ -485,7 +486,7 @@ class Builder {
     }
     return out;
   }
-  static constexpr std::size_t kMaxInstances = std::size_t{1} << 20;
+  static constexpr std::size_t kMaxDraws = std::size_t{1} << 20;
 
   static glm::mat4 local_matrix(const tinygltf::Node& n) {
     if (n.matrix.size() == 16) {
