@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 
-#include "foveal/render/gltf_loader.hpp"
+#include "gltf_load_json.hpp"
 #include "gltf_test_models.hpp"
 #include "test_support.hpp"
 
@@ -15,13 +15,6 @@ using nlohmann::json;
 
 namespace {
 
-class NullSink : public render::GltfSink {
- public:
-  int add_texture(const render::GltfTexture&) override { return textures++; }
-  int add_primitive(const std::vector<render::GltfVertex>&, const std::vector<std::uint32_t>&, int) override { return primitives++; }
-  int textures = 0, primitives = 0;
-};
-
 long peak_rss_kb() {
   rusage u{};
   ::getrusage(RUSAGE_SELF, &u);
@@ -29,15 +22,12 @@ long peak_rss_kb() {
 }
 
 Result<render::GltfScene> load_regression(const std::string& name) {
-  NullSink sink;
+  test::NullGltfSink sink;
   const std::string bytes = test::read_file(test::source_path("tests/fuzz/regressions/gltf/" + name));
   return render::load_gltf_bytes(bytes, name, ".", {}, sink);
 }
 
-Result<render::GltfScene> load_json(const json& j) {
-  NullSink sink;
-  return render::load_gltf_bytes(j.dump(), "crafted.gltf", ".", {}, sink);
-}
+Result<render::GltfScene> load_json(const json& j) { return test::load_gltf_json(j, "crafted.gltf"); }
 
 }  // namespace
 

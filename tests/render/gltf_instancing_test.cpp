@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "foveal/render/gltf_loader.hpp"
+#include "gltf_load_json.hpp"
 #include "gltf_test_models.hpp"
 #include "test_support.hpp"
 
@@ -16,13 +16,6 @@ using namespace foveal;
 using nlohmann::json;
 
 namespace {
-
-class NullSink : public render::GltfSink {
- public:
-  int add_texture(const render::GltfTexture&) override { return 0; }
-  int add_primitive(const std::vector<render::GltfVertex>&, const std::vector<std::uint32_t>&, int) override { return prims++; }
-  int prims = 0;
-};
 
 // The quad on a node translated by (0, 0, 5), with accessors of `attributes` (name → floats,
 // VEC3 or VEC4 by name) as its instances.
@@ -46,10 +39,7 @@ json instanced(const std::vector<std::pair<std::string, std::vector<float>>>& at
   return j;
 }
 
-Result<render::GltfScene> load(const json& j) {
-  NullSink sink;
-  return render::load_gltf_bytes(j.dump(), "inst.gltf", ".", {}, sink);
-}
+Result<render::GltfScene> load(const json& j) { return test::load_gltf_json(j, "inst.gltf"); }
 
 void expect_refused(const json& j, const std::string& what) {
   auto r = load(j);

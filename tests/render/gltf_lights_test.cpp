@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "foveal/render/gltf_loader.hpp"
+#include "gltf_load_json.hpp"
 #include "gltf_test_models.hpp"
 #include "test_support.hpp"
 
@@ -13,13 +13,6 @@ using namespace foveal;
 using nlohmann::json;
 
 namespace {
-
-class NullSink : public render::GltfSink {
- public:
-  int add_texture(const render::GltfTexture&) override { return textures++; }
-  int add_primitive(const std::vector<render::GltfVertex>&, const std::vector<std::uint32_t>&, int) override { return prims++; }
-  int textures = 0, prims = 0;
-};
 
 // The quad plus `lights`, each on a node of its own under a parent translated by (0, 0, 1).
 json with_lights(const json& lights) {
@@ -39,10 +32,7 @@ json with_lights(const json& lights) {
   return j;
 }
 
-Result<render::GltfScene> load(const json& j) {
-  NullSink sink;
-  return render::load_gltf_bytes(j.dump(), "lights.gltf", ".", {}, sink);
-}
+Result<render::GltfScene> load(const json& j) { return test::load_gltf_json(j, "lights.gltf"); }
 
 void expect_refused(const json& j, const std::string& what) {
   auto r = load(j);
@@ -150,7 +140,7 @@ TEST(GltfLights, ThePointLightsScriptWritesADungeonCopyWithItsLights) {
   const std::string src = test::source_path("data/scenes/Dungeon/dungeon_simplified.gltf");
   auto r = test::run("python3 " + test::source_path("tools/scenes/point_lights.py") + " " + src + " " + dir.path("out") + " --lights 8");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  NullSink sink;
+  test::NullGltfSink sink;
   auto s = render::load_gltf(dir.path("out/dungeon_simplified_lights8.gltf"), {}, sink);
   ASSERT_TRUE(s) << s.error().message;
   ASSERT_EQ(s->lights.size(), 8u);
