@@ -95,8 +95,22 @@ function(foveal_sdk_library name)
   set(FOVEAL_PC_DESCRIPTION "${ARG_DESCRIPTION}")
   list(JOIN ARG_PC_REQUIRES ", " FOVEAL_PC_REQUIRES)
   list(JOIN ARG_PC_LIBS_PRIVATE " " FOVEAL_PC_LIBS_PRIVATE)
+  # Two forms; the install takes one by where the library lands (its prefix is known only
+  # then: `cmake --install --prefix`). Outside the directories the linker and the loader
+  # search anyway, Libs carries -Wl,-rpath,${libdir}, so that a program built with
+  # `pkg-config --libs` starts without LD_LIBRARY_PATH; in them (/usr: Debian policy) it
+  # carries none (docs/sdk.md).
+  set(FOVEAL_PC_RPATH "")
   configure_file(${FOVEAL_SDK_TEMPLATES}/foveal-component.pc.in ${CMAKE_BINARY_DIR}/sdk/foveal-${c}.pc @ONLY)
-  install(FILES ${CMAKE_BINARY_DIR}/sdk/foveal-${c}.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT sdk)
+  set(FOVEAL_PC_RPATH " -Wl,-rpath,\${libdir}")
+  configure_file(${FOVEAL_SDK_TEMPLATES}/foveal-component.pc.in ${CMAKE_BINARY_DIR}/sdk/rpath/foveal-${c}.pc @ONLY)
+  set(system_dirs ${CMAKE_PLATFORM_IMPLICIT_LINK_DIRECTORIES} ${CMAKE_C_IMPLICIT_LINK_DIRECTORIES}
+    ${CMAKE_CXX_IMPLICIT_LINK_DIRECTORIES})
+  install(CODE "set(FOVEAL_PC_PLAIN \"${CMAKE_BINARY_DIR}/sdk/foveal-${c}.pc\")
+set(FOVEAL_PC_WITH_RPATH \"${CMAKE_BINARY_DIR}/sdk/rpath/foveal-${c}.pc\")
+set(FOVEAL_PC_LIBDIR \"${CMAKE_INSTALL_LIBDIR}\")
+set(FOVEAL_SYSTEM_LIBDIRS \"${system_dirs}\")
+include(\"${FOVEAL_SDK_TEMPLATES}/install-pc.cmake\")" COMPONENT sdk)
 endfunction()
 
 # The package's entry files; called once, from the top-level CMakeLists.

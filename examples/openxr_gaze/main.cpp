@@ -2,11 +2,12 @@
 // and prints it as JSON lines. It knows nothing of foveal: with foveal's API layer
 // installed and foveald running, the gaze it prints is foveald's (docs/openxr.md).
 //
-//   openxr_gaze [--duration S] [--interval-ms MS] [--per-eye] [--frame-loop] [--bench N] [--help]
+//   openxr_gaze [--duration S] [--interval-ms MS] [--per-eye] [--frame-loop] [--bench N]
+//               [--second-set] [--help]
 //
 // Line 1: {"event":"system", ...} what the runtime (and the layers) offer.
 // Then, every interval: {"event":"gaze", "t_ns":..., "state":..., "active":...,
-//   "flags":..., "head_direction":[x,y,z] (the gaze in the VIEW space: the head frame),
+//   "flags":..., "view_flags":... (the gaze located in LOCAL and in VIEW), "head_direction":[x,y,z] (the gaze in the VIEW space: the head frame),
 //   "direction":[x,y,z] (in LOCAL), "sample_t_ns" (head_direction's sample), "local_sample_t_ns"}
 //   and with --per-eye "eyes":[...] with their own "eyes_t_ns".
 // --bench N: once the gaze is active, times N locates of the gaze space and N of the
@@ -40,6 +41,7 @@ struct Options {
   bool per_eye = false;
   bool frame_loop = false;
   int bench = 0;
+  bool second_set = false;
 };
 
 int usage(int rc) {
@@ -49,7 +51,8 @@ int usage(int rc) {
                "  XR_FB_eye_tracking_social) in a headless session and prints JSON lines.\n"
                "  --frame-loop: run xrWaitFrame/xrBeginFrame/xrEndFrame and locate at the predicted\n"
                "  display time (default: locate at the current time).\n"
-               "  --bench N: time N gaze-space and N VIEW-space locates once the gaze is active.\n");
+               "  --bench N: time N gaze-space and N VIEW-space locates once the gaze is active.\n"
+               "  --second-set: after the session, bind the gaze to a new action set (a next session's).\n");
   return rc;
 }
 
@@ -167,6 +170,7 @@ int main(int argc, char** argv) {
     else if (a == "--per-eye") o.per_eye = true;
     else if (a == "--frame-loop") o.frame_loop = true;
     else if (a == "--bench") o.bench = std::atoi(value("--bench"));
+    else if (a == "--second-set") o.second_set = true;
     else {
       std::fprintf(stderr, "openxr_gaze: unknown option %s\n", a.c_str());
       return usage(2);
@@ -302,10 +306,11 @@ int main(int argc, char** argv) {
     CHECK_R(xrLocateSpace(gaze_space, view, when, &in_view));
     const XrVector3f d = forward(in_local.pose.orientation), h = forward(in_view.pose.orientation);
     std::printf("{\"event\":\"gaze\",\"t_ns\":%lld,\"state\":\"%s\",\"sync\":%d,\"active\":%s,\"flags\":%llu,"
+                "\"view_flags\":%llu,"
                 "\"head_direction\":[%.6f,%.6f,%.6f],\"direction\":[%.6f,%.6f,%.6f],\"position\":[%.6f,%.6f,%.6f],"
                 "\"sample_t_ns\":%lld,\"local_sample_t_ns\":%lld",
                 (long long)mono_of(when), state_name(state), (int)sync, pose_state.isActive ? "true" : "false",
-                (unsigned long long)in_local.locationFlags, h.x, h.y, h.z, d.x, d.y, d.z, in_local.pose.position.x,
+                (unsigned long long)in_local.locationFlags, (unsigned long long)in_view.locationFlags, h.x, h.y, h.z, d.x, d.y, d.z, in_local.pose.position.x,
                 in_local.pose.position.y, in_local.pose.position.z, (long long)mono_of(sample_view.time),
                 (long long)mono_of(sample.time));
     if (has_fb) {
@@ -376,6 +381,29 @@ int main(int argc, char** argv) {
   }
   if (tracker != XR_NULL_HANDLE) destroy_tracker(tracker);
   xrDestroySession(session);
+  if (o.second_set) {
+    // An app's next session with an action set of its own: its gaze binding is
+    // suggested after the first set was attached, which the specification allows.
+    std::strcpy(asci.actionSetName, "gaze_again");
+    std::strcpy(asci.localizedActionSetName, "Gaze again");
+    XrActionSet set2 = XR_NULL_HANDLE;
+    CHECK(xrCreateActionSet(instance, &asci, &set2));
+    XrAction action2 = XR_NULL_HANDLE;
+    CHECK(xrCreateAction(set2, &aci, &action2));
+    XrActionSuggestedBinding b2{action2, binding};
+    XrInteractionProfileSuggestedBinding sb2{XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING, nullptr, profile, 1, &b2};
+    std::printf("{\"event\":\"second_set\",\"suggest\":%d}\n", (int)xrSuggestInteractionProfileBindings(instance, &sb2));
+  }
+  const std::int64_t destroy_start = monotonic_ns();
   xrDestroyInstance(instance);
+  std::printf("{\"event\":\"destroyed\",\"destroy_instance_ms\":%.3f}\n", (double)(monotonic_ns() - destroy_start) / 1e6);
+  if (o.bench > 0) {  // asked for figures and has none: a failure, not a quiet success
+    std::fprintf(stderr,
+                 "openxr_gaze: --bench: the gaze never became active in %g s, nothing was timed. Is foveal's layer "
+                 "where the loader looks (a build tree: XDG_DATA_DIRS=build/openxr/share) and foveald serving? "
+                 "`foveal openxr` tells.\n",
+                 o.duration_s);
+    return 1;
+  }
   return 0;
 }

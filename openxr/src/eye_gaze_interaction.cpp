@@ -4,10 +4,50 @@
 // foveald's gaze. Everything else goes to the runtime unchanged. docs/openxr.md.
 #include <vector>
 
+#include "eye_gaze_system.hpp"
 #include "layer.hpp"
 #include "pose_math.hpp"
 
 namespace foveal::openxr {
+
+void LatchedGaze::store(bool active, const GazeNow& g) {
+  const std::uint32_t s = seq_.load(std::memory_order_relaxed);
+  seq_.store(s + 1, std::memory_order_relaxed);
+  std::atomic_thread_fence(std::memory_order_release);
+  const float w[14] = {g.eye_dir[0].x, g.eye_dir[0].y, g.eye_dir[0].z, g.eye_dir[1].x, g.eye_dir[1].y, g.eye_dir[1].z,
+                       g.confidence[0], g.confidence[1], g.combined.x, g.combined.y, g.combined.z, g.ipd_m, 0, 0};
+  for (std::size_t i = 0; i < words_.size(); ++i) words_[i].store(w[i], std::memory_order_relaxed);
+  t_ns_.store(g.t_ns, std::memory_order_relaxed);
+  eyes_.store(static_cast<std::uint8_t>((g.eye_tracked[0] ? 1 : 0) | (g.eye_tracked[1] ? 2 : 0) | (g.tracked ? 4 : 0)),
+              std::memory_order_relaxed);
+  active_.store(active, std::memory_order_relaxed);
+  seq_.store(s + 2, std::memory_order_release);
+}
+
+bool LatchedGaze::load(GazeNow& g) const {
+  for (;;) {
+    const std::uint32_t before = seq_.load(std::memory_order_acquire);
+    if (before & 1) continue;  // a store is under way on another thread: a few instructions
+    const bool active = active_.load(std::memory_order_relaxed);
+    float w[14];
+    for (std::size_t i = 0; i < words_.size(); ++i) w[i] = words_[i].load(std::memory_order_relaxed);
+    const std::int64_t t = t_ns_.load(std::memory_order_relaxed);
+    const std::uint8_t eyes = eyes_.load(std::memory_order_relaxed);
+    std::atomic_thread_fence(std::memory_order_acquire);
+    if (seq_.load(std::memory_order_relaxed) != before) continue;
+    g.eye_dir[0] = {w[0], w[1], w[2]};
+    g.eye_dir[1] = {w[3], w[4], w[5]};
+    g.confidence[0] = w[6];
+    g.confidence[1] = w[7];
+    g.combined = {w[8], w[9], w[10]};
+    g.ipd_m = w[11];
+    g.t_ns = t;
+    g.eye_tracked[0] = eyes & 1;
+    g.eye_tracked[1] = eyes & 2;
+    g.tracked = eyes & 4;
+    return active;
+  }
+}
 
 namespace {
 
@@ -15,7 +55,12 @@ bool serving() { return layer().serve_ext.load(std::memory_order_relaxed); }
 
 /// The runtime does not know /user/eyes_ext when it lacks the extension: the layer
 /// keeps that subaction path to itself.
-bool hide_eyes(XrPath p) { return !layer().runtime_ext && p == layer().eyes_path && p != XR_NULL_PATH; }
+bool hide_eyes(XrPath p) {
+  return !layer().runtime_has(Ext::eye_gaze_interaction) && p == layer().eyes_path && p != XR_NULL_PATH;
+}
+
+/// `set` is attached to a session. Under the layer's mutex.
+bool set_attached(XrActionSet set) { return find_slot(layer().attached_sets, set) != nullptr; }
 
 bool is_gaze_action(XrAction a, ActionSlot** slot = nullptr) {
   if (!serving()) return false;
@@ -81,12 +126,15 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrSuggestInteractionProfileBindings(
     return l.next.SuggestInteractionProfileBindings(instance, suggested);
   // The eye-gaze profile is the layer's: the runtime never sees these bindings.
   std::lock_guard lock(l.mutex);
-  if (l.attached) return XR_ERROR_ACTIONSETS_ALREADY_ATTACHED;
   if (suggested->countSuggestedBindings == 0 || !suggested->suggestedBindings) return XR_ERROR_VALIDATION_FAILURE;
   for (std::uint32_t i = 0; i < suggested->countSuggestedBindings; ++i) {
     const XrActionSuggestedBinding& b = suggested->suggestedBindings[i];
     if (b.binding != l.gaze_pose_path && b.binding != l.gaze_path) return XR_ERROR_PATH_UNSUPPORTED;
-    if (!find_action(b.action)) return XR_ERROR_HANDLE_INVALID;  // or not a pose action
+    const ActionSlot* a = find_action(b.action);
+    if (!a) return XR_ERROR_HANDLE_INVALID;  // or not a pose action
+    // Refused only for an action whose own set is attached (a new set for a second
+    // session binds as the first one did): the specification's rule and Monado's.
+    if (set_attached(a->set)) return XR_ERROR_ACTIONSETS_ALREADY_ATTACHED;
   }
   // A new suggestion for a profile replaces the previous one (the specification's rule).
   for (auto& s : l.actions) s.gaze = false;
@@ -99,9 +147,13 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrAttachSessionActionSets(XrSession session
                                                                const XrSessionActionSetsAttachInfo* info) {
   Layer& l = layer();
   const XrResult r = l.next.AttachSessionActionSets(session, info);
-  if (XR_SUCCEEDED(r)) {
+  if (XR_SUCCEEDED(r) && info && info->actionSets) {
     std::lock_guard lock(l.mutex);
-    l.attached = true;
+    for (std::uint32_t i = 0; i < info->countActionSets; ++i) {
+      if (set_attached(info->actionSets[i])) continue;
+      if (!claim_slot(l.attached_sets, info->actionSets[i], [session](AttachedSetSlot& s) { s.session = session; }))
+        log_line("more than 64 attached action sets: the later ones may take new eye-gaze bindings");
+    }
   }
   return r;
 }
@@ -111,9 +163,14 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrGetCurrentInteractionProfile(XrSession se
   Layer& l = layer();
   if (!serving() || top_level != l.eyes_path || !state)
     return l.next.GetCurrentInteractionProfile(session, top_level, state);
+  // The profile is current for a session with an attached set that holds a gaze action.
   bool bound = false;
-  for (auto& s : l.actions) bound |= s.handle.load(std::memory_order_acquire) != XR_NULL_HANDLE && s.gaze.load();
-  state->interactionProfile = l.attached && bound ? l.profile_path : XR_NULL_PATH;
+  for (auto& s : l.actions) {
+    if (s.handle.load(std::memory_order_acquire) == XR_NULL_HANDLE || !s.gaze.load()) continue;
+    for (auto& a : l.attached_sets)
+      bound |= a.handle.load(std::memory_order_acquire) == s.set && a.session == session;
+  }
+  state->interactionProfile = bound ? l.profile_path : XR_NULL_PATH;
   return XR_SUCCESS;
 }
 
@@ -140,7 +197,10 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrSyncActions(XrSession session, const XrAc
   SessionSlot* s = find_session(session);
   GazeNow g;
   const bool active = s && s->focused.load() && l.feed && l.feed->read(g) && g.tracked;
-  if (s) s->gaze_active.store(active, std::memory_order_release);
+  if (s) {
+    s->latched.store(active, g);
+    s->gaze_active.store(active, std::memory_order_release);
+  }
   for (auto& a : l.actions) {
     if (a.handle.load(std::memory_order_acquire) == XR_NULL_HANDLE || !a.gaze.load()) continue;
     bool set_active = false;
@@ -191,15 +251,6 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateActionSpace(XrSession session, cons
   return r;
 }
 
-XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroySpace(XrSpace space) {
-  Layer& l = layer();
-  {
-    std::lock_guard lock(l.mutex);
-    if (SpaceSlot* s = find_space(space)) s->handle.store(XR_NULL_HANDLE);
-  }
-  return l.next.DestroySpace(space);
-}
-
 namespace {
 
 /// A gaze action space's pose in the head frame, or false when the gaze is not there
@@ -209,7 +260,7 @@ bool gaze_space_in_head(const SpaceSlot& sp, GazeNow& g, XrPosef& pose, const Se
   const ActionSlot& a = l.actions[static_cast<std::size_t>(sp.action)];
   session = find_session(sp.session);
   if (!session || !session->gaze_active.load(std::memory_order_acquire) || !a.set_active.load()) return false;
-  if (!l.feed || !l.feed->read(g) || !g.tracked) return false;
+  if (!session->latched.load(g)) return false;
   pose = compose(gaze_in_head(g), sp.pose_in_action);
   return true;
 }
@@ -226,15 +277,14 @@ void fill_chain(XrSpaceLocation* location, const GazeNow* g) {
 
 }  // namespace
 
-XRAPI_ATTR XrResult XRAPI_CALL layer_xrLocateSpace(XrSpace space, XrSpace base, XrTime time,
-                                                   XrSpaceLocation* location) {
-  Layer& l = layer();
-  if (!serving() || !location) return l.next.LocateSpace(space, base, time, location);
-  const SpaceSlot* sp = find_space(space);
-  const SpaceSlot* bp = find_space(base);
-  const bool space_gaze = sp && l.actions[static_cast<std::size_t>(sp->action)].gaze.load(std::memory_order_acquire);
-  const bool base_gaze = bp && l.actions[static_cast<std::size_t>(bp->action)].gaze.load(std::memory_order_acquire);
-  if (!space_gaze && !base_gaze) return l.next.LocateSpace(space, base, time, location);
+bool is_gaze_action_space(const SpaceSlot* s) {
+  return serving() && s && s->action >= 0 &&
+         layer().actions[static_cast<std::size_t>(s->action)].gaze.load(std::memory_order_acquire);
+}
+
+XrResult locate_gaze_action_space(XrSpace space, XrSpace base, XrTime time, XrSpaceLocation* location,
+                                  const SpaceSlot* sp, const SpaceSlot* bp) {
+  const bool space_gaze = is_gaze_action_space(sp), base_gaze = is_gaze_action_space(bp);
 
   // The runtime must not see the extension's struct it may not know: it is filled here.
   void* chain = location->next;
@@ -277,5 +327,27 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrLocateSpace(XrSpace space, XrSpace base, 
   fill_chain(location, &g);
   return XR_SUCCESS;
 }
+
+void fill_eye_gaze_properties(XrBaseOutStructure* p) {
+  if (serving()) reinterpret_cast<XrSystemEyeGazeInteractionPropertiesEXT*>(p)->supportsEyeGazeInteraction = XR_TRUE;
+}
+
+namespace {
+const Intercept kFunctions[] = {
+    {"xrCreateAction", FOVEAL_FN(layer_xrCreateAction), false},
+    {"xrDestroyAction", FOVEAL_FN(layer_xrDestroyAction), false},
+    {"xrDestroyActionSet", FOVEAL_FN(layer_xrDestroyActionSet), false},
+    {"xrSuggestInteractionProfileBindings", FOVEAL_FN(layer_xrSuggestInteractionProfileBindings), false},
+    {"xrAttachSessionActionSets", FOVEAL_FN(layer_xrAttachSessionActionSets), false},
+    {"xrGetCurrentInteractionProfile", FOVEAL_FN(layer_xrGetCurrentInteractionProfile), false},
+    {"xrSyncActions", FOVEAL_FN(layer_xrSyncActions), false},
+    {"xrGetActionStatePose", FOVEAL_FN(layer_xrGetActionStatePose), false},
+    {"xrCreateActionSpace", FOVEAL_FN(layer_xrCreateActionSpace), false},
+};
+}  // namespace
+
+const ServedExtension kEyeGazeInteraction = {
+    XR_EXT_EYE_GAZE_INTERACTION_EXTENSION_NAME, 1, kFunctions, std::size(kFunctions),
+    XR_TYPE_SYSTEM_EYE_GAZE_INTERACTION_PROPERTIES_EXT, fill_eye_gaze_properties, -1};
 
 }  // namespace foveal::openxr

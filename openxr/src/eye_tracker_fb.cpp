@@ -6,6 +6,10 @@
 
 namespace foveal::openxr {
 
+XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateEyeTrackerFB(XrSession, const XrEyeTrackerCreateInfoFB*, XrEyeTrackerFB*);
+XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroyEyeTrackerFB(XrEyeTrackerFB);
+XRAPI_ATTR XrResult XRAPI_CALL layer_xrGetEyeGazesFB(XrEyeTrackerFB, const XrEyeGazesInfoFB*, XrEyeGazesFB*);
+
 namespace {
 
 bool serving() { return layer().serve_fb.load(std::memory_order_relaxed); }
@@ -73,5 +77,20 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrGetEyeGazesFB(XrEyeTrackerFB tracker, con
   gazes->time = l.feed->to_xr_time(g.t_ns);  // the latest sample's, not extrapolated
   return XR_SUCCESS;
 }
+
+namespace {
+void fill_properties(XrBaseOutStructure* p) {
+  if (serving()) reinterpret_cast<XrSystemEyeTrackingPropertiesFB*>(p)->supportsEyeTracking = XR_TRUE;
+}
+const Intercept kFunctions[] = {
+    {"xrCreateEyeTrackerFB", FOVEAL_FN(layer_xrCreateEyeTrackerFB), true},
+    {"xrDestroyEyeTrackerFB", FOVEAL_FN(layer_xrDestroyEyeTrackerFB), true},
+    {"xrGetEyeGazesFB", FOVEAL_FN(layer_xrGetEyeGazesFB), true},
+};
+}  // namespace
+
+const ServedExtension kFbEyeTrackingSocial = {
+    XR_FB_EYE_TRACKING_SOCIAL_EXTENSION_NAME, 1, kFunctions, std::size(kFunctions),
+    XR_TYPE_SYSTEM_EYE_TRACKING_PROPERTIES_FB, fill_properties, -1};
 
 }  // namespace foveal::openxr

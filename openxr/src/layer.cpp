@@ -1,6 +1,7 @@
 // The layer's entry points: negotiation with the loader, instance creation (which
-// extensions go down to the runtime), xrGetInstanceProcAddr, system properties, and
-// the session bookkeeping gaze needs (focus, a VIEW space). docs/openxr.md.
+// extensions go down to the runtime), xrGetInstanceProcAddr over the served extensions'
+// table, system properties, and the core calls several extensions share (sessions,
+// focus, spaces). docs/openxr.md.
 #include "layer.hpp"
 
 #include <cstdio>
@@ -19,8 +20,6 @@ Layer& layer() {
   return l;
 }
 
-void log_line(const char* text) { std::fprintf(stderr, "foveal-openxr: %s\n", text); }
-
 namespace {
 
 GazeMode mode_from_environment() {
@@ -30,6 +29,12 @@ GazeMode mode_from_environment() {
   if (std::string_view(v) == "runtime") return GazeMode::runtime;
   log_line("FOVEAL_OPENXR_GAZE must be auto, foveal or runtime; using auto");
   return GazeMode::automatic;
+}
+
+/// FOVEAL_OPENXR_QUAD_VIEWS=0 turns the layer's quad views off for one app.
+bool quad_views_wanted() {
+  const char* v = std::getenv("FOVEAL_OPENXR_QUAD_VIEWS");
+  return !(v && (std::string_view(v) == "0" || std::string_view(v) == "off"));
 }
 
 template <typename F>
@@ -58,8 +63,56 @@ bool has(const std::vector<std::string>& names, const char* name) {
   return false;
 }
 
+/// The served extension named `name`, or -1.
+int served_index(const char* name) {
+  for (int e = 0; e < kExtCount; ++e)
+    if (std::strcmp(served(static_cast<Ext>(e)).name, name) == 0) return e;
+  return -1;
+}
+
 XRAPI_ATTR XrResult XRAPI_CALL layer_xrGetInstanceProcAddr(XrInstance instance, const char* name,
                                                            PFN_xrVoidFunction* function);
+
+void load_next(XrInstance instance, Next& n, bool want_convert) {
+  load(instance, "xrDestroyInstance", n.DestroyInstance);
+  load(instance, "xrGetSystemProperties", n.GetSystemProperties);
+  load(instance, "xrCreateSession", n.CreateSession);
+  load(instance, "xrDestroySession", n.DestroySession);
+  load(instance, "xrBeginSession", n.BeginSession);
+  load(instance, "xrPollEvent", n.PollEvent);
+  load(instance, "xrCreateReferenceSpace", n.CreateReferenceSpace);
+  load(instance, "xrEnumerateReferenceSpaces", n.EnumerateReferenceSpaces);
+  load(instance, "xrCreateActionSpace", n.CreateActionSpace);
+  load(instance, "xrDestroySpace", n.DestroySpace);
+  load(instance, "xrLocateSpace", n.LocateSpace);
+  load(instance, "xrCreateActionSet", n.CreateActionSet);
+  load(instance, "xrDestroyActionSet", n.DestroyActionSet);
+  load(instance, "xrCreateAction", n.CreateAction);
+  load(instance, "xrDestroyAction", n.DestroyAction);
+  load(instance, "xrSuggestInteractionProfileBindings", n.SuggestInteractionProfileBindings);
+  load(instance, "xrAttachSessionActionSets", n.AttachSessionActionSets);
+  load(instance, "xrGetCurrentInteractionProfile", n.GetCurrentInteractionProfile);
+  load(instance, "xrSyncActions", n.SyncActions);
+  load(instance, "xrGetActionStatePose", n.GetActionStatePose);
+  load(instance, "xrStringToPath", n.StringToPath);
+  load(instance, "xrEnumerateViewConfigurations", n.EnumerateViewConfigurations);
+  load(instance, "xrGetViewConfigurationProperties", n.GetViewConfigurationProperties);
+  load(instance, "xrEnumerateViewConfigurationViews", n.EnumerateViewConfigurationViews);
+  load(instance, "xrLocateViews", n.LocateViews);
+  load(instance, "xrEndFrame", n.EndFrame);
+  load(instance, "xrCreateSwapchain", n.CreateSwapchain);
+  load(instance, "xrDestroySwapchain", n.DestroySwapchain);
+  load(instance, "xrEnumerateSwapchainImages", n.EnumerateSwapchainImages);
+  load(instance, "xrAcquireSwapchainImage", n.AcquireSwapchainImage);
+  load(instance, "xrWaitSwapchainImage", n.WaitSwapchainImage);
+  load(instance, "xrReleaseSwapchainImage", n.ReleaseSwapchainImage);
+  if (want_convert) load(instance, "xrConvertTimespecTimeToTimeKHR", n.ConvertTimespecTimeToTimeKHR);
+  if (layer().runtime_has(Ext::fb_eye_tracking_social)) {
+    load(instance, "xrCreateEyeTrackerFB", n.CreateEyeTrackerFB);
+    load(instance, "xrDestroyEyeTrackerFB", n.DestroyEyeTrackerFB);
+    load(instance, "xrGetEyeGazesFB", n.GetEyeGazesFB);
+  }
+}
 
 XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateApiLayerInstance(const XrInstanceCreateInfo* info,
                                                               const XrApiLayerCreateInfo* api_layer_info,
@@ -77,28 +130,41 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateApiLayerInstance(const XrInstanceCr
     return XR_ERROR_INITIALIZATION_FAILED;
   l.mode = mode_from_environment();
 
-  // The runtime sees the extensions the layer provides only where it has them itself,
+  // The runtime sees the extensions the layer serves only where it has them itself,
   // and gets XR_KHR_convert_timespec_time for the gaze samples' times.
   // Asked of the end of the chain (the runtime): layers below answer only for instances.
   const XrApiLayerNextInfo* last = next_info;
   while (last->next) last = last->next;
   const std::vector<std::string> below = runtime_extensions(last->nextGetInstanceProcAddr);
   std::vector<const char*> enabled;
-  l.app_ext = l.app_fb = false;
+  for (int e = 0; e < kExtCount; ++e) l.app[e] = l.runtime[e] = false;
   bool want_convert = has(below, XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME);
+  const bool pass_all = l.mode == GazeMode::runtime;
+  const bool quad_wanted = quad_views_wanted();
   for (std::uint32_t i = 0; i < info->enabledExtensionCount; ++i) {
-    const char* e = info->enabledExtensionNames[i];
-    const bool is_ext = std::strcmp(e, XR_EXT_EYE_GAZE_INTERACTION_EXTENSION_NAME) == 0;
-    const bool is_fb = std::strcmp(e, XR_FB_EYE_TRACKING_SOCIAL_EXTENSION_NAME) == 0;
-    l.app_ext |= is_ext;
-    l.app_fb |= is_fb;
-    if (std::strcmp(e, XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME) == 0) want_convert = false;  // already there
-    if ((is_ext || is_fb) && l.mode != GazeMode::runtime && !has(below, e)) continue;
-    enabled.push_back(e);
+    const char* name = info->enabledExtensionNames[i];
+    if (std::strcmp(name, XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME) == 0) want_convert = false;  // already there
+    const int e = served_index(name);
+    if (e >= 0 && !pass_all) {
+      const bool quad = e == static_cast<int>(Ext::varjo_quad_views) || e == static_cast<int>(Ext::varjo_foveated_rendering);
+      l.app[e] = true;
+      l.runtime[e] = has(below, name);
+      if (quad && !l.runtime[e] && !quad_wanted) {
+        log_line("FOVEAL_OPENXR_QUAD_VIEWS=0: quad views are not offered to this app");
+        return XR_ERROR_EXTENSION_NOT_PRESENT;
+      }
+      if (!l.runtime[e]) continue;  // served by the layer: the runtime never hears of it
+    }
+    enabled.push_back(name);
   }
+  for (int e = 0; e < kExtCount; ++e) {
+    const int needs = served(static_cast<Ext>(e)).requires_ext;
+    if (l.app[e] && needs >= 0 && !l.app[needs] && !l.runtime[needs]) return XR_ERROR_EXTENSION_NOT_PRESENT;  // 1.0.20 has no DEPENDENCY_NOT_ENABLED
+  }
+  // OpenXR 1.1 made the inset view configuration core; Debian's 1.0 headers lack the macro.
+  const XrVersion api = info->applicationInfo.apiVersion;
+  l.instance_1_1 = !pass_all && quad_wanted && XR_VERSION_MAJOR(api) == 1 && XR_VERSION_MINOR(api) >= 1;
   if (want_convert) enabled.push_back(XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME);
-  l.runtime_ext = l.app_ext && has(below, XR_EXT_EYE_GAZE_INTERACTION_EXTENSION_NAME);
-  l.runtime_fb = l.app_fb && has(below, XR_FB_EYE_TRACKING_SOCIAL_EXTENSION_NAME);
 
   XrInstanceCreateInfo down = *info;
   down.enabledExtensionCount = static_cast<std::uint32_t>(enabled.size());
@@ -112,39 +178,16 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateApiLayerInstance(const XrInstanceCr
   l.next = Next{};
   l.next.GetInstanceProcAddr = next_info->nextGetInstanceProcAddr;
   Next& n = l.next;
-  load(*instance, "xrDestroyInstance", n.DestroyInstance);
-  load(*instance, "xrGetSystemProperties", n.GetSystemProperties);
-  load(*instance, "xrCreateSession", n.CreateSession);
-  load(*instance, "xrDestroySession", n.DestroySession);
-  load(*instance, "xrPollEvent", n.PollEvent);
-  load(*instance, "xrCreateReferenceSpace", n.CreateReferenceSpace);
-  load(*instance, "xrCreateActionSpace", n.CreateActionSpace);
-  load(*instance, "xrDestroySpace", n.DestroySpace);
-  load(*instance, "xrLocateSpace", n.LocateSpace);
-  load(*instance, "xrCreateActionSet", n.CreateActionSet);
-  load(*instance, "xrDestroyActionSet", n.DestroyActionSet);
-  load(*instance, "xrCreateAction", n.CreateAction);
-  load(*instance, "xrDestroyAction", n.DestroyAction);
-  load(*instance, "xrSuggestInteractionProfileBindings", n.SuggestInteractionProfileBindings);
-  load(*instance, "xrAttachSessionActionSets", n.AttachSessionActionSets);
-  load(*instance, "xrGetCurrentInteractionProfile", n.GetCurrentInteractionProfile);
-  load(*instance, "xrSyncActions", n.SyncActions);
-  load(*instance, "xrGetActionStatePose", n.GetActionStatePose);
-  load(*instance, "xrStringToPath", n.StringToPath);
-  if (want_convert || has(below, XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME))
-    load(*instance, "xrConvertTimespecTimeToTimeKHR", n.ConvertTimespecTimeToTimeKHR);
-  if (l.runtime_fb) {
-    load(*instance, "xrCreateEyeTrackerFB", n.CreateEyeTrackerFB);
-    load(*instance, "xrDestroyEyeTrackerFB", n.DestroyEyeTrackerFB);
-    load(*instance, "xrGetEyeGazesFB", n.GetEyeGazesFB);
-  }
+  load_next(*instance, n, want_convert || has(below, XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME));
   n.StringToPath(*instance, "/interaction_profiles/ext/eye_gaze_interaction", &l.profile_path);
   n.StringToPath(*instance, "/user/eyes_ext", &l.eyes_path);
   n.StringToPath(*instance, "/user/eyes_ext/input/gaze_ext/pose", &l.gaze_pose_path);
   n.StringToPath(*instance, "/user/eyes_ext/input/gaze_ext", &l.gaze_path);
-  l.decided = l.attached = false;
+  l.decided = false;
   l.serve_ext = l.serve_fb = false;
-  if (l.mode != GazeMode::runtime && (l.app_ext || l.app_fb)) {
+  // Gaze for the action system, per eye, and the quad views' inset all read foveald.
+  const bool wants_feed = l.app_gaze() || l.quad_views() || l.app_has(Ext::varjo_foveated_rendering);
+  if (!pass_all && wants_feed) {
     const XrInstance inst = *instance;
     auto convert = n.ConvertTimespecTimeToTimeKHR;
     l.feed = std::make_unique<GazeFeed>(
@@ -161,15 +204,23 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateApiLayerInstance(const XrInstanceCr
 XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroyInstance(XrInstance instance) {
   Layer& l = layer();
   PFN_xrDestroyInstance destroy = l.next.DestroyInstance;
+  std::unique_ptr<GazeFeed> feed;
   {
     std::lock_guard lock(l.mutex);
-    l.feed.reset();  // its thread converts times through the instance: stop it first
+    feed = std::move(l.feed);
     for (auto& a : l.actions) a.handle.store(XR_NULL_HANDLE), a.gaze = false, a.set_active = false;
+    for (auto& a : l.attached_sets) a.handle.store(XR_NULL_HANDLE);
     for (auto& s : l.spaces) s.handle.store(XR_NULL_HANDLE);
-    for (auto& s : l.sessions) s.handle.store(XR_NULL_HANDLE);
+    for (auto& s : l.sessions) {
+      s.handle.store(XR_NULL_HANDLE);
+      quad_session_destroyed(s);
+    }
     for (auto& t : l.trackers) t.handle.store(XR_NULL_HANDLE);
     l.instance = XR_NULL_HANDLE;
   }
+  // Its thread converts times through the instance: stopped first, outside the mutex
+  // (it wakes at once: the thread waits on a condition, never on the app).
+  feed.reset();
   return destroy ? destroy(instance) : XR_ERROR_HANDLE_INVALID;
 }
 
@@ -199,20 +250,21 @@ void restore(XrBaseOutStructure* taken) {
 XRAPI_ATTR XrResult XRAPI_CALL layer_xrGetSystemProperties(XrInstance instance, XrSystemId system,
                                                            XrSystemProperties* props) {
   Layer& l = layer();
-  if (l.mode == GazeMode::runtime || !props) return l.next.GetSystemProperties(instance, system, props);
+  if (!props) return l.next.GetSystemProperties(instance, system, props);
   decide_serving(system);
-  XrBaseOutStructure* ext = l.runtime_ext ? nullptr : unlink(props, XR_TYPE_SYSTEM_EYE_GAZE_INTERACTION_PROPERTIES_EXT);
-  XrBaseOutStructure* fb = l.runtime_fb ? nullptr : unlink(props, XR_TYPE_SYSTEM_EYE_TRACKING_PROPERTIES_FB);
-  const XrResult r = l.next.GetSystemProperties(instance, system, props);
-  restore(fb);
-  restore(ext);
-  if (XR_FAILED(r)) return r;
-  for (auto* p = reinterpret_cast<XrBaseOutStructure*>(props->next); p; p = p->next) {
-    if (p->type == XR_TYPE_SYSTEM_EYE_GAZE_INTERACTION_PROPERTIES_EXT && l.app_ext && l.serve_ext)
-      reinterpret_cast<XrSystemEyeGazeInteractionPropertiesEXT*>(p)->supportsEyeGazeInteraction = XR_TRUE;
-    if (p->type == XR_TYPE_SYSTEM_EYE_TRACKING_PROPERTIES_FB && l.app_fb && l.serve_fb)
-      reinterpret_cast<XrSystemEyeTrackingPropertiesFB*>(p)->supportsEyeTracking = XR_TRUE;
+  XrBaseOutStructure* taken[kExtCount] = {};
+  for (int e = 0; e < kExtCount; ++e) {
+    const ServedExtension& x = served(static_cast<Ext>(e));
+    if (x.system_properties_type != 0 && l.app[e] && !l.runtime[e]) taken[e] = unlink(props, x.system_properties_type);
   }
+  const XrResult r = l.next.GetSystemProperties(instance, system, props);
+  for (int e = kExtCount - 1; e >= 0; --e) restore(taken[e]);
+  if (XR_FAILED(r)) return r;
+  for (auto* p = reinterpret_cast<XrBaseOutStructure*>(props->next); p; p = p->next)
+    for (int e = 0; e < kExtCount; ++e) {
+      const ServedExtension& x = served(static_cast<Ext>(e));
+      if (l.app[e] && p->type == x.system_properties_type && x.fill_system_properties) x.fill_system_properties(p);
+    }
   return r;
 }
 
@@ -220,24 +272,27 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateSession(XrInstance instance, const 
                                                      XrSession* session) {
   Layer& l = layer();
   const XrResult r = l.next.CreateSession(instance, info, session);
-  if (XR_FAILED(r) || l.mode == GazeMode::runtime || !(l.app_ext || l.app_fb)) return r;
+  if (XR_FAILED(r)) return r;
   decide_serving(info->systemId);
   std::lock_guard lock(l.mutex);
   XrReferenceSpaceCreateInfo view_info{XR_TYPE_REFERENCE_SPACE_CREATE_INFO, nullptr, XR_REFERENCE_SPACE_TYPE_VIEW,
                                        {{0, 0, 0, 1}, {0, 0, 0}}};
   XrSpace view = XR_NULL_HANDLE;
   if (XR_FAILED(l.next.CreateReferenceSpace(*session, &view_info, &view))) {
-    log_line("the runtime refused a VIEW space: no eye gaze in this session");
+    log_line("the runtime refused a VIEW space: no eye gaze or quad views in this session");
     return r;
   }
-  const bool claimed = claim_slot(l.sessions, *session, [view](SessionSlot& slot) {
+  const bool claimed = claim_slot(l.sessions, *session, [&](SessionSlot& slot) {
     slot.view = view;
     slot.focused = false;
     slot.gaze_active = false;
+    slot.latched.store(false, GazeNow{});
+    slot.system = info->systemId;
+    quad_session_created(slot, info);
   });
   if (!claimed) {
     l.next.DestroySpace(view);
-    log_line("more than 4 sessions at once: no eye gaze in this one");
+    log_line("more than 4 sessions at once: no eye gaze or quad views in this one");
   }
   return r;
 }
@@ -249,11 +304,14 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroySession(XrSession session) {
     if (SessionSlot* s = find_session(session)) {
       s->handle.store(XR_NULL_HANDLE);
       l.next.DestroySpace(s->view);
+      quad_session_destroyed(*s);
     }
     for (auto& t : l.trackers)
       if (t.handle.load() == session) t.handle.store(XR_NULL_HANDLE);
     for (auto& sp : l.spaces)
       if (sp.handle.load() != XR_NULL_HANDLE && sp.session == session) sp.handle.store(XR_NULL_HANDLE);
+    for (auto& a : l.attached_sets)
+      if (a.handle.load() != XR_NULL_HANDLE && a.session == session) a.handle.store(XR_NULL_HANDLE);
   }
   return l.next.DestroySession(session);
 }
@@ -268,59 +326,66 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrPollEvent(XrInstance instance, XrEventDat
   return r;
 }
 
-struct Intercept {
-  const char* name;
-  PFN_xrVoidFunction fn;
-  int needs;  ///< 0 always, 1 the app enabled XR_EXT_eye_gaze_interaction or the FB one, 2 the FB one
-};
+XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroySpace(XrSpace space) {
+  Layer& l = layer();
+  {
+    std::lock_guard lock(l.mutex);
+    if (SpaceSlot* s = find_space(space)) s->handle.store(XR_NULL_HANDLE);
+  }
+  return l.next.DestroySpace(space);
+}
 
-#define FOVEAL_FN(f) reinterpret_cast<PFN_xrVoidFunction>(f)
-const Intercept kIntercepts[] = {
-    {"xrGetInstanceProcAddr", FOVEAL_FN(layer_xrGetInstanceProcAddr), 0},
-    {"xrDestroyInstance", FOVEAL_FN(layer_xrDestroyInstance), 0},
-    {"xrGetSystemProperties", FOVEAL_FN(layer_xrGetSystemProperties), 1},
-    {"xrCreateSession", FOVEAL_FN(layer_xrCreateSession), 1},
-    {"xrDestroySession", FOVEAL_FN(layer_xrDestroySession), 1},
-    {"xrPollEvent", FOVEAL_FN(layer_xrPollEvent), 1},
-    {"xrCreateAction", FOVEAL_FN(layer_xrCreateAction), 1},
-    {"xrDestroyAction", FOVEAL_FN(layer_xrDestroyAction), 1},
-    {"xrDestroyActionSet", FOVEAL_FN(layer_xrDestroyActionSet), 1},
-    {"xrSuggestInteractionProfileBindings", FOVEAL_FN(layer_xrSuggestInteractionProfileBindings), 1},
-    {"xrAttachSessionActionSets", FOVEAL_FN(layer_xrAttachSessionActionSets), 1},
-    {"xrGetCurrentInteractionProfile", FOVEAL_FN(layer_xrGetCurrentInteractionProfile), 1},
-    {"xrSyncActions", FOVEAL_FN(layer_xrSyncActions), 1},
-    {"xrGetActionStatePose", FOVEAL_FN(layer_xrGetActionStatePose), 1},
-    {"xrCreateActionSpace", FOVEAL_FN(layer_xrCreateActionSpace), 1},
-    {"xrDestroySpace", FOVEAL_FN(layer_xrDestroySpace), 1},
-    {"xrLocateSpace", FOVEAL_FN(layer_xrLocateSpace), 1},
-    {"xrCreateEyeTrackerFB", FOVEAL_FN(layer_xrCreateEyeTrackerFB), 2},
-    {"xrDestroyEyeTrackerFB", FOVEAL_FN(layer_xrDestroyEyeTrackerFB), 2},
-    {"xrGetEyeGazesFB", FOVEAL_FN(layer_xrGetEyeGazesFB), 2},
+XRAPI_ATTR XrResult XRAPI_CALL layer_xrLocateSpace(XrSpace space, XrSpace base, XrTime time,
+                                                   XrSpaceLocation* location) {
+  Layer& l = layer();
+  if (!location) return l.next.LocateSpace(space, base, time, location);
+  const SpaceSlot* sp = find_space(space);
+  const SpaceSlot* bp = find_space(base);
+  if ((sp && sp->action < 0) || (bp && bp->action < 0))
+    return locate_combined_eye_space(space, base, time, location, sp, bp);
+  if (is_gaze_action_space(sp) || is_gaze_action_space(bp))
+    return locate_gaze_action_space(space, base, time, location, sp, bp);
+  return l.next.LocateSpace(space, base, time, location);
+}
+
+/// The calls the layer always answers for an instance that enabled any served extension.
+const Intercept kCore[] = {
+    {"xrDestroyInstance", FOVEAL_FN(layer_xrDestroyInstance), false},
+    {"xrGetSystemProperties", FOVEAL_FN(layer_xrGetSystemProperties), false},
+    {"xrCreateSession", FOVEAL_FN(layer_xrCreateSession), false},
+    {"xrDestroySession", FOVEAL_FN(layer_xrDestroySession), false},
+    {"xrPollEvent", FOVEAL_FN(layer_xrPollEvent), false},
+    {"xrDestroySpace", FOVEAL_FN(layer_xrDestroySpace), false},
+    {"xrLocateSpace", FOVEAL_FN(layer_xrLocateSpace), false},
 };
-#undef FOVEAL_FN
 
 XRAPI_ATTR XrResult XRAPI_CALL layer_xrGetInstanceProcAddr(XrInstance instance, const char* name,
                                                            PFN_xrVoidFunction* function) {
   Layer& l = layer();
   if (!name || !function) return XR_ERROR_VALIDATION_FAILURE;
-  // In pass-through mode, or for an app that asked for no gaze, the layer is not there.
-  const bool active = l.mode != GazeMode::runtime && instance != XR_NULL_HANDLE && instance == l.instance;
-  for (const Intercept& i : kIntercepts) {
-    if (std::strcmp(name, i.name) != 0) continue;
-    const bool wanted = i.needs == 0 || (i.needs == 1 && (l.app_ext || l.app_fb)) || (i.needs == 2 && l.app_fb);
-    if (active && wanted) {
-      *function = i.fn;
-      return XR_SUCCESS;
-    }
-    if (i.needs == 2 && active) {  // the FB functions of an instance that did not enable it
-      *function = nullptr;
-      return XR_ERROR_FUNCTION_UNSUPPORTED;
-    }
-    break;
-  }
   if (std::strcmp(name, "xrGetInstanceProcAddr") == 0) {
     *function = reinterpret_cast<PFN_xrVoidFunction>(layer_xrGetInstanceProcAddr);
     return XR_SUCCESS;
+  }
+  // In pass-through mode, or for an app that asked for nothing the layer serves, the
+  // layer is not there.
+  const bool active = l.mode != GazeMode::runtime && instance != XR_NULL_HANDLE && instance == l.instance;
+  bool any = l.quad_views();
+  for (int e = 0; e < kExtCount; ++e) any |= l.app[e];
+  if (active && any) {
+    for (const Intercept& i : kCore)
+      if (std::strcmp(name, i.name) == 0) return *function = i.fn, XR_SUCCESS;
+    for (int e = 0; e < kExtCount; ++e) {
+      const ServedExtension& x = served(static_cast<Ext>(e));
+      // The 1.1 inset configuration needs quad views' calls without the extension.
+      const bool on = l.app[e] || (e == static_cast<int>(Ext::varjo_quad_views) && l.instance_1_1);
+      for (std::size_t k = 0; k < x.function_count; ++k) {
+        const Intercept& i = x.functions[k];
+        if (std::strcmp(name, i.name) != 0) continue;
+        if (on) return *function = i.fn, XR_SUCCESS;
+        if (i.extension_only && !l.runtime[e]) return *function = nullptr, XR_ERROR_FUNCTION_UNSUPPORTED;
+      }
+    }
   }
   if (!l.next.GetInstanceProcAddr) return XR_ERROR_HANDLE_INVALID;
   return l.next.GetInstanceProcAddr(instance, name, function);
@@ -333,23 +398,26 @@ void decide_serving(XrSystemId system) {
   std::lock_guard lock(l.mutex);
   if (l.decided) return;
   bool runtime_gaze = false, runtime_eyes = false;
+  const bool runtime_ext = l.runtime_has(Ext::eye_gaze_interaction), runtime_fb = l.runtime_has(Ext::fb_eye_tracking_social);
   XrSystemEyeGazeInteractionPropertiesEXT ext{XR_TYPE_SYSTEM_EYE_GAZE_INTERACTION_PROPERTIES_EXT, nullptr, XR_FALSE};
   XrSystemEyeTrackingPropertiesFB fb{XR_TYPE_SYSTEM_EYE_TRACKING_PROPERTIES_FB, nullptr, XR_FALSE};
   XrSystemProperties props{XR_TYPE_SYSTEM_PROPERTIES, nullptr, 0, 0, {}, {}, {}};
-  if (l.runtime_ext) ext.next = props.next, props.next = &ext;
-  if (l.runtime_fb) fb.next = props.next, props.next = &fb;
+  if (runtime_ext) ext.next = props.next, props.next = &ext;
+  if (runtime_fb) fb.next = props.next, props.next = &fb;
   if (XR_SUCCEEDED(l.next.GetSystemProperties(l.instance, system, &props))) {
-    runtime_gaze = l.runtime_ext && ext.supportsEyeGazeInteraction;
-    runtime_eyes = l.runtime_fb && fb.supportsEyeTracking;
+    runtime_gaze = runtime_ext && ext.supportsEyeGazeInteraction;
+    runtime_eyes = runtime_fb && fb.supportsEyeTracking;
   }
   const bool always = l.mode == GazeMode::foveal;
-  l.serve_ext = l.app_ext && (always || !runtime_gaze);
-  l.serve_fb = l.app_fb && (always || !runtime_eyes);
+  const bool app_ext = l.app_has(Ext::eye_gaze_interaction), app_fb = l.app_has(Ext::fb_eye_tracking_social);
+  l.serve_ext = app_ext && (always || !runtime_gaze);
+  l.serve_fb = app_fb && (always || !runtime_eyes);
   l.decided = true;
   std::string line = std::string("eye gaze interaction: ") +
-                     (!l.app_ext ? "not asked for" : l.serve_ext ? "foveald's" : "the runtime's own") +
+                     (!app_ext ? "not asked for" : l.serve_ext ? "foveald's" : "the runtime's own") +
                      "; per-eye gaze (XR_FB_eye_tracking_social): " +
-                     (!l.app_fb ? "not asked for" : l.serve_fb ? "foveald's" : "the runtime's own");
+                     (!app_fb ? "not asked for" : l.serve_fb ? "foveald's" : "the runtime's own") +
+                     "; quad views: " + (l.quad_views() ? "the layer's, following foveald's gaze" : "not asked for");
   log_line(line.c_str());
 }
 

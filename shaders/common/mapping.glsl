@@ -10,6 +10,7 @@
 #define MAPPING_RMFR 0    // also full (f = 1e30: identity)
 #define MAPPING_KFR 1     // kernel log-polar
 #define MAPPING_LAYERS 2  // hyperbolic / linear fall-off: nested rectangles
+#define MAPPING_DESCRIBED 3  // a described method: its kernel is spliced in below
 #ifndef MAPPING
 #define MAPPING MAPPING_RMFR
 #endif
@@ -28,8 +29,13 @@ uniform int u_layer_count;
 uniform vec4 u_layer_rect[MAX_LAYERS];   // screen x, y, w, h (pixels)
 uniform vec4 u_layer_atlas[MAX_LAYERS];  // atlas y, buffer w, buffer h, pixel size
 uniform float u_layer_ecc[MAX_LAYERS];   // degrees; the last is huge
+uniform vec4 u_kernel_params;            // a described method's own numbers
 
 ivec2 clamp_pixel(vec2 p) { return clamp(ivec2(floor(p)), ivec2(0), ivec2(u_screen_size) - 1); }
+
+// A described method's kernel (foveal/image/method_description.hpp): the compositor gives
+// the program its GLSL as this file; empty for the built-in mappings.
+#include "method/kernel"
 
 // The screen pixel whose G-buffer sample fills `texel`.
 ivec2 source_pixel(ivec2 texel) {
@@ -44,6 +50,8 @@ ivec2 source_pixel(ivec2 texel) {
   vec2 local = vec2(texel) - vec2(0.0, atlas.x) + 0.5;
   vec2 p = rect.xy + min(local * atlas.w, rect.zw - 0.5);
   return clamp_pixel(p);
+#elif MAPPING == MAPPING_DESCRIBED
+  return method_source_pixel(texel);
 #else
   return foveal_rmfr_source_pixel(texel, u_buffer_size, u_screen_size, u_fovea, u_f);
 #endif
@@ -62,6 +70,8 @@ vec2 source_point(vec2 t) {
 #elif MAPPING == MAPPING_LAYERS
   vec4 rect = u_layer_rect[u_layer], atlas = u_layer_atlas[u_layer];
   return rect.xy + (t - vec2(0.0, atlas.x)) * atlas.w;
+#elif MAPPING == MAPPING_DESCRIBED
+  return method_source_point(t);
 #else
   return foveal_rmfr_inverse(t / u_buffer_size, u_fovea, u_f) * u_screen_size;
 #endif
@@ -116,6 +126,8 @@ vec4 resolve(sampler2D reduced, vec2 p) {
     }
   }
   return sample_layer(reduced, u_layer_count - 1, p);
+#elif MAPPING == MAPPING_DESCRIBED
+  return method_resolve(reduced, p);
 #endif
 }
 #endif

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "foveal/tools/run_program.hpp"
 #include "other_user.hpp"
 #include "sanitizers.hpp"
@@ -261,6 +263,58 @@ TEST(BenchMergeInput, CraftedShardFilesAreRefusedAtOnce) {
     EXPECT_LT(r.err.size(), 1000u);
     EXPECT_FALSE(fs::exists(out));
   }
+}
+
+// Issue 38, item 13: rows are copied into the merged CSV verbatim. A newline in a cell
+// added rows, NUL and ESC reached the file, a text cell "=cmd|..." would run in a
+// spreadsheet; each is refused naming the shard file, the table's line and the column.
+TEST(BenchMergeInput, ControlCharactersAndFormulasInCellsAreRefusedNamingShardLineAndColumn) {
+  TempDir d;
+  const std::string out = d.path("out");
+  const std::string good = "s,rmfr,2.6,15,0.15,1,1,0,0,0,0,0,30,0.9,31";
+  struct Case {
+    std::string name, line, expect;
+  } cases[] = {
+      {"newline", "s,full,1,100,1,2,1,0,0,0,0,0,inf,1,inf\ninjected,row,1,1,1,1,1,1,1,1,1,1,1,1,1",
+       "bench.csv line 3, column 15 'fpsnr_db': a control character (0x0a, a newline) in the cell"},
+      {"nul", std::string("s") + '\0' + "x,full,1,100,1,2,1,0,0,0,0,0,inf,1,inf", "bench.csv line 3, column 1 'scene': a control character (0x00, NUL)"},
+      {"esc", "\x1b[31ms,full,1,100,1,2,1,0,0,0,0,0,inf,1,inf", "bench.csv line 3, column 1 'scene': a control character (0x1b, ESC)"},
+      {"formula", "=cmd|' /C calc'!A0,full,1,100,1,2,1,0,0,0,0,0,inf,1,inf",
+       "bench.csv line 3, column 1 'scene': the text cell starts with '=', which a spreadsheet would run as a formula"},
+      {"at", "s,@SUM(A1),1,100,1,2,1,0,0,0,0,0,inf,1,inf", "bench.csv line 3, column 2 'method': the text cell starts with '@'"},
+      {"minus", "s,full,-cmd,100,1,2,1,0,0,0,0,0,inf,1,inf", "bench.csv line 3, column 3 'sigma': the text cell starts with '-'"},
+      {"plus", "+x,full,1,100,1,2,1,0,0,0,0,0,inf,1,inf", "column 1 'scene': the text cell starts with '+'"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const nlohmann::json tables = {{"bench.csv", {{"header", kHeader}, {"lines", {{0, good}, {1, c.line}}}}}};
+    const std::string shard = make_shard(d, c.name, shard_json(tables.dump()));
+    const auto r = foveal({"bench", "merge", "--no-png", "--out", out, shard});
+    EXPECT_EQ(r.exit_code, 2) << cli::describe_end(r) << "\n" << r.err;
+    EXPECT_NE(r.err.find(shard + "/shard.json: bench.csv line"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << "nothing written";
+  }
+  // A header cell too.
+  const nlohmann::json bad_header = {{"bench.csv", {{"header", std::string(kHeader) + ",\x1b]0;x\x07"}, {"lines", nlohmann::json::array()}}}};
+  const std::string shard = make_shard(d, "header", shard_json(bad_header.dump()));
+  const auto r = foveal({"bench", "merge", "--no-png", "--out", out, shard});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(shard + "/shard.json: bench.csv header, column 16: a control character (0x1b, ESC)"), std::string::npos) << r.err;
+}
+
+// Numbers may start with a sign: only text cells are formulas.
+TEST(BenchMergeInput, SignedNumbersAreNumbersAndTheReportCountsTheRowsWritten) {
+  TempDir d;
+  const std::string out = d.path("out");
+  const nlohmann::json tables = {
+      {"bench.csv", {{"header", kHeader}, {"lines", {{0, "s,full,1,100,1,2,1,0,0,0,0,0,inf,1,inf"}, {1, "s,rmfr,2.6,15,0.15,1,1,-0.5,+1e-3,0,0,0,-inf,0.9,31"}}}}}};
+  // No "rows" list: the merge used to say "0 rows" after writing two.
+  const std::string shard = make_shard(d, "s", shard_json(tables.dump(), "[1,1]", 2, "{}"));
+  const auto r = foveal({"bench", "merge", "--no-png", "--out", out, shard});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("bench: 2 rows (bench.csv 2) -> " + out + "/bench.json"), std::string::npos) << r.out;
+  EXPECT_NE(test::read_file(out + "/bench.csv").find("-0.5,+1e-3,0,0,0,-inf"), std::string::npos);
 }
 
 }  // namespace

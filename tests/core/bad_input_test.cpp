@@ -63,6 +63,10 @@ std::vector<NativeCase> native_cases() {
       {"head_nan_quaternion", kHeaderV2 + row_v2(0, "1,0.97,1.18,-0.55,nan,0,0,0"), ":4:", "head_qw"},
       {"head_non_unit_quaternion", kHeaderV2 + row_v2(0, "1,0.97,1.18,-0.55,0.5,0,0,0"), ":4:", "head_qw..head_qz"},
       {"head_truncated", kHeaderV2 + row_v2(0, "1,0.97,1.18"), ":4:", "head_z_m"},
+      // Parsed as floats, but no room-scale pose: foveald stopped after one frame with a
+      // message naming no file, line or time.
+      {"head_position_3e38", kHeaderV2 + row_v2(0) + row_v2(8, "1,3e38,1.18,-0.55,1,0,0,0"), ":5:", "head_x_m: 3e+38 m is out of range"},
+      {"head_position_beyond_a_kilometre", kHeaderV2 + row_v2(0, "1,0.97,1.18,-1000.5,1,0,0,0"), ":4:", "head_z_m"},
   };
 }
 

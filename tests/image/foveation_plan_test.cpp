@@ -118,7 +118,7 @@ TEST(FoveationPlan, RejectsBadLevels) {
 }
 
 TEST(FoveationPlan, UnknownMethodsAreErrorsNamingTheKnownOnes) {
-  EXPECT_EQ(method_names_joined(","), "full,rmfr,kfr,hyperbolic,linear,uniform,fixed");
+  EXPECT_EQ(method_names_joined(","), "full,rmfr,kfr,hyperbolic,linear,uniform,fixed,inset,inset-fixed");
   ASSERT_EQ(method_names().size(), all_methods().size());
   for (std::size_t i = 0; i < all_methods().size(); ++i) {
     EXPECT_EQ(method_names()[i], method_name(all_methods()[i]));
@@ -126,7 +126,7 @@ TEST(FoveationPlan, UnknownMethodsAreErrorsNamingTheKnownOnes) {
   }
   auto bad = parse_method("RMFR");
   ASSERT_FALSE(bad);
-  EXPECT_NE(bad.error().message.find("'RMFR' (full, rmfr, kfr, hyperbolic, linear, uniform, fixed)"), std::string::npos) << bad.error().message;
+  EXPECT_NE(bad.error().message.find("'RMFR' (full, rmfr, kfr, hyperbolic, linear, uniform, fixed, inset, inset-fixed)"), std::string::npos) << bad.error().message;
   // An enum value from elsewhere (a cast, a newer peer) plans nothing, at any level.
   const Method unknown = static_cast<Method>(42);
   EXPECT_FALSE(is_method(unknown));

@@ -22,6 +22,13 @@ nlohmann::json table_json() {
           {"jod", {{9.5, 9.0, 8.5}, {9.8, 9.4, 9.0}}}};
 }
 
+// A display model file named `name` (the bundled Vive's, renamed) at `path`.
+void write_model(const std::string& path, const std::string& name) {
+  auto j = nlohmann::json::parse(test::read_file(test::source_path("data/display/htc_vive_pro_eye.json")));
+  j["name"] = name;
+  test::write_file(path, j.dump());
+}
+
 JodLevelTable table() {
   auto t = JodLevelTable::from_json(table_json(), "t");
   EXPECT_TRUE(t) << t.error().message;
@@ -110,6 +117,7 @@ TEST(JodLevels, TheQualityKeyParsesJodTargetsOnly) {
 TEST(JodLevels, AProfilesQualityReplacesItsLevelsAndKeepsItsEfrRatio) {
   test::TempDir dir;
   const std::string model = dir.path("m.json");
+  write_model(model, "test");  // the table's display
   test::write_file(dir.path("m.levels.json"), table_json().dump());
   EXPECT_EQ(jod_levels_path(model), dir.path("m.levels.json"));
   Profile p;  // σ 2 / 3: ratio 1.5
@@ -128,6 +136,42 @@ TEST(JodLevels, AProfilesQualityReplacesItsLevelsAndKeepsItsEfrRatio) {
   auto missing = apply_quality(p, dir.path("other.json"));
   ASSERT_FALSE(missing);
   EXPECT_NE(missing.error().message.find("other.levels.json"), std::string::npos) << missing.error().message;
+}
+
+// Issue 38, item 17: RMFR's f stays where the compositor is tested (docs/stability.md:
+// 0.01 to 10); f = 1e-300 was chosen as it stood.
+TEST(JodLevels, AnFOutsideTheTestedRangeIsRefused) {
+  for (const nlohmann::json& fs : {nlohmann::json{1e-300, 0.4}, nlohmann::json{0.005, 0.4}, nlohmann::json{0.4, 50.0}}) {
+    auto j = table_json();
+    j["f"] = fs;
+    auto t = JodLevelTable::from_json(j, "T.levels.json");
+    ASSERT_FALSE(t) << fs.dump();
+    EXPECT_NE(t.error().message.find("T.levels.json: f: expected numbers in [0.01, 10] (RMFR's f where the compositor is tested)"),
+              std::string::npos)
+        << t.error().message;
+  }
+  auto j = table_json();
+  j["f"] = {0.01, 10.0};  // the ends are tested
+  EXPECT_TRUE(JodLevelTable::from_json(j, "T.levels.json"));
+}
+
+// Issue 38, item 17: a table measured on another display was used for the Vive's model.
+TEST(JodLevels, ATableOfAnotherDisplayIsRefusedNamingBoth) {
+  test::TempDir dir;
+  const std::string model = dir.path("vive.json");
+  write_model(model, "htc_vive_pro_eye");
+  auto t = table_json();
+  t["display"] = "hires_3800_35ppd";
+  test::write_file(dir.path("vive.levels.json"), t.dump());
+  Profile p;
+  p.quality = "jod:9";
+  auto r = apply_quality(p, model);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().kind, ErrorKind::bad_input);
+  EXPECT_NE(r.error().message.find(dir.path("vive.levels.json") + " is the levels table of display 'hires_3800_35ppd', but the "
+                                   "display model in use is 'htc_vive_pro_eye' (" + model + ")"),
+            std::string::npos)
+      << r.error().message;
 }
 
 TEST(JodLevels, TheBundledModelsTablesLoadAndChoose) {

@@ -135,7 +135,8 @@ class OpenXRRig {
   }
   /// The app's environment: Monado headless with its simulated HMD, the layer from
   /// `layers_share` (a share/ folder holding openxr/1/api_layers), core validation on.
-  std::vector<std::string> app_env(const std::string& layers_share, const std::vector<std::string>& extra = {}) const {
+  std::vector<std::string> app_env(const std::string& layers_share, const std::vector<std::string>& extra = {},
+                                   bool validation = true) const {
     std::vector<std::string> env = {"XR_RUNTIME_JSON=" FOVEAL_TEST_OPENXR_RUNTIME,
                                     "XRT_COMPOSITOR_NULL=1",
                                     "SIMULATED_ENABLE=1",
@@ -145,7 +146,7 @@ class OpenXRRig {
                                     "HOME=" + dir_.path(""),
                                     "FOVEAL_SHM_NAME=" + shm_,
                                     "PATH=/usr/bin:/bin"};
-    if (std::string(FOVEAL_TEST_OPENXR_VALIDATION_DIR).size() > 0) {
+    if (validation && std::string(FOVEAL_TEST_OPENXR_VALIDATION_DIR).size() > 0) {
       env.push_back("XR_API_LAYER_PATH=" FOVEAL_TEST_OPENXR_VALIDATION_DIR);
       env.push_back("XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation");
     }
@@ -160,6 +161,14 @@ class OpenXRRig {
                              const std::string& name = "app") const {
     args.insert(args.begin(), bin("openxr_gaze"));
     return std::make_unique<Child>(args, env, dir_.path(name + ".out"), dir_.path(name + ".err"));
+  }
+  /// The quad-views example (examples/openxr_quad_views): EGL sessions, which Debian's
+  /// core validation layer refuses (XrGraphicsBindingEGLMNDX), so it runs without it.
+  std::unique_ptr<Child> quad_app(std::vector<std::string> args, const std::vector<std::string>& extra_env,
+                                  const std::string& name, const std::string& layers_share) const {
+    args.insert(args.begin(), bin("openxr_quad_views"));
+    return std::make_unique<Child>(args, app_env(layers_share, extra_env, /*validation=*/false), dir_.path(name + ".out"),
+                                   dir_.path(name + ".err"));
   }
   std::vector<nlohmann::json> lines(const std::string& name = "app") const { return json_lines(read_file(dir_.path(name + ".out"))); }
   std::string err(const std::string& name = "app") const { return read_file(dir_.path(name + ".err")); }

@@ -3,6 +3,8 @@
 // does (examples/openxr_gaze), and foveald serving recorded or synthetic gaze.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <filesystem>
 
@@ -313,6 +315,68 @@ TEST_F(OpenXRLayer, StatusCommandNamesTheLayerTheRuntimeAndFoveald) {
   const json off = status({"FOVEAL_OPENXR_DISABLE=1"}, "status_off");
   EXPECT_FALSE(off["layer"]["enabled"].get<bool>()) << off.dump(2);
   EXPECT_NE(off["layer"]["why"].get<std::string>().find("FOVEAL_OPENXR_DISABLE"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace foveal
+
+namespace foveal {
+namespace {
+
+TEST_F(OpenXRLayer, ANewActionSetBindsGazeAndTwoLocatesInAFrameAgreeWithTheActionState) {
+  // Issue 37 item 0 (a, c): a next session's own action set takes the eye-gaze binding
+  // (the layer refused it once any set was attached), and the gaze located in LOCAL and
+  // in VIEW in one reading is tracked in both or neither, as the action state says.
+  auto fd = rig_.foveald({"--no-render", "--duration", "8", "--out", rig_.path("fd")}, "foveald");
+  wait_for_block();
+  auto app = rig_.app({"--duration", "4", "--second-set"}, rig_.app_env(kLayerShare));
+  ASSERT_EQ(app->wait(30000), 0) << rig_.err();
+  fd->signal(SIGTERM);
+  ASSERT_EQ(fd->wait(20000), 0) << rig_.err("foveald");
+  int lines = 0, active = 0;
+  json second, destroyed;
+  for (const json& l : rig_.lines()) {
+    if (!l.is_object()) continue;
+    if (l.value("event", "") == "second_set") second = l;
+    if (l.value("event", "") == "destroyed") destroyed = l;
+    if (l.value("event", "") != "gaze") continue;
+    ++lines;
+    const bool in_local = l["flags"].get<unsigned long long>() != 0, in_view = l["view_flags"].get<unsigned long long>() != 0;
+    EXPECT_EQ(in_local, in_view) << l.dump();
+    EXPECT_EQ(in_local, l["active"].get<bool>()) << l.dump();
+    active += l["active"].get<bool>();
+  }
+  EXPECT_GT(active, 20) << "of " << lines << " readings; " << rig_.err();
+  ASSERT_TRUE(second.contains("suggest")) << rig_.err();
+  EXPECT_EQ(second["suggest"].get<int>(), 0) << "XR_ERROR_ACTIONSETS_ALREADY_ATTACHED is -46";
+  std::printf("xrDestroyInstance took %.1f ms (the feed's thread is woken, not waited out)\n",
+              destroyed.value("destroy_instance_ms", -1.0));
+}
+
+TEST_F(OpenXRLayer, AFifoAtTheBlocksNameNeitherHangsTheAppNorItsExit) {
+  // Issue 38 items 1 and 2: a FIFO where the block should be, there from the start or
+  // planted while the app runs. The layer's open is non-blocking and refuses it; the app
+  // reads no gaze, runs its time and quits (xrDestroyInstance joins the feed's thread).
+  const std::string fifo = "/dev/shm" + rig_.shm();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+  auto before = rig_.app({"--duration", "2"}, rig_.app_env(kLayerShare), "before");
+  const int rc_before = before->wait(60000);
+  ::unlink(fifo.c_str());
+  ASSERT_EQ(rc_before, 0) << "-1: the app hung on the FIFO; " << rig_.err("before");
+  EXPECT_NE(rig_.err("before").find("FIFO"), std::string::npos) << rig_.err("before");
+
+  auto during = rig_.app({"--duration", "4"}, rig_.app_env(kLayerShare), "during");
+  for (int i = 0; i < 30000 && rig_.err("during").find("no gaze from foveald yet") == std::string::npos; ++i)
+    sleep_until_ns(monotonic_now_ns() + kNsPerMs);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);  // found at the feed's next look, 100 ms on
+  const int rc_during = during->wait(60000);
+  ::unlink(fifo.c_str());
+  EXPECT_EQ(rc_during, 0) << "-1: the app hung on the FIFO planted under it; " << rig_.err("during");
+  for (const json& l : rig_.lines("during")) {
+    if (l.is_object() && l.value("event", "") == "gaze") {
+      EXPECT_FALSE(l["active"].get<bool>()) << l.dump();
+    }
+  }
 }
 
 }  // namespace

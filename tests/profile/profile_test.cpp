@@ -65,6 +65,9 @@ INSTANTIATE_TEST_SUITE_P(
                       BadProfile{"eye_not_string", R"({"dominant_eye":1})", "dominant_eye"},
                       BadProfile{"sigma_string", R"({"sigma_d":"2"})", "expected a number"},
                       BadProfile{"f_negative", R"({"f_x":-0.1})", "f_x"},
+                      // Issue 38, item 17: f where the compositor is tested only, [0.01, 10].
+                      BadProfile{"f_tiny", R"({"f_x":1e-300})", "f_x: 1e-300 is not in [0.01, 10]"},
+                      BadProfile{"f_large", R"({"f_y":50})", "f_y: 50 is not in [0.01, 10]"},
                       BadProfile{"f_word", R"({"f_y":"wide"})", "\"auto\""},
                       BadProfile{"ipd_absurd", R"({"ipd_mm":300})", "ipd_mm"},
                       BadProfile{"filter_not_object", R"({"filter":3})", "filter"},
@@ -84,6 +87,9 @@ TEST(Profile, SetParsesAndValidates) {
   EXPECT_FALSE(p.set("sigma_d", "4"));  // above sigma_nd 3.5
   EXPECT_DOUBLE_EQ(p.sigma_d, 2.0);     // unchanged on failure
   EXPECT_FALSE(p.set("sigma_d", "two"));
+  EXPECT_FALSE(p.set("f_x", "1e-300"));  // issue 38, item 17
+  EXPECT_TRUE(p.set("f_x", "0.01"));
+  EXPECT_TRUE(p.set("f_y", "10"));
   EXPECT_FALSE(p.set("colour", "red"));
 }
 

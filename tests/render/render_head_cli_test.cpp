@@ -150,6 +150,20 @@ TEST(RenderHead, BadPosesAndTimesAreRefusedNamingWhatAndWhere) {
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
     EXPECT_FALSE(std::filesystem::exists(d.path("x.png"))) << c.args;
   }
+  // Past --at's own bound (1e7 s) in a log that spans more: the bound is named, not a
+  // span the time is inside.
+  {
+    std::istringstream in(test::read_file(log));
+    std::string text, line, first_row;
+    while (std::getline(in, line) && (line.empty() || line[0] == '#' || line.rfind("t_ns", 0) == 0)) text += line + "\n";
+    first_row = line;
+    const std::string long_log = d.path("long.csv");
+    test::write_file(long_log, text + first_row + "\n" + "20000000000000000" + first_row.substr(first_row.find(',')) + "\n");
+    auto r = test::run(render_cmd("--log " + long_log + " --at 1.5e7", d.path("x.png")));
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--at 1.5e+07: more than the 1e7 s (about 116 days) that --at accepts"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("outside"), std::string::npos) << r.err;
+  }
   // Within the tolerance a quaternion is renormalised, not refused.
   auto near_unit = test::run(render_cmd("--head 0,0,0,1.0005,0,0,0", d.path("n.png")));
   ASSERT_EQ(near_unit.exit_code, 0) << near_unit.err;

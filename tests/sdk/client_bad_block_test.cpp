@@ -1,7 +1,9 @@
 // foveal-client against blocks that foveald never leaves behind: truncated under a
 // client's mapping (SIGBUS on the old code), values out of the ranges foveald writes
 // (NaN pixels, confidence 1e30, unknown states), heartbeats no clock gives and writer
-// states that are neither live nor stopped. Each read says BAD_DATA; nothing crashes.
+// states that are neither live nor stopped, sample times no clock gives and view
+// tangents past any display's. Each read says BAD_DATA; nothing crashes, and no block is
+// left in /dev/shm, not even by a test whose process dies of SIGBUS.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -16,19 +18,47 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "foveal/client.h"
 #include "foveal/core/clock.hpp"
 #include "foveal/runtime/fovea_shm_layout.h"
+#include "shm_names.hpp"
 
 namespace {
+
+/// This run's blocks are named after one tag, the pid of the test process that made the
+/// first, handed to death tests' children through the environment (they re-run the test
+/// in a new process), so that leftovers() finds exactly what this run left.
+const std::string& run_tag() {
+  static const std::string tag = [] {
+    if (const char* t = std::getenv("FOVEAL_BAD_BLOCK_RUN"); t && *t) return std::string(t);
+    std::string t = std::to_string(::getpid());
+    ::setenv("FOVEAL_BAD_BLOCK_RUN", t.c_str(), 0);
+    return t;
+  }();
+  return tag;
+}
+
+std::string block_prefix() { return "foveal-bad-block-" + run_tag() + "-"; }
+
+/// The names in /dev/shm this run made and did not remove.
+std::vector<std::string> leftovers() { return foveal::test::shm_leftovers(block_prefix()); }
+
+/// After all the tests of this process (each ctest test is one process), nothing of
+/// this run's is left in /dev/shm.
+struct BadBlockPrefix {
+  std::string operator()() const { return block_prefix(); }
+};
+[[maybe_unused]] const auto* const g_no_block_left_behind =
+    ::testing::AddGlobalTestEnvironment(new foveal::test::NoShmLeftBehind<BadBlockPrefix>);
 
 /// A whole version-3 block as a live foveald leaves it, made by hand so that each test can
 /// break one value.
 class CraftedBlock {
  public:
   CraftedBlock() {
-    name_ = "/foveal-bad-block-" + std::to_string(::getpid()) + "-" +
+    name_ = "/" + block_prefix() + std::to_string(::getpid()) + "-" +
             ::testing::UnitTest::GetInstance()->current_test_info()->name();
     ::shm_unlink(name_.c_str());
     fd_ = ::shm_open(name_.c_str(), O_RDWR | O_CREAT | O_EXCL, 0600);
@@ -62,8 +92,11 @@ class CraftedBlock {
   ~CraftedBlock() {
     if (p_) ::munmap(p_, FOVEAL_SHM_V3_SIZE);
     if (fd_ >= 0) ::close(fd_);
-    ::shm_unlink(name_.c_str());
+    unlink();
   }
+  /// Removes the name now (a mapping of the block stays valid): for a process that will
+  /// not reach the destructor.
+  void unlink() { ::shm_unlink(name_.c_str()); }
   bool ok() const { return p_ != nullptr; }
   const char* name() const { return name_.c_str(); }
   int fd() const { return fd_; }
@@ -170,6 +203,7 @@ TEST(FovealClientBadBlock, ASigbusOutsideAReadReachesTheHandlerTheProgramHad) {
 
 TEST(FovealClientBadBlock, ASigbusOutsideAReadStillKillsAProgramWithoutAHandler) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");
+  run_tag();  // set before the child starts, which inherits it
   EXPECT_DEATH(
       {
         struct sigaction dfl{};
@@ -177,11 +211,15 @@ TEST(FovealClientBadBlock, ASigbusOutsideAReadStillKillsAProgramWithoutAHandler)
         ::sigaction(SIGBUS, &dfl, nullptr);
         CraftedBlock b;
         Client o(b.name());
+        b.unlink();  // this process dies below, before any destructor: the name goes now
         if (!o.c) std::_Exit(0);  // the death test then fails: it must die of SIGBUS
         ::raise(SIGBUS);
         std::_Exit(0);
       },
       "");
+  // The child died without cleaning up: what it made must be gone all the same.
+  const auto left = leftovers();
+  EXPECT_TRUE(left.empty()) << "the child that died of SIGBUS left" << foveal::test::shm_paths(left);
 }
 
 /// Reads through a fresh client after `breakage`, and returns what `read` says.
@@ -285,6 +323,57 @@ TEST(FovealClientBadBlock, AViewFovealdNeverWritesIsBadData) {
     EXPECT_EQ(after([&](CraftedBlock& b) { auto v = b.view(); breakage(v); b.view(v); }, read_view), FOVEAL_ERR_BAD_DATA);
   }
   EXPECT_EQ(after([](CraftedBlock& b) { auto v = b.view(); v.published = 0; b.view(v); }, read_view), FOVEAL_ERR_NO_DATA);
+}
+
+TEST(FovealClientBadBlock, SampleTimesNoClockGivesAreBadDataAndOldOnesRead) {
+  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max(), kMin = std::numeric_limits<std::int64_t>::min();
+  const std::int64_t now = foveal::monotonic_now_ns();
+  // INT64_MIN would overflow `now - t_ns`; an hour ahead would keep a frozen gaze fresh
+  // for an hour; 5 s ahead is more than any clock mapping is off.
+  const std::int64_t bad[] = {kMin, -1, 0, kMax, now + 3600 * foveal::kNsPerSec, now + 5 * foveal::kNsPerSec};
+  for (const std::int64_t t : bad) {
+    SCOPED_TRACE("t_ns " + std::to_string(t));
+    CraftedBlock b;
+    ASSERT_TRUE(b.ok());
+    Client o(b.name());
+    ASSERT_NE(o.c, nullptr) << o.err.message;
+    auto f = b.fovea();
+    f.t_ns = t;
+    b.fovea(f);
+    foveal_fovea out{};
+    out.frame = 77;
+    EXPECT_EQ(foveal_client_read(o.c, &out), FOVEAL_ERR_BAD_DATA);
+    EXPECT_EQ(out.frame, 77u) << "*out is unchanged";
+  }
+  // A sample from long ago (a paused foveald) and one a moment ahead (a tracker clock
+  // mapped a little early) are times foveald writes: the reader judges freshness.
+  for (const std::int64_t t : {std::int64_t{1}, now, now + foveal::kNsPerSec / 2}) {
+    SCOPED_TRACE("t_ns " + std::to_string(t));
+    EXPECT_EQ(after([&](CraftedBlock& b) { auto f = b.fovea(); f.t_ns = t; b.fovea(f); }, read_fovea), FOVEAL_OK);
+  }
+}
+
+TEST(FovealClientBadBlock, ViewTangentsPastTheDisplayModelsBoundsAreBadData) {
+  const std::function<void(foveal_shm_view&)> breakages[] = {
+      [](foveal_shm_view& v) { v.tan_left[0] = -1e19f; },
+      [](foveal_shm_view& v) { v.tan_right[1] = 1e19f; },
+      [](foveal_shm_view& v) { v.tan_top[0] = 100.5f; },
+      [](foveal_shm_view& v) { v.tan_bottom[1] = -101.0f; },
+      [](foveal_shm_view& v) { v.tan_left[0] = v.tan_right[0] - 0.005f; },  // narrower than any display's 0.01
+      [](foveal_shm_view& v) { v.tan_bottom[1] = v.tan_top[1] - 0.001f; },
+  };
+  int i = 0;
+  for (const auto& breakage : breakages) {
+    SCOPED_TRACE("breakage " + std::to_string(i++));
+    EXPECT_EQ(after([&](CraftedBlock& b) { auto v = b.view(); breakage(v); b.view(v); }, read_view), FOVEAL_ERR_BAD_DATA);
+  }
+  // Wide but inside the bounds foveald's display model takes (|tan| <= 100): it reads.
+  EXPECT_EQ(after([](CraftedBlock& b) {
+              foveal_shm_view v{{-100.0f, -50.0f}, {50.0f, 100.0f}, {-100.0f, -0.01f}, {0.0f, 100.0f}, 0.063f, 1};
+              b.view(v);
+            },
+                  read_view),
+            FOVEAL_OK);
 }
 
 TEST(FovealClientBadBlock, HeartbeatsNoClockGivesAndUnknownWriterStatesAreBadData) {

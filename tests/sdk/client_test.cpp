@@ -21,14 +21,23 @@
 #include "foveal/client.h"
 #include "foveal/core/clock.hpp"
 #include "foveal/runtime/fovea_shm.hpp"
+#include "shm_names.hpp"
 
 namespace foveal {
 namespace {
 
-std::string unique_name() {
-  return "/foveal-client-test-" + std::to_string(::getpid()) + "-" +
-         ::testing::UnitTest::GetInstance()->current_test_info()->name();
+std::string name_prefix() { return "foveal-client-test-" + std::to_string(::getpid()) + "-"; }
+
+/// This test's block name, removed when the test ends, also when it fails.
+test::ScopedShmName unique_name() {
+  return test::ScopedShmName("/" + name_prefix() + ::testing::UnitTest::GetInstance()->current_test_info()->name());
 }
+
+struct ClientTestPrefix {
+  std::string operator()() const { return name_prefix(); }
+};
+[[maybe_unused]] const auto* const g_no_block_left_behind =
+    ::testing::AddGlobalTestEnvironment(new test::NoShmLeftBehind<ClientTestPrefix>);
 
 FoveaFrame frame(float lx, float ly, float rx, float ry) {
   FoveaFrame f;
@@ -71,7 +80,7 @@ struct Opened {
 };
 
 TEST(FovealClient, ReadsTheFoveaAndTheSettingsTheWriterPublished) {
-  const std::string name = unique_name();
+  const auto name = unique_name();
   auto writer = FoveaShm::create(name);
   ASSERT_TRUE(writer) << writer.error().message;
   writer->publish_settings({2.25, 3.5, 0.3, -1.0, 0, 0, 7});
@@ -118,7 +127,7 @@ TEST(FovealClient, NoBlockIsNoWriterAndSaysSo) {
 }
 
 TEST(FovealClient, NothingPublishedYetIsNoData) {
-  const std::string name = unique_name();
+  const auto name = unique_name();
   auto writer = FoveaShm::create(name);
   ASSERT_TRUE(writer);
   writer->publish_settings({2.0, 3.0, 0.3, 0.3, 1, 0, 1});
@@ -132,7 +141,7 @@ TEST(FovealClient, NothingPublishedYetIsNoData) {
 }
 
 TEST(FovealClient, AStoppedWriterIsNoWriter) {
-  const std::string name = unique_name();
+  const auto name = unique_name();
   std::optional<FoveaShm> writer;
   {
     auto w = FoveaShm::create(name);
@@ -151,7 +160,7 @@ TEST(FovealClient, AStoppedWriterIsNoWriter) {
 }
 
 TEST(FovealClient, ASilentWriterIsDeadAndAWriterThatResumesIsAlive) {
-  const std::string name = unique_name();
+  const auto name = unique_name();
   auto writer = FoveaShm::create(name);
   ASSERT_TRUE(writer);
   writer->publish_settings({2.0, 3.0, 0.3, 0.3, 1, 0, 1});
@@ -174,7 +183,7 @@ TEST(FovealClient, ASilentWriterIsDeadAndAWriterThatResumesIsAlive) {
 }
 
 TEST(FovealClient, AVersionOneBlockIsWrongVersionNamingIt) {
-  const std::string name = unique_name();
+  const auto name = unique_name();
   {
     RawBlock raw(name, FOVEAL_SHM_V1_SIZE);  // what a foveald before settings made
     ASSERT_NE(raw.p, nullptr);
@@ -189,11 +198,10 @@ TEST(FovealClient, AVersionOneBlockIsWrongVersionNamingIt) {
   auto runtime_reader = FoveaShm::open(name);  // the runtime's reader refuses it the same way
   ASSERT_FALSE(runtime_reader);
   EXPECT_NE(runtime_reader.error().message.find("version-1 block"), std::string::npos);
-  ::shm_unlink(name.c_str());
 }
 
 TEST(FovealClient, ABlockOfAnotherKindIsWrongVersion) {
-  const std::string name = unique_name();
+  const auto name = unique_name();
   {
     RawBlock raw(name, 4096);
     ASSERT_NE(raw.p, nullptr);
@@ -203,12 +211,11 @@ TEST(FovealClient, ABlockOfAnotherKindIsWrongVersion) {
   EXPECT_EQ(o.c, nullptr);
   EXPECT_EQ(o.err.code, FOVEAL_ERR_WRONG_VERSION);
   EXPECT_NE(std::string(o.err.message).find("not a fovea block"), std::string::npos) << o.err.message;
-  ::shm_unlink(name.c_str());
 }
 
 TEST(FovealClient, ALaterVersionWithMoreSectionsStillReads) {
   // Later versions append (fovea_shm_layout.h): this library reads what it knows.
-  const std::string name = unique_name();
+  const auto name = unique_name();
   {
     RawBlock raw(name, 256);
     ASSERT_NE(raw.p, nullptr);
@@ -217,6 +224,7 @@ TEST(FovealClient, ALaterVersionWithMoreSectionsStillReads) {
     raw.put<std::uint32_t>(FOVEAL_SHM_SIZE_OFFSET, 256);
     raw.put<std::int64_t>(FOVEAL_SHM_HEARTBEAT_OFFSET, monotonic_now_ns());
     raw.put<std::uint32_t>(FOVEAL_SHM_WRITER_STATE_OFFSET, FOVEAL_SHM_WRITER_LIVE);
+    raw.put<std::int64_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, t_ns), monotonic_now_ns());
     raw.put<std::uint64_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, frame), 5);
     raw.put<std::uint32_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, eye_width), 1440);
     raw.put<std::uint32_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, eye_height), 1600);
@@ -228,17 +236,15 @@ TEST(FovealClient, ALaterVersionWithMoreSectionsStillReads) {
   ASSERT_EQ(foveal_client_read(o.c, &f), FOVEAL_OK);
   EXPECT_EQ(f.frame, 5u);
   EXPECT_FLOAT_EQ(f.x[0], 12.5f);
-  ::shm_unlink(name.c_str());
 }
 
 TEST(FovealClient, ABlockOthersMayWriteIsNotFovealds) {
-  const std::string name = unique_name();
+  const auto name = unique_name();
   { RawBlock raw(name, sizeof(FoveaShmBlock), 0666); ASSERT_NE(raw.p, nullptr); }
   Opened o(name.c_str());
   EXPECT_EQ(o.c, nullptr);
   EXPECT_EQ(o.err.code, FOVEAL_ERR_NOT_FOVEALDS);
   EXPECT_NE(std::string(o.err.message).find("mode 0666"), std::string::npos) << o.err.message;
-  ::shm_unlink(name.c_str());
 }
 
 TEST(FovealClient, BadArgumentsAreInvalidArgument) {
@@ -255,7 +261,7 @@ TEST(FovealClient, BadArgumentsAreInvalidArgument) {
 }
 
 TEST(FovealClient, TheEnvironmentNamesTheBlockForBothSides) {
-  const std::string name = unique_name();
+  const auto name = unique_name();
   ::setenv("FOVEAL_SHM_NAME", name.c_str(), 1);
   EXPECT_EQ(default_fovea_shm_name(), name);  // foveald's side
   auto writer = FoveaShm::create(default_fovea_shm_name());
@@ -269,7 +275,7 @@ TEST(FovealClient, TheEnvironmentNamesTheBlockForBothSides) {
 TEST(FovealClient, ReadersOnManyThreadsSeeOnlyWholeValues) {
   // The writer publishes frames whose every field derives from one counter: a torn read
   // would mix two of them. Readers run on several threads on one client (under TSan too).
-  const std::string name = unique_name();
+  const auto name = unique_name();
   auto writer = FoveaShm::create(name);
   ASSERT_TRUE(writer);
   Opened o(name.c_str());
@@ -323,7 +329,7 @@ namespace foveal {
 namespace {
 
 TEST(FovealClient, TheViewTurnsFoveaPixelsBackIntoTheDirectionsFovealdMapped) {
-  const std::string name = unique_name();
+  const auto name = unique_name();
   auto writer = FoveaShm::create(name);
   ASSERT_TRUE(writer) << writer.error().message;
   Opened o(name.c_str());
@@ -354,7 +360,7 @@ TEST(FovealClient, TheViewTurnsFoveaPixelsBackIntoTheDirectionsFovealdMapped) {
 }
 
 TEST(FovealClient, AVersionTwoBlockReadsButHasNoView) {
-  const std::string name = unique_name();
+  const auto name = unique_name();
   {
     RawBlock raw(name, FOVEAL_SHM_V2_SIZE);  // what a foveald before the view made
     ASSERT_NE(raw.p, nullptr);
@@ -363,6 +369,7 @@ TEST(FovealClient, AVersionTwoBlockReadsButHasNoView) {
     raw.put<std::uint32_t>(FOVEAL_SHM_SIZE_OFFSET, FOVEAL_SHM_V2_SIZE);
     raw.put<std::int64_t>(FOVEAL_SHM_HEARTBEAT_OFFSET, monotonic_now_ns());
     raw.put<std::uint32_t>(FOVEAL_SHM_WRITER_STATE_OFFSET, FOVEAL_SHM_WRITER_LIVE);
+    raw.put<std::int64_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, t_ns), monotonic_now_ns());
     raw.put<std::uint64_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, frame), 3);
     raw.put<std::uint32_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, eye_width), 1440);
     raw.put<std::uint32_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, eye_height), 1600);
@@ -373,7 +380,6 @@ TEST(FovealClient, AVersionTwoBlockReadsButHasNoView) {
   EXPECT_EQ(foveal_client_read(o.c, &f), FOVEAL_OK);
   foveal_view v{};
   EXPECT_EQ(foveal_client_view(o.c, &v), FOVEAL_ERR_WRONG_VERSION);
-  ::shm_unlink(name.c_str());
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 # and the installed Python module against a live foveald (replay of the bundled log,
 # --no-render), change sigma_d under them with `foveal ctl set`, and put a marker into
 # foveald's trace through the library.
+# The C program is linked with `pkg-config --libs` alone and run without LD_LIBRARY_PATH:
+# the .pc file of a non-system prefix carries the rpath (docs/sdk.md).
 # Usage: install_test.sh BUILD_DIR SOURCE_DIR PYTHON3
 set -euo pipefail
 build=$1 src=$2 python=$3
@@ -18,13 +20,26 @@ python_dir=$(dirname "$(find "$prefix" -path '*-packages/foveal/__init__.py')")
 python_dir=$(dirname "$python_dir")
 cp -r "$src/tests/sdk/consumers" "$work/src"  # the consumers build outside the source tree
 
-step "a C program with pkg-config --cflags --libs foveal-client"
+step "a C program with pkg-config --cflags --libs foveal-client, and nothing else"
 export PKG_CONFIG_PATH
 PKG_CONFIG_PATH=$(dirname "$(find "$prefix" -name foveal-client.pc)")
-libdir=$(pkg-config --variable=libdir foveal-client)
 # shellcheck disable=SC2046
 cc -std=c11 -Wall -Wextra -Wpedantic -Werror "$work/src/consumer.c" -o "$work/consumer_c" \
-  $(pkg-config --cflags --libs foveal-client) -Wl,-rpath,"$libdir" || fail "the C consumer does not build"
+  $(pkg-config --cflags --libs foveal-client) || fail "the C consumer does not build"
+# From a non-system prefix it starts as built: the .pc file's rpath names the prefix's
+# library, no LD_LIBRARY_PATH needed (the consumer runs below with none).
+dynamic=$(readelf -d "$work/consumer_c")
+grep -Eq "(RUNPATH|RPATH).*$prefix" <<< "$dynamic" || { echo "$dynamic"; fail "the C consumer has no rpath into $prefix"; }
+resolved=$(env -u LD_LIBRARY_PATH ldd "$work/consumer_c")
+grep -q "libfoveal-client.so.0 => $prefix" <<< "$resolved" || { echo "$resolved"; fail "libfoveal-client does not resolve into $prefix"; }
+
+step "a system prefix (/usr, staged with DESTDIR) gets a .pc file without an rpath"
+DESTDIR=$work/stage cmake --install "$build" --component sdk --prefix /usr > "$work/install-usr.log" \
+  || { show "$work/install-usr.log"; fail "the DESTDIR install failed"; }
+usr_pc=$(find "$work/stage/usr" -name foveal-client.pc)
+[[ -n $usr_pc ]] || fail "the DESTDIR install has no foveal-client.pc"
+# shellcheck disable=SC2016  # the .pc file's own ${libdir}, literally
+grep -q '^Libs: -L${libdir} -lfoveal-client$' "$usr_pc" || { show "$usr_pc"; fail "$usr_pc: Libs is not plain -L/-l"; }
 
 step "a CMake project with find_package(foveal CONFIG REQUIRED)"
 cmake -S "$work/src/cmake" -B "$work/cmake-build" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
@@ -36,7 +51,7 @@ start_foveald 90
 # NAME BINARY SIGMA_D: the consumer reads a fovea and says "ready"; then sigma_d changes.
 run_consumer() {
   local name=$1 binary=$2 sigma=$3 pid
-  "$binary" "$sigma" > "$work/$name.out" 2> "$work/$name.err" &
+  env -u LD_LIBRARY_PATH "$binary" "$sigma" > "$work/$name.out" 2> "$work/$name.err" &
   pid=$!
   for _ in $(seq 300); do
     grep -q '^ready' "$work/$name.out" && break

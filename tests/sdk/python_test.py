@@ -4,11 +4,13 @@ Usage: python_test.py BUILD_DIR SOURCE_DIR  (ctest: FovealPython)."""
 import math
 import os
 import signal
+import struct
 import subprocess
 import sys
 import tempfile
 import time
 import unittest
+import warnings
 
 BUILD, SOURCE = sys.argv.pop(1), sys.argv.pop(1)
 sys.path.insert(0, os.path.join(SOURCE, "sdk", "python"))
@@ -81,7 +83,13 @@ class Live(unittest.TestCase):
     def test_2_sees_a_settings_change_and_a_profile_switch(self):
         with self.client() as c:
             before = c.settings()
-            self.assertEqual((before.sigma_d, before.sigma_nd, before.dominant_eye), (2.0, 3.0, 1))  # the defaults
+            self.assertEqual((before.sigma_d, before.sigma_nd, before.dominant_eye), (2.0, 3.0, "right"))  # the defaults
+            self.assertIsInstance(before.dominant_eye, str)
+            self.assertEqual((before.dominant_eye.index, int(before.dominant_eye)), (1, 1))
+            with warnings.catch_warnings(record=True) as caught:  # code of the int days still works, and is told
+                warnings.simplefilter("always")
+                self.assertTrue(before.dominant_eye == 1 and before.dominant_eye != 0)
+            self.assertTrue(caught and all(issubclass(w.category, DeprecationWarning) for w in caught), caught)
             subprocess.run([os.path.join(BUILD, "bin", "foveal"), "ctl", "set", "sigma_d=2.75", "sigma_nd=3.25"],
                            env=self.env, check=True, stdout=subprocess.DEVNULL)
             after = c.settings()  # the reply comes after the change is in the block
@@ -91,7 +99,7 @@ class Live(unittest.TestCase):
             subprocess.run([os.path.join(BUILD, "bin", "foveal"), "ctl", "use", "bob"], env=self.env, check=True,
                            stdout=subprocess.DEVNULL)
             bob = c.settings()
-            self.assertEqual((bob.sigma_d, bob.sigma_nd, bob.dominant_eye), (2.4, 3.2, 0))
+            self.assertEqual((bob.sigma_d, bob.sigma_nd, bob.dominant_eye), (2.4, 3.2, "left"))
             self.assertGreater(bob.generation, after.generation)
 
     def test_3_a_stopped_foveald_is_no_writer(self):
@@ -217,6 +225,100 @@ class BothReaders(unittest.TestCase):
         with self.assertRaises(foveal.FormatError) as caught:
             foveal.read_gaze_log(fifo)
         self.assertIn("not a regular file", str(caught.exception))
+
+
+# Run as the second user: plants KIND at PATH, as `mkfifo -m 666 /dev/shm/foveal-fovea-<uid>`
+# did in issue 38. A block gets a live writer's header, so only owner and mode tell it apart.
+PLANT = r"""
+import os, struct, sys, time
+kind, path = sys.argv[1], sys.argv[2]
+if kind == "fifo":
+    os.mkfifo(path, 0o666); os.chmod(path, 0o666)
+elif kind == "symlink":
+    target = path + "-target"
+    os.mkfifo(target, 0o666); os.chmod(target, 0o666); os.symlink(target, path)
+else:
+    mode = int(kind[len("block"):], 8)
+    block = bytearray(200)
+    struct.pack_into("<III", block, 0, 0x41564F46, 3, 200)                  # magic "FOVA", version 3, size
+    struct.pack_into("<qII", block, 136, time.monotonic_ns() + 10**9, os.getpid(), 1)  # heartbeat, pid, live
+    fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, mode)
+    os.fchmod(fd, mode); os.write(fd, bytes(block)); os.close(fd)
+"""
+
+# Run as the victim: opens the block, prints the error code and message.
+OPEN = r"""
+import sys, foveal
+try:
+    foveal.Client(sys.argv[1]).close()
+    print("0 opened")
+except foveal.ClientError as e:
+    print(e.code, e)
+"""
+
+
+class PlantedBlocks(unittest.TestCase):
+    """Issue 38 item 1: what another user plants at a block name never hangs or fools
+    foveal.Client(): a FIFO (open used to wait for a writer, for ever), a symbolic link,
+    their own block open to all, and for root their private one. The planting runs as a
+    user this test creates; root opens, in a child with a generous time limit, so a hang
+    fails the test instead of stalling it."""
+
+    GUARD_S = 30
+
+    @classmethod
+    def setUpClass(cls):
+        if os.geteuid() != 0:
+            raise unittest.SkipTest("needs root to create a second user (useradd); CI runs the tests as root")
+        cls.user = f"fovpy{os.getpid()}"
+        for _ in range(20):  # parallel tests contend for /etc/passwd's lock
+            if subprocess.run(["useradd", "--system", "--no-create-home", "--user-group", "--shell", "/usr/sbin/nologin",
+                               cls.user], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode == 0:
+                break
+            time.sleep(0.1)
+        else:
+            raise AssertionError(f"useradd {cls.user} failed")
+
+    @classmethod
+    def tearDownClass(cls):
+        for _ in range(20):
+            if subprocess.run(["userdel", cls.user], stderr=subprocess.DEVNULL).returncode == 0:
+                break
+            time.sleep(0.1)
+        subprocess.run(["groupdel", cls.user], stderr=subprocess.DEVNULL)  # where userdel left the group
+
+    def remove_later(self, path):
+        def remove():
+            if os.path.lexists(path):
+                os.unlink(path)
+        self.addCleanup(remove)
+
+    def planted_open(self, kind):
+        name = f"/foveal-python-planted-{os.getpid()}-{kind}"
+        path = "/dev/shm" + name
+        self.remove_later(path)
+        self.remove_later(path + "-target")
+        subprocess.run([sys.executable, "-c", PLANT, kind, path], user=self.user, group=self.user, extra_groups=[],
+                       check=True)
+        env = dict(os.environ, PYTHONPATH=os.path.join(SOURCE, "sdk", "python"))
+        try:
+            done = subprocess.run([sys.executable, "-c", OPEN, name], env=env, capture_output=True, text=True,
+                                  timeout=self.GUARD_S)
+        except subprocess.TimeoutExpired:
+            self.fail(f"foveal.Client({name!r}) did not return within {self.GUARD_S} s: it waits on a planted {kind}")
+        self.assertEqual(done.returncode, 0, done.stderr)
+        code, message = done.stdout.strip().split(" ", 1)
+        return int(code), message
+
+    def test_what_another_user_plants_is_refused_at_once(self):
+        uid = subprocess.run(["id", "-u", self.user], capture_output=True, text=True, check=True).stdout.strip()
+        cases = [("fifo", "is a FIFO"), ("symlink", "symbolic link"), ("block0666", f"belongs to uid {uid}"),
+                 ("block0600", f"belongs to uid {uid}")]
+        for kind, naming in cases:
+            with self.subTest(kind=kind):
+                code, message = self.planted_open(kind)
+                self.assertEqual(code, foveal.NOT_FOVEALDS, message)
+                self.assertIn(naming, message)
 
 
 class MarkArguments(unittest.TestCase):

@@ -27,6 +27,8 @@ STYLE = {
     "linear": ("tab:orange", "linear, eye-tracked"),
     "fixed": ("tab:purple", "fixed foveation (no tracking)"),
     "uniform": ("tab:gray", "uniform resolution (no tracking)"),
+    "inset": ("tab:cyan", "inset (quad views), eye-tracked"),
+    "inset-fixed": ("tab:olive", "inset (quad views), fixed at the centre"),
 }
 TRACKED = "rmfr"
 

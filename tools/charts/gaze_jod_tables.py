@@ -19,9 +19,10 @@ import sys
 
 import chart_files
 
-ORDER = ["oracle", "rmfr", "fixed", "uniform", "hyperbolic", "kfr", "linear"]
+ORDER = ["oracle", "rmfr", "fixed", "uniform", "hyperbolic", "kfr", "linear", "inset", "inset-fixed"]
 NAMES = {"oracle": "perfect tracking", "rmfr": "RMFR+EFR, tracked", "fixed": "fixed", "uniform": "uniform",
-         "hyperbolic": "hyperbolic, tracked", "kfr": "KFR, tracked", "linear": "linear, tracked"}
+         "hyperbolic": "hyperbolic, tracked", "kfr": "KFR, tracked", "linear": "linear, tracked",
+         "inset": "inset, tracked", "inset-fixed": "inset, fixed"}
 THRESHOLDS = (9.5, 9.0)
 
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "commands.hpp"
+#include "foveal/core/json_text.hpp"
 #include "foveal/runtime/control_server.hpp"
 #include "foveal/tools/cli.hpp"
 
@@ -93,7 +94,7 @@ void add_ctl(CLI::App& app, int& exit_code) {
         both[name] = reply ? *reply : nlohmann::json{{"ok", false}, {"error", reply.error().message}};
         any_ok |= both[name].value("ok", false);
       }
-      std::printf("%s\n", a->json ? both.dump().c_str() : both.dump(2).c_str());
+      std::printf("%s\n", a->json ? json_text(both).c_str() : json_text(both, 2).c_str());
       if (!any_ok) exit_code = cli::kExitBadInput;
       return;
     }

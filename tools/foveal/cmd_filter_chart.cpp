@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "foveal/core/data_paths.hpp"
 #include "foveal/core/gaze_log.hpp"
+#include "foveal/core/json_text.hpp"
 #include "foveal/import/importers.hpp"
 #include "foveal/tools/filter_score.hpp"
 #include "foveal/tools/cli.hpp"
@@ -148,7 +149,7 @@ void add_filter_chart(CLI::App& app, int& exit_code) {
     }
     if (Status s = staged->write("filter_chart.csv", csv); !s) return fail(s.error());
     if (Status s = staged->write("filter_chart_real.csv", real_csv); !s) return fail(s.error());
-    if (Status s = staged->write("filter_chart.json", results.dump(2) + "\n"); !s) return fail(s.error());
+    if (Status s = staged->write("filter_chart.json", json_text(results, 2) + "\n"); !s) return fail(s.error());
     if (!a->no_png) {
       // No shell: --out reaches the script as one argument whatever characters it holds.
       const std::string python = "/usr/bin/python3", script = data_path("tools/charts/filter_chart.py");

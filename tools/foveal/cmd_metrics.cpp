@@ -1,9 +1,11 @@
 // foveal metrics: PSNR, SSIM and FPSNR of a test image against a reference, on a single
 // image or a side-by-side stereo frame; with --jod, FovVideoVDP's JOD of images and frame
 // sequences (docs/metrics.md).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -13,6 +15,7 @@
 #include "foveal/perception/jod_files.hpp"
 #include "foveal/tools/args.hpp"
 #include "foveal/tools/cli.hpp"
+#include "memory_bound.hpp"
 
 namespace foveal::cmd {
 
@@ -26,7 +29,43 @@ struct Args {
   bool jod = false;
   std::string display, fovea_list, jod_release = "1.2";
   double fps = 0, peak = 133.3, black = 0.1;
+  bool fps_given = false;
 };
+
+// The documented ranges (docs/metrics.md): pixels per degree of any display or image a
+// person looks at, and the frame rates a video ring is sized for (ceil(fps/4) frames).
+constexpr double kMinPpd = 0.1, kMaxPpd = 1000, kMaxFps = 1000;
+
+Status check_range(double v, double lo, double hi, bool lo_open, const char* option, const char* unit) {
+  if (std::isfinite(v) && (lo_open ? v > lo : v >= lo) && v <= hi) return {};
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%s: must lie in %s%g, %g] %s, got %g", option, lo_open ? "(" : "[", lo, hi, unit, v);
+  return bad_input(buf);
+}
+
+// "two 1024x1024 images", "two videos of 20 2880x1600 stereo frames at 90 fps".
+std::string work_text(const perception::JodPlan& p, double fps) {
+  const std::string size = std::to_string(p.width * p.eyes) + "x" + std::to_string(p.height) + (p.eyes > 1 ? " stereo" : "");
+  if (p.refs.size() == 1) return "JOD of two " + size + " images";
+  char rate[32];
+  std::snprintf(rate, sizeof rate, "%g", fps);
+  const auto ring = std::min(static_cast<std::size_t>(std::ceil(fps / 4)), p.refs.size());
+  return "JOD of two videos of " + std::to_string(p.refs.size()) + " " + size + " frames at " + rate + " fps (each eye keeps " +
+         std::to_string(ring) + " frames of both)";
+}
+
+// A figure reported as a success must be a number: NaN never is, and infinity only where
+// the images are identical (PSNR/FPSNR of a zero error).
+Status check_finite(const image::Metrics& m, const char* label) {
+  const bool ok = std::isfinite(m.mse) && std::isfinite(m.fmse) && std::isfinite(m.ssim) &&
+                  (std::isfinite(m.psnr_db) || (m.mse == 0 && m.psnr_db > 0)) &&
+                  (std::isfinite(m.fpsnr_db) || (m.fmse == 0 && m.fpsnr_db > 0));
+  if (ok) return {};
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "metrics: the %s figures are not finite (PSNR %g, SSIM %g, FPSNR %g): an internal error, not a result",
+                label, m.psnr_db, m.ssim, m.fpsnr_db);
+  return Error{ErrorKind::internal, buf};
+}
 
 // JSON has no infinity: identical images print "inf".
 nlohmann::json db(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json("inf"); }
@@ -49,7 +88,7 @@ Result<image::NormPoint> parse_fovea(const std::string& s, const char* what) {
 
 Result<image::Image> load_named(const std::string& path, const char* what) {
   auto img = image::load(path);
-  if (!img) return bad_input(std::string(what) + " " + img.error().message);
+  if (!img) return Error{img.error().kind, std::string(what) + " " + img.error().message};
   return img;
 }
 
@@ -63,7 +102,14 @@ int run_jod(const Args& a) {
   rq.stereo = a.stereo;
   rq.fps = a.fps;
   rq.fovea_list = a.fovea_list;
+  if (Status s = check_range(a.peak, perception::kMinLuminanceCdM2, perception::kMaxLuminanceCdM2, true, "--peak", "cd/m²"); !s)
+    return cli::report(s.error());
+  if (Status s = check_range(a.black, perception::kMinLuminanceCdM2, perception::kMaxLuminanceCdM2, false, "--black", "cd/m²"); !s)
+    return cli::report(s.error());
+  if (a.fps_given)
+    if (Status s = check_range(a.fps, 0, kMaxFps, true, "--fps", "frames per second"); !s) return cli::report(s.error());
   rq.photometry = {a.peak, a.black};
+  if (Status s = rq.photometry.validate(); !s) return cli::report(bad_input("--peak/--black: " + s.error().message));
   if (a.jod_release == "1.0") rq.parameters = perception::Parameters::release_1_0();
   if (!a.display.empty()) {
     auto m = DisplayModel::load(a.display);
@@ -85,9 +131,17 @@ int run_jod(const Args& a) {
     if (!r) return cli::report(r.error());
     rq.fovea_right = *r;
   }
+  // Sized from the frame lists and headers before a pixel is decoded.
+  auto plan = perception::plan_jod(rq);
+  if (!plan) return cli::report(plan.error());
+  if (Status s = check_memory(plan->bytes, work_text(*plan, a.fps)); !s) return cli::report(bad_input("metrics --jod: " + s.error().message));
   auto rep = perception::run_jod(rq);
   if (!rep) return cli::report(rep.error());
   const auto& c = rep->combined;
+  for (const perception::JodScore* sc : {&rep->combined, &rep->eyes.front(), &rep->eyes.back()})
+    if (!std::isfinite(sc->jod) || !std::isfinite(sc->q))
+      return cli::report(Error{ErrorKind::internal, "metrics --jod: the metric gave JOD " + std::to_string(sc->jod) + " (Q " +
+                                                        std::to_string(sc->q) + "), not a number: an internal error, not a result"});
   if (a.json) {
     nlohmann::json j = {{"ref", a.ref}, {"test", a.test}, {"size", {rep->width, rep->height}}, {"stereo", a.stereo},
                         {"display", rq.display.name}, {"release", a.jod_release}, {"ppd", c.ppd}, {"peak_cd_m2", a.peak}, {"black_cd_m2", a.black},
@@ -113,6 +167,7 @@ int run_jod(const Args& a) {
 }
 
 int run(const Args& a) {
+  if (Status s = check_range(a.ppd, kMinPpd, kMaxPpd, false, "--ppd", "pixels per degree"); !s) return cli::report(s.error());
   if (a.jod) return run_jod(a);
   if (a.fovea.empty()) return cli::report(bad_input("--fovea: required (except with --jod)"));
   image::MetricsOptions opt;
@@ -125,9 +180,18 @@ int run(const Args& a) {
     if (!r) return cli::report(r.error());
     opt.fovea_right = *r;
   }
-  if (!std::isfinite(a.ppd) || a.ppd <= 0) return cli::report(bad_input("--ppd: must be > 0, got " + std::to_string(a.ppd)));
   opt.ppd = a.ppd;
   opt.ssim_channels = a.ssim_channels == "rgb" ? image::SsimChannels::rgb : image::SsimChannels::luma;
+  {  // Both images decoded (4 B a pixel each) and one decode's transients (docs/metrics.md, "Memory").
+    auto hr = image::probe(a.ref);
+    if (!hr) return cli::report(bad_input("--ref " + hr.error().message));
+    auto ht = image::probe(a.test);
+    if (!ht) return cli::report(bad_input("--test " + ht.error().message));
+    const std::uint64_t px = static_cast<std::uint64_t>(std::max(hr->width, ht->width)) * static_cast<std::uint64_t>(std::max(hr->height, ht->height));
+    const std::uint64_t need = 12 * px + 2 * std::max(hr->file_bytes, ht->file_bytes);
+    if (Status s = check_memory(need, "two " + std::to_string(hr->width) + "x" + std::to_string(hr->height) + " images"); !s)
+      return cli::report(bad_input("metrics: " + s.error().message));
+  }
   auto ref = load_named(a.ref, "--ref");
   if (!ref) return cli::report(ref.error());
   auto test = load_named(a.test, "--test");
@@ -142,6 +206,8 @@ int run(const Args& a) {
   if (a.stereo) {
     auto m = image::compute_stereo_metrics(*ref, *test, opt);
     if (!m) return cli::report(m.error());
+    for (const auto& [eye, label] : {std::pair{&m->left, "left"}, std::pair{&m->right, "right"}, std::pair{&m->combined, "combined"}})
+      if (Status s = check_finite(*eye, label); !s) return cli::report(s.error());
     if (a.json) {
       j["fovea_left"] = {opt.fovea.x, opt.fovea.y};
       j["fovea_right"] = {opt.fovea_right.x, opt.fovea_right.y};
@@ -159,6 +225,7 @@ int run(const Args& a) {
   } else {
     auto m = image::compute_metrics(*ref, *test, opt);
     if (!m) return cli::report(m.error());
+    if (Status s = check_finite(*m, "image"); !s) return cli::report(s.error());
     if (a.json) {
       j["fovea"] = {opt.fovea.x, opt.fovea.y};
       j.update(to_json(*m));
@@ -184,7 +251,7 @@ void add_metrics(CLI::App& app, int& exit_code) {
                   "required except with --jod, where 'none' or leaving it out scores without foveation");
   sub->add_option("--fovea-right", args->fovea_right, "With --stereo: the right half's fovea (default: --fovea)");
   sub->add_flag("--stereo", args->stereo, "Side-by-side stereo frame: each half is an eye with its own fovea");
-  sub->add_option("--ppd", args->ppd, "Pixels per degree at the (eye) image centre")->capture_default_str();
+  sub->add_option("--ppd", args->ppd, "Pixels per degree at the (eye) image centre, [0.1, 1000]")->capture_default_str();
   sub->add_option("--ssim-channels", args->ssim_channels, "SSIM on BT.601 luma, or the mean over R, G, B")
       ->check(CLI::IsMember({"luma", "rgb"}))
       ->capture_default_str();
@@ -192,15 +259,18 @@ void add_metrics(CLI::App& app, int& exit_code) {
   sub->add_flag("--jod", args->jod,
                 "FovVideoVDP's JOD instead (docs/metrics.md): --ref/--test may be folders or .txt lists of frames");
   sub->add_option("--display", args->display, "--jod: display-model JSON (default: HTC Vive Pro Eye)");
-  sub->add_option("--fps", args->fps, "--jod: frame rate of frame sequences");
+  CLI::Option* fps = sub->add_option("--fps", args->fps, "--jod: frame rate of frame sequences, (0, 1000]");
   sub->add_option("--fovea-list", args->fovea_list, "--jod: a file with one fovea per frame (X,Y or XL,YL,XR,YR or none)");
   sub->add_option("--jod-release", args->jod_release,
                   "--jod: the calibration, FovVideoVDP release 1.2's or 1.0's (the paper's)")
       ->check(CLI::IsMember({"1.2", "1.0"}))
       ->capture_default_str();
-  sub->add_option("--peak", args->peak, "--jod: the display's peak luminance, cd/m²")->capture_default_str();
-  sub->add_option("--black", args->black, "--jod: the display's black level, cd/m²")->capture_default_str();
-  sub->callback([args, &exit_code] { exit_code = run(*args); });
+  sub->add_option("--peak", args->peak, "--jod: the display's peak luminance, cd/m² (black < peak <= 10000)")->capture_default_str();
+  sub->add_option("--black", args->black, "--jod: the display's black level, cd/m² (0.001 <= black < peak)")->capture_default_str();
+  sub->callback([args, fps, &exit_code] {
+    args->fps_given = fps->count() > 0;
+    exit_code = run(*args);
+  });
 }
 
 }  // namespace foveal::cmd

@@ -29,7 +29,9 @@ nlohmann::json results_json(const std::vector<LatencyResult>& rs) {
         nlohmann::json by_shown;
         for (Shown s : kShown) {
           const ErrorStats& e = r.stats[static_cast<std::size_t>(tr)][static_cast<std::size_t>(ph)][static_cast<std::size_t>(s)];
-          by_shown[shown_name(s)] = {{"n", e.n}, {"p50_deg", e.p50}, {"p95_deg", e.p95}, {"p99_deg", e.p99}, {"mean_deg", e.mean}};
+          // No sample, no figure: null, never a 0° error nobody measured.
+          const auto deg = [&e](double v) { return e.n ? nlohmann::json(v) : nlohmann::json(nullptr); };
+          by_shown[shown_name(s)] = {{"n", e.n}, {"p50_deg", deg(e.p50)}, {"p95_deg", deg(e.p95)}, {"p99_deg", deg(e.p99)}, {"mean_deg", deg(e.mean)}};
         }
         by_phase[phase_name(ph)] = by_shown;
       }
@@ -51,11 +53,27 @@ void print_results(const std::vector<LatencyResult>& rs) {
       for (Phase ph : kPhases) {
         const auto& row = r.stats[static_cast<std::size_t>(tr)][static_cast<std::size_t>(ph)];
         std::printf("  %-14s %6zu", phase_name(ph), row[0].n);
-        for (const ErrorStats& e : row) std::printf("  %5.2f/%5.2f/%6.2f   ", e.p50, e.p95, e.p99);
+        for (const ErrorStats& e : row)
+          if (e.n) std::printf("  %5.2f/%5.2f/%6.2f   ", e.p50, e.p95, e.p99);
+          else std::printf("  %-20s", "    -/    -/     -");
         std::printf("\n");
       }
     }
   }
+}
+
+// The most latencies one run evaluates: each keeps every sample's errors (a run with
+// 3,000 of them took 2.6 GB).
+constexpr std::size_t kMaxLatencies = 32;
+
+// The latencies at which not one sample could be scored (no valid eye at t with a truth
+// at t + L): figures there would be made up.
+std::string unevaluated(const std::vector<LatencyResult>& rs) {
+  std::string out;
+  for (const LatencyResult& r : rs)
+    if (r.stats[static_cast<std::size_t>(Truth::recorded)][static_cast<std::size_t>(Phase::all)][0].n == 0)
+      out += (out.empty() ? "" : ", ") + shown_number(r.latency_ms) + " ms";
+  return out;
 }
 
 }  // namespace
@@ -74,7 +92,7 @@ void add_predict_eval(CLI::App& app, int& exit_code) {
       "Angular error at display time t+L against the recorded gaze at t+L: the raw sample, the filter, the filter "
       "with predict_ms = L, and predict_fovea (docs/results/latency/prediction.md)");
   sub->add_option("logs", a->logs, "Native gaze logs (several are pooled)")->required();
-  sub->add_option("--latency-ms", a->latencies_ms, "Latencies to evaluate, comma-separated (0 < L <= 200)")
+  sub->add_option("--latency-ms", a->latencies_ms, "Latencies to evaluate, comma-separated (0 < L <= 200, at most 32)")
       ->delimiter(',')
       ->capture_default_str();
   sub->add_option("--config", a->config, "Filter settings JSON (keys of docs/filtering.md)");
@@ -84,6 +102,10 @@ void add_predict_eval(CLI::App& app, int& exit_code) {
   sub->add_flag("--json", a->json, "Print the figures as JSON (per log and pooled)");
   sub->callback([a, &exit_code] {
     auto fail = [&exit_code](const Error& e) { exit_code = cli::report(e); };
+    if (a->latencies_ms.empty()) return fail(bad_input("predict-eval: --latency-ms: give at least one latency"));
+    if (a->latencies_ms.size() > kMaxLatencies)
+      return fail(bad_input("predict-eval: --latency-ms: " + std::to_string(a->latencies_ms.size()) + " latencies, at most " +
+                            std::to_string(kMaxLatencies) + " in one run"));
     for (double L : a->latencies_ms)
       if (!(L > 0 && L <= 200))
         return fail(bad_input("predict-eval: --latency-ms: " + shown_number(L) + " is not in (0, 200]"));
@@ -118,6 +140,11 @@ void add_predict_eval(CLI::App& app, int& exit_code) {
                            {"latencies", results_json(evaluate_prediction(logs[i], model, cfg, a->latencies_ms, pred))}});
     }
     const auto all = pooled.result();
+    // Nothing evaluated is bad input, not a 0° error (docs/filtering.md).
+    if (const std::string none = unevaluated(all); !none.empty())
+      return fail(bad_input("predict-eval: no sample could be evaluated at L = " + none + ": none of the " +
+                            std::to_string(logs.size()) + " log(s) has a valid eye at t with a recorded gaze at t + L "
+                            "(every sample invalid, or the valid runs shorter than L)"));
     if (a->json) {
       cli::print_json({{"logs", per_log},
                        {"pooled", results_json(all)},

@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/display_model.hpp"
+#include "foveal/core/json_text.hpp"
 #include "foveal/core/shown_text.hpp"
 #include "foveal/runtime/jod_levels.hpp"
 #include "foveal/runtime/profile.hpp"
@@ -44,7 +45,7 @@ void print_profile(const Profile& p, bool active, bool json) {
     cli::print_json(j);
     return;
   }
-  std::printf("%s%s\n%s\n", p.name.c_str(), active ? " (active)" : "", p.to_json().dump(2).c_str());
+  std::printf("%s%s\n%s\n", p.name.c_str(), active ? " (active)" : "", json_text(p.to_json(), 2).c_str());
   if (p.quality.empty()) return;
   const nlohmann::json& l = j["levels"];
   if (l.contains("error")) {
@@ -188,7 +189,7 @@ void add_profile(CLI::App& app, int& exit_code) {
     if (Status s = check_output_is_not_an_input(a->file, {store.path_of(a->name)}); !s) return fail(s.error());
     auto p = store.load(a->name);
     if (!p) return fail(p.error());
-    if (Status s = write_file_atomically(a->file, p->to_json().dump(2) + "\n"); !s) return fail(s.error());
+    if (Status s = write_file_atomically(a->file, json_text(p->to_json(), 2) + "\n"); !s) return fail(s.error());
     std::printf("exported %s -> %s\n", a->name.c_str(), a->file.c_str());
   });
 

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -18,6 +20,7 @@
 #include "foveal/render/egl_context.hpp"
 #include "foveal/render/scene.hpp"
 #include "foveal/tools/cli.hpp"
+#include "memory_bound.hpp"
 #include "render_args.hpp"
 
 namespace foveal::cmd {
@@ -67,10 +70,24 @@ nlohmann::json head_json(const RenderSetup& s) {
 
 double mb(std::size_t bytes) { return static_cast<double>(bytes) / (1024.0 * 1024.0); }
 
+// The frame's memory from its size alone, before a context or a target exists: with a
+// software GL (llvmpipe) the render targets live in this process, and the frame is read
+// back and encoded as PNG here. Peak RSS measured on llvmpipe from 1024x512 to 8192x4096:
+// 30 bytes a pixel (either pipeline, full or RMFR), 45 with --compare-pipelines and
+// --f auto (both pipelines' targets, the frame on the CPU), over ~300 MB (Dungeon's
+// textures, the libraries).
+constexpr std::uint64_t kRenderBytesPerPixel = 32, kRenderExtraBytesPerPixel = 14, kRenderBaseBytes = 300'000'000;
+
 int run(const Args& a) {
   auto setup = resolve(a.render);
   if (!setup) return cli::report(setup.error());
   if (a.frames < 1) return cli::report(bad_input("--frames must be >= 1"));
+  {
+    const std::uint64_t w = static_cast<std::uint64_t>(setup->compositor.width), h = static_cast<std::uint64_t>(setup->compositor.height);
+    const std::uint64_t per_px = kRenderBytesPerPixel + (a.compare_pipelines || setup->auto_f ? kRenderExtraBytesPerPixel : 0);
+    if (Status s = check_memory(per_px * w * h + kRenderBaseBytes, "a " + std::to_string(w) + "x" + std::to_string(h) + " frame"); !s)
+      return cli::report(bad_input("render --size: " + s.error().message));
+  }
   if (Status s = check_output_is_not_an_input(a.out, {setup->scene, a.render.display}); !s) return cli::report(s.error());
   auto ctx = gl::EglContext::create();
   if (!ctx) return cli::report(ctx.error());

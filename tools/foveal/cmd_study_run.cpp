@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/json_file.hpp"
+#include "foveal/core/json_text.hpp"
 #include "foveal/core/read_file.hpp"
 #include "foveal/image/image.hpp"
 #include "foveal/render/egl_context.hpp"
@@ -228,7 +229,7 @@ int run(const Args& a) {
       return cli::report(st.error());
     }
   const nlohmann::json summary = summary_json(session, a, stats, jod);
-  if (Status st = write_file_atomically(a.out + "/summary.json", summary.dump(2) + "\n"); !st) {
+  if (Status st = write_file_atomically(a.out + "/summary.json", json_text(summary, 2) + "\n"); !st) {
     std::filesystem::remove(trials_path, ec);
     std::filesystem::remove(conditions_path, ec);
     return cli::report(st.error());

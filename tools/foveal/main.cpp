@@ -1,6 +1,10 @@
 // foveal: the command-line tool (import, log, synth, and more as the runtime grows).
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
+#include <new>
+#include <string>
+
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/tools/cli.hpp"
@@ -39,6 +43,19 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : foveal::cli::kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    // Every command runs inside parse(): an allocation that fails anywhere ends here, as an
+    // internal error with a message, not an abort. Outputs are atomic: none is left partial.
+    std::string name = "foveal";
+    for (const CLI::App* sub = &app; !sub->get_subcommands().empty();) {
+      sub = sub->get_subcommands().front();
+      name += " " + sub->get_name();
+    }
+    std::fprintf(stderr,
+                 "foveal: error: %s: out of memory (an allocation failed), stopped; files are written whole or not at "
+                 "all. Free memory, raise the process's limit or give it smaller input\n",
+                 name.c_str());
+    return foveal::cli::kExitFailure;
   }
   return exit_code;
 }

@@ -44,6 +44,10 @@ void add_render_options(CLI::App& sub, RenderArgs& a) {
   sub.add_option("--kfr-alpha", a.kfr_alpha, "KFR kernel exponent (> 0)")->capture_default_str();
   sub.add_option("--layer-scale", a.layer_scale,
                  "hyperbolic/linear: scale of the 10/20 degree thresholds (default: match the cost of sigma)");
+  sub.add_option("--inset-deg", a.inset_deg,
+                 "inset/inset-fixed: the inner view's half-extent in degrees (default 0: 35% of the view per axis)");
+  sub.add_option("--inset-band-deg", a.inset_band_deg, "inset/inset-fixed: the inner view's blend band in degrees")
+      ->capture_default_str();
   sub.add_option("--size", a.size, "Side-by-side output size WxH (even width)")->capture_default_str();
   sub.add_option("--display", a.display, "Display-model JSON (default: HTC Vive Pro Eye)");
   sub.add_flag("--no-distortion", a.no_distortion, "Ignore the display model's lens distortion (frames comparable with metrics)");
@@ -107,12 +111,15 @@ Result<RenderSetup> resolve(const RenderArgs& a) {
   if (!(a.fx > 0) || !(a.fy > 0)) return bad_input("--fx and --fy must be > 0");
   if (!(a.kfr_alpha > 0)) return bad_input("--kfr-alpha must be > 0");
   if (!(a.layer_scale >= 0)) return bad_input("--layer-scale must be >= 0");
+  if (!(a.inset_deg >= 0 && a.inset_deg < 89)) return bad_input("--inset-deg must be in [0, 89) degrees");
+  if (!(a.inset_band_deg >= 0 && a.inset_band_deg <= 45)) return bad_input("--inset-band-deg must be in [0, 45] degrees");
   const Eye dominant = a.dominant == "left" ? Eye::left : Eye::right;
   auto pipeline = render::parse_pipeline(a.pipeline);
   if (!pipeline) return Error{pipeline.error().kind, "--pipeline: " + pipeline.error().message};
   s.frame = render::efr_frame(*method, dominant, a.sigma_d, a.sigma_nd, a.fx, a.fy);
   s.frame.pipeline = *pipeline;
-  for (auto& e : s.frame.eyes) e.kfr_alpha = a.kfr_alpha, e.layer_scale = a.layer_scale;
+  for (auto& e : s.frame.eyes)
+    e.kfr_alpha = a.kfr_alpha, e.layer_scale = a.layer_scale, e.inset_deg = a.inset_deg, e.inset_band_deg = a.inset_band_deg;
   s.auto_f = a.f == "auto";
   auto size = cli::parse_size(a.size, "--size");
   if (!size) return size.error();

@@ -23,6 +23,7 @@ struct RenderArgs {
   std::string dominant = "right";
   double fx = 0.3, fy = 0.3;
   double kfr_alpha = 4.0, layer_scale = 0.0;
+  double inset_deg = 0.0, inset_band_deg = 3.0;  ///< inset methods (docs/methods.md)
   std::string f;  ///< "auto": estimate f_x, f_y from a full frame (RMFR)
   std::string fovea_left, fovea_right;  ///< empty: the centre, or with `log` the log's fovea
   std::string head;  ///< --head X,Y,Z,QW,QX,QY,QZ (relative to the scene's view)

@@ -65,8 +65,9 @@ Result<LogFrame> log_frame_at(const std::string& path, double at_s, const Displa
   LogFrame out;
   const TimeNs first = samples->front().t_ns;
   out.duration_s = seconds(samples->back().t_ns - first);
-  if (!std::isfinite(at_s) || at_s < 0 || at_s > 1e7 ||
-      first + static_cast<TimeNs>(std::llround(at_s * 1e9)) > samples->back().t_ns)
+  if (std::isfinite(at_s) && at_s > 1e7)  // a bound of its own, whatever the log spans
+    return bad_input("--at " + num(at_s) + ": more than the 1e7 s (about 116 days) that --at accepts");
+  if (!std::isfinite(at_s) || at_s < 0 || first + static_cast<TimeNs>(std::llround(at_s * 1e9)) > samples->back().t_ns)
     return bad_input("--at " + num(at_s) + ": outside " + path + ", whose samples span 0 to " + num(out.duration_s) +
                      " s from its first");
 

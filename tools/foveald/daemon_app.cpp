@@ -1,4 +1,6 @@
 #include "daemon_app.hpp"
+#include "daemon_output.hpp"
+#include "output_target.hpp"
 
 #include <signal.h>
 #include <sys/signalfd.h>
@@ -9,6 +11,7 @@
 #include <filesystem>
 
 #include "foveal/core/data_paths.hpp"
+#include "foveal/core/json_text.hpp"
 #include "foveal/core/shown_text.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
 #include "foveal/runtime/jod_levels.hpp"
@@ -147,6 +150,13 @@ Status DaemonApp::setup(const Profile& profile) {
   std::error_code ec;
   std::filesystem::create_directories(o_.out, ec);
   if (ec) return io_error(o_.out + ": cannot create output directory: " + ec.message());
+  // Every output's target before any work: one AtomicFile would refuse at the end must
+  // not cost a session its summary (output_target.hpp).
+  if (Status s = check_output_target(o_.out + "/summary.json"); !s) return s;
+  if (o_.render) {
+    if (Status s = check_output_target(o_.out + "/frames.csv"); !s) return s;
+    if (Status s = FrameRenderer::check_png_targets(o_.out, o_.save_every, o_.frames); !s) return s;
+  }
   auto trace = cli::FoveaTrace::create(o_.out + "/trace.csv");
   if (!trace) return trace.error();
   trace_.emplace(std::move(trace.value()));
@@ -262,7 +272,7 @@ int DaemonApp::render_loop() {
     // where it will be when the frame is shown. Fixed at the start: the first pass needs
     // the camera.
     const PoseAt head = head_->for_frame(latest().t_ns, refresh_hz);
-    if (Status s = renderer_->render(latest, rs, model_, head, plan); !s) return cli::report(s.error(), "foveald");
+    if (Status s = renderer_->render(latest, rs, model_, head, plan); !s) return report(s.error());
     const std::uint64_t frames = renderer_->frames();
     if (frames == kWarmupFrames) warm_rss_mb_ = current_rss_mb(), warm_fds_ = open_fds();
     if ((o_.frames > 0 && frames >= o_.frames) || renderer_->window_closed()) break;
@@ -280,7 +290,7 @@ int DaemonApp::run() {
   // The profile store's files first, while SIGTERM still works: they are opened without
   // blocking (a FIFO is refused), and nothing else may stand between a signal and us.
   auto profile = load_startup_profile();
-  if (!profile) return cli::report(profile.error(), "foveald");
+  if (!profile) return report(profile.error());
   // Signals go to a signalfd read by the control thread; every thread has them blocked.
   sigset_t sigs;
   sigemptyset(&sigs);
@@ -291,9 +301,9 @@ int DaemonApp::run() {
   const int sigfd = ::signalfd(-1, &sigs, SFD_NONBLOCK | SFD_CLOEXEC);
 
   started_ = monotonic_now_ns();
-  if (Status s = setup(*profile); !s) return cli::report(s.error(), "foveald");
+  if (Status s = setup(*profile); !s) return report(s.error());
   if (!source_.live)
-    if (Status s = source_.source->start(); !s) return cli::report(s.error(), "foveald");
+    if (Status s = source_.source->start(); !s) return report(s.error());
 
   const int eye_w = model_.eye_width, eye_h = model_.eye_height;
   const bool paced = source_.spec.driver != "replay" || o_.speed > 0;
@@ -306,6 +316,9 @@ int DaemonApp::run() {
         if (shm_) shm_->publish(f, eye_w, eye_h);
       },
       /*wait_for_source=*/source_.live);
+  // Until the first sample, and while a lost device is waited for, frames and `ctl fovea`
+  // show the optical centre (docs/daemon.md, "Rendering").
+  loop_->set_no_gaze(no_gaze_fovea(eye_w, eye_h));
   if (source_.live) log::info("source " + source_.spec.text() + ": waiting for the device");
   loop_->start(o_.rt_priority);
   head_->start();
@@ -327,23 +340,27 @@ int DaemonApp::shutdown(int rc) {
   head_->stop();
   if (log::enabled(log::Level::info) && !o_.json && ::isatty(STDERR_FILENO)) log::raw("\n");  // ends the status line
   const GazeLoopStats st = loop_->stats();
-  if (st.failed) rc = cli::report(bad_input(st.last_error), "foveald");
+  if (st.failed) rc = report(bad_input(st.last_error));
   trace_->write_markers(markers_.take_all());  // those after the last sample
-  if (Status s = trace_->commit(); !s) return cli::report(s.error(), "foveald");
+  if (Status s = trace_->commit(); !s) return report(s.error());
+  // A frame that could not be saved ends the session, but with its summary and
+  // frames.csv: the error is reported once, where it happened.
   if (renderer_)
-    if (Status s = renderer_->finish(/*save_last=*/!stopping()); !s) return cli::report(s.error(), "foveald");
+    if (Status s = renderer_->finish(/*save_last=*/!stopping()); !s) rc = report(s.error());
   const nlohmann::json summary = summary_json();
-  if (Status s = write_file_atomically(o_.out + "/summary.json", summary.dump(2) + "\n"); !s)
-    return cli::report(s.error(), "foveald");
-  if (o_.json) cli::print_json(summary);
-  else if (log::enabled(log::Level::info))
-    std::printf("foveald: %s %llu samples from %s -> %s/trace.csv, %s/summary.json\n",
-                stopping() ? "stopped after" : "read", static_cast<unsigned long long>(st.samples),
-                source_text_.c_str(), o_.out.c_str(), o_.out.c_str());
-  if (renderer_ && !o_.json && log::enabled(log::Level::info))
-    std::printf("foveald: rendered %llu frames -> %s/frames.csv, %zu PNG in %s\n",
-                static_cast<unsigned long long>(renderer_->frames()), o_.out.c_str(), renderer_->saved_frames(),
-                o_.out.c_str());
+  if (Status s = write_file_atomically(o_.out + "/summary.json", json_text(summary, 2) + "\n"); !s)
+    return report(s.error());
+  // stdout may be a pipe nobody reads as well: these lines wait for it a little only.
+  if (o_.json) {
+    print_json(summary);
+  } else if (log::enabled(log::Level::info)) {
+    std::string text = std::string("foveald: ") + (stopping() ? "stopped after " : "read ") + std::to_string(st.samples) +
+                       " samples from " + source_text_ + " -> " + o_.out + "/trace.csv, " + o_.out + "/summary.json\n";
+    if (renderer_)
+      text += "foveald: rendered " + std::to_string(renderer_->frames()) + " frames -> " + o_.out + "/frames.csv, " +
+              std::to_string(renderer_->saved_frames()) + " PNG in " + o_.out + "\n";
+    (void)log::out(text, kOutputStallMs);
+  }
   return rc;
 }
 

@@ -10,6 +10,8 @@
 #include <set>
 
 #include "daemon_app.hpp"
+#include "daemon_output.hpp"
+#include "foveal/core/json_text.hpp"
 #include "foveal/tools/cli.hpp"
 #include "foveal/tools/log.hpp"
 #include "process_stats.hpp"
@@ -234,9 +236,9 @@ void DaemonApp::emergency_exit() {
   if (s && renderer_) s = renderer_->abandon();
   nlohmann::json summary = summary_json();
   summary["render_abandoned_frame_in_flight"] = true;
-  if (s) s = write_file_atomically(o_.out + "/summary.json", summary.dump(2) + "\n");
-  if (!s) rc = cli::report(s.error(), "foveald");
-  else if (o_.json) cli::print_json(summary);
+  if (s) s = write_file_atomically(o_.out + "/summary.json", json_text(summary, 2) + "\n");
+  if (!s) rc = report(s.error());
+  else if (o_.json) print_json(summary);
   control_.reset();  // removes the socket
   shm_.reset();      // and the shared-memory block
   std::fflush(stdout);

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "foveal/core/data_paths.hpp"
+#include "output_target.hpp"
 #include "foveal/image/auto_f.hpp"
 #include "foveal/image/image.hpp"
 
@@ -209,12 +210,32 @@ Status FrameRenderer::estimate_f(const render::FrameParams& p) {
   return {};
 }
 
+std::string FrameRenderer::png_name(std::uint64_t frame) {
+  char name[64];
+  std::snprintf(name, sizeof name, "frame_%06" PRIu64 ".png", frame);
+  return name;
+}
+
+Status FrameRenderer::check_png_targets(const std::string& out_dir, int save_every, std::uint64_t frames) {
+  // The first frame's always; with --frames the last and every K-th are known too (a
+  // bound keeps a huge --frames with a small K from checking millions of names).
+  std::vector<std::uint64_t> known = {0};
+  if (frames > 0) {
+    known.push_back(frames - 1);
+    if (save_every > 0 && frames / static_cast<std::uint64_t>(save_every) <= 100000)
+      for (std::uint64_t f = static_cast<std::uint64_t>(save_every); f < frames; f += static_cast<std::uint64_t>(save_every))
+        known.push_back(f);
+  }
+  for (std::uint64_t f : known)
+    if (Status s = check_output_target(out_dir + "/" + png_name(f)); !s) return s;
+  return {};
+}
+
 Status FrameRenderer::save_frame() {
   if (frames_ == 0 || saved_frame_ == frames_ - 1) return {};
-  char name[64];
-  std::snprintf(name, sizeof name, "frame_%06" PRIu64 ".png", frames_ - 1);
+  const std::string name = png_name(frames_ - 1);
+  saved_frame_ = frames_ - 1;  // tried once: a frame that cannot be saved is not tried again at finish()
   if (Status s = image::save_png(out_dir_ + "/" + name, comp_->read_image()); !s) return s;
-  saved_frame_ = frames_ - 1;
   std::lock_guard lock(snapshot_mutex_);
   snap_.saved.push_back(name);
   return {};
@@ -229,12 +250,13 @@ Status FrameRenderer::finish(bool save_last) {
     snap_.latency = latency_.json(output_->shown_clock());
     snap_.pacing = pacer_->json();
   }
-  if (save_last)
-    if (Status s = save_frame(); !s) return s;
+  // frames.csv is committed even when the last frame cannot be saved.
+  const Status saved = save_last ? save_frame() : Status{};
   std::lock_guard lock(csv_mutex_);
-  if (csv_closed_) return {};
+  if (csv_closed_) return saved;
   csv_closed_ = true;
-  return csv_->commit();
+  Status committed = csv_->commit();
+  return saved ? committed : saved;
 }
 
 Status FrameRenderer::abandon() {

@@ -72,6 +72,12 @@ class FrameRenderer {
   /// written after this. For a shutdown that cannot wait for a slow frame.
   Status abandon();
   bool window_closed() const { return output_->closed(); }
+  /// The name frame N is saved under (in the output directory).
+  static std::string png_name(std::uint64_t frame);
+  /// bad_input naming the first PNG target (and with `frames` > 0 the last and every
+  /// `save_every`-th) that is not absent or a regular file: refused before any work,
+  /// as trace.csv, frames.csv and summary.json are.
+  static Status check_png_targets(const std::string& out_dir, int save_every, std::uint64_t frames);
 
   std::uint64_t frames() const;   ///< any thread
   std::size_t saved_frames() const;  ///< any thread

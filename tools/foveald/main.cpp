@@ -7,6 +7,7 @@
 #include <signal.h>
 
 #include "daemon_app.hpp"
+#include "daemon_output.hpp"
 #include "foveal/drivers/probe.hpp"
 #include "foveal/image/foveation_plan.hpp"
 #include "foveal/tools/cli.hpp"
@@ -76,12 +77,13 @@ int main(int argc, char** argv) {
   }
   o.verbosity = verbose - quiet;
   foveal::log::init("foveald", o.verbosity);
-  // stderr may be a pipe nobody reads, or whose reader died: lines go through a queue
-  // to a thread of their own (dropped and counted when it is full), and a dead reader
-  // is an EPIPE, never a SIGPIPE that kills foveald with its outputs uncommitted.
+  // stderr (or stdout) may be a pipe nobody reads, or whose reader died: lines go through
+  // a queue to a thread of their own (dropped and counted when it is full), no write to
+  // either may wait for the reader (log.hpp), and a dead reader is an EPIPE, never a
+  // SIGPIPE that kills foveald with its outputs uncommitted.
   ::signal(SIGPIPE, SIG_IGN);
   foveal::log::start_writer_thread();
   const int rc = foveal::daemon::DaemonApp(o).run();
-  foveal::log::flush(/*stall_ms=*/250);  // the last lines, unless stderr is stuck
+  foveal::log::flush(foveal::daemon::kOutputStallMs);  // the last lines, unless stderr is stuck
   return rc;
 }

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "foveal/core/json_file.hpp"
+#include "foveal/core/json_text.hpp"
 #include "foveal/core/shown_text.hpp"
 
 namespace foveal::vive {
@@ -66,7 +67,7 @@ Result<ChannelDistortion> parse_channel(const Node& d) {
   if (d.has("type")) {
     const json& t = d.get().at("type");
     if (!t.is_string() || (t != "DISTORT_DPOLY3" && t != "DISTORT_DPOLY3_SCALED"))
-      return bad_input(d.path() + ".type: " + shown_text(t.dump()) + " is not DISTORT_DPOLY3 (the only model read)");
+      return bad_input(d.path() + ".type: " + shown_text(json_text(t)) + " is not DISTORT_DPOLY3 (the only model read)");
   }
   FOVEAL_TRY(cx, d.at("center_x"));
   FOVEAL_TRY(cxv, cx.number());

@@ -1,21 +1,23 @@
 // Asks the runtime the loader picks whether its HMD system has eye gaze, with foveal's
-// layer turned off for this process so that the answer is the runtime's own.
+// layer turned off for this process so that the answer is the runtime's own. Runs in the
+// probe's child process only (probe_process.cpp).
 #include <cstdlib>
 #include <cstring>
 
 #include <openxr/openxr.h>
 
-#include "foveal/openxr/status.hpp"
+#include "probe.hpp"
 
 namespace foveal::openxr {
 
-RuntimeGaze probe_runtime_gaze() {
+RuntimeGaze probe_runtime_here() {
   RuntimeGaze g;
   ::setenv("FOVEAL_OPENXR_DISABLE", "1", 1);  // the loader reads it at xrCreateInstance
   std::uint32_t n = 0;
   XrResult r = xrEnumerateInstanceExtensionProperties(nullptr, 0, &n, nullptr);
   if (XR_FAILED(r)) {
-    g.message = "the loader found no runtime (error " + std::to_string(r) + ")";
+    g.message = "the loader could not load a runtime (error " + std::to_string(r) + ")";
+    g.runtime_failed = true;
     return g;
   }
   std::vector<XrExtensionProperties> props(n, {XR_TYPE_EXTENSION_PROPERTIES, nullptr, {}, 0});
@@ -35,6 +37,7 @@ RuntimeGaze probe_runtime_gaze() {
   XrInstance instance = XR_NULL_HANDLE;
   if (XR_FAILED(r = xrCreateInstance(&ci, &instance))) {
     g.message = "the runtime refused an instance (error " + std::to_string(r) + ")";
+    g.runtime_failed = true;
     return g;
   }
   XrInstanceProperties ip{XR_TYPE_INSTANCE_PROPERTIES, nullptr, 0, {}};

@@ -2,11 +2,13 @@
 
 #include <foveal/client.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
 #include "foveal/core/json_file.hpp"
+#include "probe.hpp"
 
 namespace foveal::openxr {
 
@@ -54,20 +56,61 @@ bool exists(const std::string& lib) {
   return lib.find('/') == std::string::npos || std::filesystem::is_regular_file(lib, ec);
 }
 
+/// A manifest's string field `section.key`: "" when absent; another type is the
+/// manifest's problem, named with the file and the field (the loader would skip it).
+bool string_field(const nlohmann::json& section, const std::string& path, const std::string& section_name,
+                  const char* key, std::string& out, std::string& problem) {
+  auto it = section.find(key);
+  if (it == section.end()) return true;
+  if (it->is_string()) {
+    out = it->get<std::string>();
+    return true;
+  }
+  const char* article = it->is_array() || it->is_object() ? "an " : it->is_null() ? "" : "a ";
+  problem = path + ": " + section_name + "." + key + " is " + article + it->type_name() + ", not a string";
+  return false;
+}
+
+/// The manifest's object `section`, or null with the problem said.
+const nlohmann::json* manifest_section(const Result<nlohmann::json>& j, const std::string& path, const char* section,
+                                       std::string& problem) {
+  if (!j) {
+    problem = j.error().message;
+    return nullptr;
+  }
+  if (!j->is_object() || !j->contains(section) || !(*j)[section].is_object()) {
+    problem = path + ": no \"" + std::string(section) + "\" object";
+    return nullptr;
+  }
+  return &(*j)[section];
+}
+
 void add_layer(OpenXRStatus& s, const std::string& path, bool implicit) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return;
-  auto j = read_json_file(path, "OpenXR layer manifest", JsonLimits{1 << 20, 16});
-  if (!j || !j->is_object() || !j->contains("api_layer") || !(*j)["api_layer"].is_object()) return;
-  const auto& l = (*j)["api_layer"];
-  if (l.value("name", "") != kLayerName) return;
+  if (!std::filesystem::exists(path, ec)) return;
   LayerManifest m;
   m.path = path;
   m.implicit = implicit;
-  m.library = resolve_library(path, l.value("library_path", ""));
-  m.library_exists = exists(m.library);
-  m.disable_environment = l.value("disable_environment", "");
-  m.enable_environment = l.value("enable_environment", "");
+  // A file under the layer's own name that the loader cannot use is listed as broken.
+  const auto j = read_json_file(path, "OpenXR layer manifest", JsonLimits{1 << 20, 16});
+  const nlohmann::json* l = manifest_section(j, path, "api_layer", m.problem);
+  if (!l) {
+    s.layers.push_back(m);
+    return;
+  }
+  std::string name, library;
+  if (!string_field(*l, path, "api_layer", "name", name, m.problem)) {
+    s.layers.push_back(m);
+    return;
+  }
+  if (name.empty()) m.problem = path + ": api_layer.name is missing";
+  else if (name != kLayerName) return;  // another layer's manifest under this name
+  if (m.problem.empty() && string_field(*l, path, "api_layer", "library_path", library, m.problem) &&
+      string_field(*l, path, "api_layer", "disable_environment", m.disable_environment, m.problem) &&
+      string_field(*l, path, "api_layer", "enable_environment", m.enable_environment, m.problem) && library.empty())
+    m.problem = path + ": api_layer.library_path is missing";
+  m.library = resolve_library(path, library);
+  m.library_exists = m.problem.empty() && exists(m.library);
   s.layers.push_back(m);
 }
 
@@ -77,9 +120,9 @@ void find_layers(OpenXRStatus& s) {
     add_layer(s, root + "/openxr/1/api_layers/explicit.d/" + kLayerFile, false);
   }
   for (const auto& dir : split(env("XR_API_LAYER_PATH"))) add_layer(s, dir + "/" + kLayerFile, false);
-  // The loader takes the first implicit manifest of a name; the environment decides.
+  // The loader takes the first usable implicit manifest of a name; the environment decides.
   for (const LayerManifest& m : s.layers) {
-    if (!m.implicit) continue;
+    if (!m.implicit || !m.problem.empty()) continue;
     if (!m.library_exists) s.enabled_reason = m.path + " names a library that is not there: " + m.library;
     else if (!m.disable_environment.empty() && !env(m.disable_environment.c_str()).empty())
       s.enabled_reason = m.disable_environment + " is set: the layer is off";
@@ -92,14 +135,16 @@ void find_layers(OpenXRStatus& s) {
     return;
   }
   const std::string enable = env("XR_ENABLE_API_LAYERS");
+  const bool usable = std::any_of(s.layers.begin(), s.layers.end(), [](const LayerManifest& m) { return m.problem.empty(); });
   for (const auto& name : split(enable))
-    if (name == kLayerName && !s.layers.empty()) {
+    if (name == kLayerName && usable) {
       s.enabled = true;
       s.enabled_reason = "XR_ENABLE_API_LAYERS names it";
       return;
     }
-  s.enabled_reason = s.layers.empty() ? "no manifest of the layer where the loader looks (is foveal installed?)"
-                                      : "installed as an explicit layer only: name it in XR_ENABLE_API_LAYERS";
+  if (s.layers.empty()) s.enabled_reason = "no manifest of the layer where the loader looks (is foveal installed?)";
+  else if (!usable) s.enabled_reason = "every manifest of the layer is broken; the first: " + s.layers.front().problem;
+  else s.enabled_reason = "installed as an explicit layer only: name it in XR_ENABLE_API_LAYERS";
 }
 
 void find_runtime(OpenXRStatus& s) {
@@ -122,10 +167,15 @@ void find_runtime(OpenXRStatus& s) {
     }
   }
   if (r.manifest.empty()) return;
-  auto j = read_json_file(r.manifest, "OpenXR runtime manifest", JsonLimits{1 << 20, 16});
-  if (j && j->is_object() && j->contains("runtime") && (*j)["runtime"].is_object())
-    r.library = resolve_library(r.manifest, (*j)["runtime"].value("library_path", ""));
-  r.library_exists = !r.library.empty() && exists(r.library);
+  // Read without blocking (a FIFO is refused, not waited on), every field type-checked.
+  const auto j = read_json_file(r.manifest, "OpenXR runtime manifest", JsonLimits{1 << 20, 16});
+  const nlohmann::json* rt = manifest_section(j, r.manifest, "runtime", r.problem);
+  std::string library;
+  if (rt && string_field(*rt, r.manifest, "runtime", "library_path", library, r.problem) && library.empty())
+    r.problem = r.manifest + ": runtime.library_path is missing";
+  if (!r.problem.empty()) return;
+  r.library = resolve_library(r.manifest, library);
+  r.library_exists = exists(r.library);
 }
 
 void ask_foveald(OpenXRStatus& s) {
@@ -148,14 +198,15 @@ void ask_foveald(OpenXRStatus& s) {
 
 }  // namespace
 
-RuntimeGaze probe_runtime_gaze();  // runtime_probe.cpp
-
-OpenXRStatus openxr_status(bool probe_runtime) {
+OpenXRStatus openxr_status(bool probe_runtime, double probe_timeout_s) {
   OpenXRStatus s;
   find_layers(s);
   s.gaze_mode = env("FOVEAL_OPENXR_GAZE", "auto");
   find_runtime(s);
-  if (probe_runtime) s.runtime_gaze = probe_runtime_gaze();
+  if (probe_runtime && !s.runtime.problem.empty())
+    s.runtime_gaze.message = "the runtime's manifest is unusable (see above)";  // the loader would fail or wait on it
+  else if (probe_runtime)
+    s.runtime_gaze = probe_runtime_in_child(probe_timeout_s);
   ask_foveald(s);
   return s;
 }

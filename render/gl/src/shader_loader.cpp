@@ -23,13 +23,20 @@ Result<std::string> read_text(const std::string& path) {
 
 // Expands `path` into `out`, giving each file a source-string number.
 Status expand_into(const std::string& root, const std::string& path, int depth, std::vector<std::string>& files,
-                   std::string& out) {
+                   std::string& out, const std::vector<VirtualFile>& virtual_files) {
   if (depth > kMaxIncludeDepth) return bad_input(path + ": #include nested deeper than 16 (a cycle?)");
   // foveal-rmfr's GLSL (`foveal/...`) comes from the library itself: one copy of RMFR's
   // mapping for the compositor's shaders and the library's passes.
   const std::string_view builtin = rmfr::glsl_file(path);
-  const std::string name = builtin.empty() ? root + "/" + path : "foveal-rmfr:" + path;
-  auto text = builtin.empty() ? read_text(name) : Result<std::string>(std::string(builtin));
+  std::string name = builtin.empty() ? root + "/" + path : "foveal-rmfr:" + path;
+  auto text = builtin.empty() ? Result<std::string>(std::string()) : Result<std::string>(std::string(builtin));
+  if (path.rfind("method/", 0) == 0) {  // the caller's, or empty
+    name = path;
+    for (const VirtualFile& v : virtual_files)
+      if (v.name == path) text = v.text;
+  } else if (builtin.empty()) {
+    text = read_text(name);
+  }
   if (!text) return text.error();
   const int index = static_cast<int>(files.size());
   files.push_back(name);
@@ -44,7 +51,7 @@ Status expand_into(const std::string& root, const std::string& path, int depth, 
       const std::size_t a = line.find('"', p), b = a == std::string::npos ? a : line.find('"', a + 1);
       if (b == std::string::npos)
         return bad_input(root + "/" + path + ":" + std::to_string(number) + ": expected #include \"file\"");
-      if (Status s = expand_into(root, line.substr(a + 1, b - a - 1), depth + 1, files, out); !s) return s;
+      if (Status s = expand_into(root, line.substr(a + 1, b - a - 1), depth + 1, files, out, virtual_files); !s) return s;
       out += "#line " + std::to_string(number + 1) + " " + std::to_string(index) + "\n";
       continue;
     }
@@ -116,19 +123,21 @@ std::string map_info_log(const std::string& log, const std::vector<std::string>&
 
 ShaderLoader::ShaderLoader(std::string root) : root_(root.empty() ? data_path("shaders") : std::move(root)) {}
 
-Result<std::string> ShaderLoader::expand(const std::string& path, std::vector<std::string>& files) const {
+Result<std::string> ShaderLoader::expand(const std::string& path, std::vector<std::string>& files,
+                                         const std::vector<VirtualFile>& virtual_files) const {
   std::string out;
-  if (Status s = expand_into(root_, path, 0, files, out); !s) return s.error();
+  if (Status s = expand_into(root_, path, 0, files, out, virtual_files); !s) return s.error();
   return out;
 }
 
-Result<Program> ShaderLoader::program(const std::vector<ShaderStage>& stages, const std::string& defines) const {
+Result<Program> ShaderLoader::program(const std::vector<ShaderStage>& stages, const std::string& defines,
+                                      const std::vector<VirtualFile>& virtual_files) const {
   Program program = Program::create();
   std::vector<Shader> shaders;
   std::string names;
   for (const ShaderStage& stage : stages) {
     std::vector<std::string> files;
-    auto body = expand(stage.path, files);
+    auto body = expand(stage.path, files, virtual_files);
     if (!body) return body.error();
     const std::string source = "#version 450 core\n" + defines + *body;
     Shader shader(glCreateShader(stage.type));

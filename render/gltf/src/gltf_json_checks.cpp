@@ -8,6 +8,7 @@
 #include <set>
 
 #include "gltf_internal.hpp"
+#include "foveal/core/json_text.hpp"
 
 namespace foveal::render::detail {
 
@@ -18,7 +19,7 @@ using json = nlohmann::json;
 std::string item(const std::string& array, std::size_t i) { return array + "[" + std::to_string(i) + "]"; }
 
 std::string shown(const json& v) {
-  std::string s = v.dump();
+  std::string s = json_text(v);
   if (s.size() > 40) s = s.substr(0, 37) + "...";
   return s;
 }

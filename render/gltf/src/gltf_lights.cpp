@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "foveal/core/json_text.hpp"
+
 namespace foveal::render::detail {
 
 namespace {
@@ -16,7 +18,7 @@ const char* const kExt = "KHR_lights_punctual";
 std::string item(const std::string& array, std::size_t i) { return array + "[" + std::to_string(i) + "]"; }
 
 std::string shown(const json& v) {
-  std::string s = v.dump();
+  std::string s = json_text(v);
   return s.size() > 40 ? s.substr(0, 37) + "..." : s;
 }
 

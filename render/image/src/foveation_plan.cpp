@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include "foveal/image/kfr_mapping.hpp"
+#include "foveal/image/method_description.hpp"
 #include "foveal/rmfr_mapping.hpp"
 
 namespace foveal::render {
@@ -114,6 +115,7 @@ const char* method_name(Method m) {
     case Method::uniform: return "uniform";
     case Method::fixed: return "fixed";
   }
+  if (const MethodDescription* d = describe(m)) return d->name;
   return "?";
 }
 
@@ -124,8 +126,12 @@ Result<Method> parse_method(const std::string& s) {
 }
 
 const std::vector<Method>& all_methods() {
-  static const std::vector<Method> m = {Method::full,   Method::rmfr,    Method::kfr,  Method::hyperbolic,
-                                        Method::linear, Method::uniform, Method::fixed};
+  static const std::vector<Method> m = [] {
+    std::vector<Method> all = {Method::full,   Method::rmfr,    Method::kfr,  Method::hyperbolic,
+                               Method::linear, Method::uniform, Method::fixed};
+    for (std::size_t row = 0; row < described_methods().size(); ++row) all.push_back(described_method(row));
+    return all;
+  }();
   return m;
 }
 
@@ -147,7 +153,8 @@ std::string method_names_joined(const std::string& separator) {
 bool is_method(Method m) { return std::find(all_methods().begin(), all_methods().end(), m) != all_methods().end(); }
 
 std::size_t EyePlan::shaded_samples() const {
-  if (method != Method::hyperbolic && method != Method::linear) return static_cast<std::size_t>(buffer_w) * static_cast<std::size_t>(buffer_h);
+  // Layered plans (hyperbolic, linear, described methods) shade their layers only.
+  if (layers.empty()) return static_cast<std::size_t>(buffer_w) * static_cast<std::size_t>(buffer_h);
   std::size_t n = 0;
   for (const Layer& l : layers) n += static_cast<std::size_t>(l.buffer_w) * static_cast<std::size_t>(l.buffer_h);
   return n;
@@ -166,7 +173,10 @@ glm::dvec2 optical_centre(const EyeFrustum& f) {
   return {-f.tan_left / (f.tan_right - f.tan_left), -f.tan_bottom / (f.tan_top - f.tan_bottom)};
 }
 
-bool follows_gaze(Method m) { return m != Method::full && m != Method::uniform && m != Method::fixed; }
+bool follows_gaze(Method m) {
+  if (const MethodDescription* d = describe(m)) return d->follows_gaze;
+  return m != Method::full && m != Method::uniform && m != Method::fixed;
+}
 
 Result<EyePlan> plan_eye(Method m, const EyeFoveation& e, int W, int H, const EyeFrustum& frustum) {
   if (!std::isfinite(e.sigma) || e.sigma < 1.0) return bad_input("sigma must be a number >= 1");
@@ -183,6 +193,11 @@ Result<EyePlan> plan_eye(Method m, const EyeFoveation& e, int W, int H, const Ey
   p.buffer_w = W, p.buffer_h = H;
   // σ = 1 is full-rate rendering for every method; only RMFR's passes run it (identity).
   if (e.sigma <= 1.0 && m != Method::full) m = p.method = Method::rmfr;
+  if (const MethodDescription* d = describe(m)) {
+    if (!d->follows_gaze) p.fovea = optical_centre(frustum);
+    if (Status s = d->plan(p, e); !s) return s.error();
+    return p;
+  }
   switch (m) {
     case Method::full: break;
     case Method::fixed:

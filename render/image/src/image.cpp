@@ -3,7 +3,11 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -13,10 +17,55 @@
 
 namespace foveal::image {
 
+namespace {
+
+constexpr int kMaxSide = 65536;
+constexpr std::size_t kMaxBytes = std::size_t{1} << 30;
+
+Status check_header_size(const std::string& path, int w, int h) {
+  if (w <= 0 || h <= 0 || w > kMaxSide || h > kMaxSide ||
+      static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4 > kMaxBytes)
+    return bad_input(path + ": " + std::to_string(w) + "×" + std::to_string(h) + " is larger than foveal reads (sides up to " +
+                     std::to_string(kMaxSide) + ", at most " + describe_bytes(kMaxBytes) + " as RGBA8)");
+  return {};
+}
+
+}  // namespace
+
+Result<ImageHeader> probe(const std::string& path) {
+  auto fd = open_regular_file(path, "image");
+  if (!fd) return fd.error();
+  struct Source {
+    int fd;
+    bool eof = false;
+  } src{*fd};
+  stbi_io_callbacks io{};
+  io.read = [](void* u, char* data, int size) -> int {
+    auto* s = static_cast<Source*>(u);
+    for (;;) {
+      const ssize_t n = ::read(s->fd, data, static_cast<std::size_t>(size));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) s->eof = true;
+      return n > 0 ? static_cast<int>(n) : 0;
+    }
+  };
+  io.skip = [](void* u, int n) { ::lseek(static_cast<Source*>(u)->fd, n, SEEK_CUR); };
+  io.eof = [](void* u) -> int { return static_cast<Source*>(u)->eof ? 1 : 0; };
+  int w = 0, h = 0, n = 0;
+  const bool ok = stbi_info_from_callbacks(&io, &src, &w, &h, &n) != 0;
+  struct stat st {};
+  const bool sized = ::fstat(*fd, &st) == 0;
+  ::close(*fd);
+  if (!ok) {
+    const char* why = stbi_failure_reason();
+    return bad_input(path + ": cannot read image: " + (why ? why : "unknown error"));
+  }
+  if (Status s = check_header_size(path, w, h); !s) return s.error();
+  return ImageHeader{w, h, sized ? static_cast<std::uint64_t>(st.st_size) : 0};
+}
+
 Result<Image> load(const std::string& path) {
   // The header's dimensions are checked before decoding: a few bytes can claim 10^10 pixels.
-  constexpr int kMaxSide = 65536;
-  constexpr std::size_t kMaxBytes = std::size_t{1} << 30;
   auto bytes = read_regular_file(path, kMaxBytes, "image");
   if (!bytes) return bytes.error();
   if (bytes->size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) return bad_input(path + ": image file too large");
@@ -27,13 +76,12 @@ Result<Image> load(const std::string& path) {
     const char* why = stbi_failure_reason();
     return bad_input(path + ": cannot read image: " + (why ? why : "unknown error"));
   }
-  if (w <= 0 || h <= 0 || w > kMaxSide || h > kMaxSide ||
-      static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4 > kMaxBytes)
-    return bad_input(path + ": " + std::to_string(w) + "×" + std::to_string(h) + " is larger than foveal reads (sides up to " +
-                     std::to_string(kMaxSide) + ", at most " + describe_bytes(kMaxBytes) + " as RGBA8)");
+  if (Status s = check_header_size(path, w, h); !s) return s.error();
   stbi_uc* data = stbi_load_from_memory(data_in, size, &w, &h, &n, 4);
   if (!data) {
     const char* why = stbi_failure_reason();
+    // Memory short is not the file's fault: an internal error (exit 1), as a bad_alloc is.
+    if (why && std::strcmp(why, "outofmem") == 0) return Error{ErrorKind::internal, path + ": out of memory decoding the image"};
     return bad_input(path + ": cannot read image: " + (why ? why : "unknown error"));
   }
   Image img(w, h);

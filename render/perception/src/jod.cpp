@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <string>
 #include <thread>
 
@@ -31,13 +32,34 @@ struct BandGeometry {
 };
 
 // fn(begin, end, part) over [0, n) in `threads` contiguous parts, part 0 on this thread.
+// An exception in any part (bad_alloc on a large frame) is thrown here once all have
+// joined: in a worker it would call std::terminate.
 template <class F>
 void parallel_for(int threads, int n, F fn) {
   const int t = std::max(1, std::min(threads, n));
+  std::vector<std::exception_ptr> failed(static_cast<std::size_t>(t));
+  const auto part = [&](int i) {
+    try {
+      fn(n * i / t, n * (i + 1) / t, i);
+    } catch (...) {
+      failed[static_cast<std::size_t>(i)] = std::current_exception();
+    }
+  };
   std::vector<std::thread> pool;
-  for (int i = 1; i < t; ++i) pool.emplace_back([&, i] { fn(n * i / t, n * (i + 1) / t, i); });
-  fn(0, n / t, 0);
+  pool.reserve(static_cast<std::size_t>(t - 1));  // before any thread: no throw with one running
+  int started = 1;
+  for (; started < t; ++started) {
+    try {
+      pool.emplace_back(part, started);
+    } catch (...) {
+      break;  // no thread to be had (memory short: system_error or bad_alloc): this one does the rest
+    }
+  }
+  part(0);
+  for (int i = started; i < t; ++i) part(i);
   for (auto& th : pool) th.join();
+  for (const auto& e : failed)
+    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace
@@ -253,6 +275,11 @@ Status Photometry::validate() const {
   if (!std::isfinite(peak_cd_m2) || !std::isfinite(black_cd_m2) || black_cd_m2 <= 0 || peak_cd_m2 <= black_cd_m2)
     return bad_input("display luminance: need 0 < black < peak (cd/m²), got black " + std::to_string(black_cd_m2) +
                      ", peak " + std::to_string(peak_cd_m2));
+  // The CSF's table spans this luminance; past it the planes overflow (peak 1e300 gave a
+  // JOD of NaN).
+  if (black_cd_m2 < kMinLuminanceCdM2 || peak_cd_m2 > kMaxLuminanceCdM2)
+    return bad_input("display luminance: black and peak must lie in [0.001, 10000] cd/m², got black " +
+                     std::to_string(black_cd_m2) + ", peak " + std::to_string(peak_cd_m2));
   return {};
 }
 

@@ -8,6 +8,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "foveal/image/method_description.hpp"
 #include "foveal/rmfr_mapping.hpp"
 #include "foveal/render/light_rig.hpp"
 #include "foveal/render/light_tiles.hpp"
@@ -142,10 +143,18 @@ class PassTimer {
   std::size_t count_ = 0;
 };
 
-// The mapping a lighting or mapping program is compiled for (common/mapping.glsl).
-std::string mapping_define(std::size_t m) { return "#define MAPPING " + std::to_string(m) + "\n"; }
-
 }  // namespace
+
+std::size_t mapping_variant_count() { return kBuiltinMappings + described_kernels().size(); }
+
+std::string mapping_define(std::size_t v) {
+  return "#define MAPPING " + std::to_string(std::min(v, kBuiltinMappings)) + "\n";
+}
+
+std::vector<gl::VirtualFile> mapping_files(std::size_t v) {
+  if (v < kBuiltinMappings || v >= mapping_variant_count()) return {};
+  return {{"method/kernel", described_kernels()[v - kBuiltinMappings]->kernel_glsl}};
+}
 
 namespace detail {
 
@@ -206,6 +215,7 @@ void set_material(GLuint p, const Scene& scene, const Material& m) {
 }  // namespace detail
 
 Result<std::size_t> mapping_index(const EyePlan& plan) {
+  if (const int k = kernel_index(plan.method); k >= 0) return kBuiltinMappings + static_cast<std::size_t>(k);
   switch (plan.method) {
     case Method::full:
     case Method::rmfr:
@@ -256,16 +266,20 @@ void set_mapping(GLuint p, const EyePlan& plan, glm::vec2 texture_size) {
     set(p, ("u_layer_ecc" + k).c_str(), std::isfinite(l.ecc_max_deg) ? static_cast<float>(l.ecc_max_deg) : 1e9f);
   }
   set(p, "u_layer", 0);
+  set(p, "u_kernel_params", glm::vec4(plan.kernel_params));
 }
 
 struct Compositor::Impl {
   CompositorOptions opt;
   int eye_w = 0, eye_h = 0;
   gl::Program gbuffer_prog, pattern_prog, shadow_prog, blend_prog;
-  // One per MAPPING (0 RMFR/full, 1 KFR, 2 layers); resolve also with and without the lens.
-  std::array<gl::Program, 3> map_progs, lighting_progs;
-  // RMFR maps and resolves through foveal-rmfr, so its map and resolve slots stay empty.
-  std::array<std::array<gl::Program, 2>, 3> resolve_progs;
+  // One per MAPPING variant (mapping_variant_count: 0 RMFR/full, 1 KFR, 2 layers, then
+  // the described methods' kernels, built on first use); resolve also with and without
+  // the lens. RMFR maps and resolves through foveal-rmfr, so its map and resolve slots stay empty.
+  std::vector<gl::Program> map_progs = std::vector<gl::Program>(mapping_variant_count());
+  std::vector<gl::Program> lighting_progs = std::vector<gl::Program>(mapping_variant_count());
+  std::vector<std::array<gl::Program, 2>> resolve_progs = std::vector<std::array<gl::Program, 2>>(mapping_variant_count());
+  std::string lit_defines;  // the lighting programs' defines for the scene's features and lights
   std::optional<rmfr::Foveator> foveator;  // RMFR's mapping and resolve passes
   gl::VertexArray empty_vao;
   gl::Buffer lights_ubo;
@@ -340,8 +354,9 @@ struct Compositor::Impl {
     }
   }
 
-  Status build(gl::Program& out, const std::vector<gl::ShaderStage>& stages, const std::string& defines) const {
-    auto p = shaders.program(stages, defines);
+  Status build(gl::Program& out, const std::vector<gl::ShaderStage>& stages, const std::string& defines,
+               const std::vector<gl::VirtualFile>& files = {}) const {
+    auto p = shaders.program(stages, defines, files);
     if (!p) return p.error();
     out = std::move(*p);
     return {};
@@ -373,13 +388,16 @@ struct Compositor::Impl {
     const std::string lit = d + (file_lights ? "#define FILE_LIGHTS 1\n" : "");
     if (Status s = build(blend_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "blend.frag"}}, lit); !s) return s;
     const gl::ShaderStage vert{GL_VERTEX_SHADER, "fullscreen.vert"};
-    for (std::size_t m = 0; m < 3; ++m)
+    for (std::size_t m = 0; m < kBuiltinMappings; ++m)
       if (Status s = build(lighting_progs[m], {vert, {GL_FRAGMENT_SHADER, "lighting.frag"}}, mapping_define(m) + lit); !s) return s;
+    for (std::size_t m = kBuiltinMappings; m < lighting_progs.size(); ++m) lighting_progs[m].reset();  // rebuilt on use
+    lit_defines = lit;
     requested_file_lights = file_lights;
     if (same_features) return {};  // the rest depends on the features only
     if (Status s = build(gbuffer_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "gbuffer.frag"}}, d); !s) return s;
-    for (std::size_t m = 1; m < 3; ++m)  // RMFR maps through foveal-rmfr, which maps every attachment
+    for (std::size_t m = 1; m < kBuiltinMappings; ++m)  // RMFR maps through foveal-rmfr, which maps every attachment
       if (Status s = build(map_progs[m], {vert, {GL_FRAGMENT_SHADER, "map.frag"}}, mapping_define(m) + d); !s) return s;
+    for (std::size_t m = kBuiltinMappings; m < map_progs.size(); ++m) map_progs[m].reset();
     if (Status s = visibility->use_layout(shaders, next); !s) return s;
     if ((features & feature_sheen) && !sheen_albedo) {
       constexpr int kSize = 32;
@@ -396,6 +414,28 @@ struct Compositor::Impl {
     gbuffer.reset();
     for (auto& t : transformed) t.reset();
     return {};
+  }
+
+  // A described method's programs (variant v >= kBuiltinMappings), built on first use
+  // and again after a features change: compiling every kernel up front would cost each
+  // compositor the programs of methods it never runs.
+  Status ensure_variant(std::size_t v) {
+    if (v < kBuiltinMappings) return {};
+    const std::vector<gl::VirtualFile> files = mapping_files(v);
+    const gl::ShaderStage vert{GL_VERTEX_SHADER, "fullscreen.vert"};
+    if (!lighting_progs[v])
+      if (Status s = build(lighting_progs[v], {vert, {GL_FRAGMENT_SHADER, "lighting.frag"}}, mapping_define(v) + lit_defines, files); !s)
+        return s;
+    if (!map_progs[v])
+      if (Status s = build(map_progs[v], {vert, {GL_FRAGMENT_SHADER, "map.frag"}}, mapping_define(v) + layout.defines(), files); !s)
+        return s;
+    for (std::size_t lens = 0; lens < 2; ++lens)
+      if (!resolve_progs[v][lens])
+        if (Status s = build(resolve_progs[v][lens], {vert, {GL_FRAGMENT_SHADER, "resolve.frag"}},
+                             mapping_define(v) + (lens ? "#define DISTORTION 1\n" : ""), files);
+            !s)
+          return s;
+    return visibility->ensure_mapping(shaders, v);
   }
 
   // Lighting from `src` (G-buffer or reduced buffer) into the bound framebuffer, with
@@ -628,7 +668,7 @@ Result<Compositor> Compositor::create(const CompositorOptions& o, const gl::Shad
   };
   for (const auto& [prog, stages] : programs)
     if (Status s = impl->build(*prog, stages, {}); !s) return s.error();
-  for (std::size_t m = 1; m < 3; ++m) {  // RMFR's resolve is foveal-rmfr's
+  for (std::size_t m = 1; m < kBuiltinMappings; ++m) {  // RMFR's resolve is foveal-rmfr's
     const std::string mapping = "#define MAPPING " + std::to_string(m) + "\n";
     for (std::size_t lens = 0; lens < 2; ++lens)
       if (Status s = impl->build(impl->resolve_progs[m][lens], {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "resolve.frag"}},
@@ -729,6 +769,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     const auto mapping = mapping_index(plan);
     if (!mapping) return mapping.error();
     const std::size_t variant = *mapping;
+    if (Status s = m.ensure_variant(variant); !s) return s.error();
 
     // The eye's surface samples, through the frame's pipeline.
     const detail::SurfaceTargets* surface = nullptr;

@@ -49,14 +49,12 @@ MaterialSurface& ensure(std::optional<MaterialSurface>& slot, int w, int h, bool
 }
 
 Status build_program(const gl::ShaderLoader& shaders, gl::Program& out, const std::vector<gl::ShaderStage>& stages,
-                     const std::string& defines) {
-  auto p = shaders.program(stages, defines);
+                     const std::string& defines, const std::vector<gl::VirtualFile>& files = {}) {
+  auto p = shaders.program(stages, defines, files);
   if (!p) return p.error();
   out = std::move(*p);
   return {};
 }
-
-std::string mapping_define(std::size_t m) { return "#define MAPPING " + std::to_string(m) + "\n"; }
 
 }  // namespace
 
@@ -71,7 +69,10 @@ Result<VisibilityPipeline> VisibilityPipeline::create(const gl::ShaderLoader& sh
   if (Status s = build(v.visibility_prog_, {geometry, visibility}, ""); !s) return s.error();
   if (Status s = build(v.visibility_mask_prog_, {geometry, visibility}, "#define ALPHA_MASK 1\n"); !s) return s.error();
   const gl::ShaderStage fullscreen{GL_VERTEX_SHADER, "fullscreen.vert"};
-  for (std::size_t m = 0; m < 3; ++m) {
+  v.classify_progs_.resize(mapping_variant_count());
+  v.pattern_progs_.resize(mapping_variant_count());
+  v.material_progs_.resize(mapping_variant_count());
+  for (std::size_t m = 0; m < kBuiltinMappings; ++m) {
     if (Status s = build(v.classify_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "classify.frag"}}, mapping_define(m)); !s)
       return s.error();
     if (Status s = build(v.pattern_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "material.frag"}}, mapping_define(m) + "#define PATTERN 1\n");
@@ -85,14 +86,35 @@ Result<VisibilityPipeline> VisibilityPipeline::create(const gl::ShaderLoader& sh
 }
 
 Status VisibilityPipeline::use_layout(const gl::ShaderLoader& shaders, const SurfaceLayout& layout) {
-  for (std::size_t m = 0; m < 3; ++m)
+  for (std::size_t m = 0; m < kBuiltinMappings; ++m)
     if (Status s = build_program(shaders, material_progs_[m], {{GL_VERTEX_SHADER, "material_tile.vert"}, {GL_FRAGMENT_SHADER, "material.frag"}},
                                  mapping_define(m) + tile_defines() + layout.defines());
         !s)
       return s;
+  for (std::size_t m = kBuiltinMappings; m < material_progs_.size(); ++m) material_progs_[m].reset();  // rebuilt on use
   layout_ = layout;
   full_.reset();
   for (auto& e : eyes_) e.reset();
+  return {};
+}
+
+Status VisibilityPipeline::ensure_mapping(const gl::ShaderLoader& shaders, std::size_t m) {
+  if (m < kBuiltinMappings) return {};
+  const std::vector<gl::VirtualFile> files = mapping_files(m);
+  const gl::ShaderStage fullscreen{GL_VERTEX_SHADER, "fullscreen.vert"};
+  if (!classify_progs_[m])
+    if (Status s = build_program(shaders, classify_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "classify.frag"}}, mapping_define(m), files); !s)
+      return s;
+  if (!pattern_progs_[m])
+    if (Status s = build_program(shaders, pattern_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "material.frag"}},
+                                 mapping_define(m) + "#define PATTERN 1\n", files);
+        !s)
+      return s;
+  if (!material_progs_[m])
+    if (Status s = build_program(shaders, material_progs_[m], {{GL_VERTEX_SHADER, "material_tile.vert"}, {GL_FRAGMENT_SHADER, "material.frag"}},
+                                 mapping_define(m) + tile_defines() + layout_.defines(), files);
+        !s)
+      return s;
   return {};
 }
 

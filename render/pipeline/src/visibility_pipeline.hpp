@@ -34,6 +34,10 @@ class VisibilityPipeline {
   Status use_layout(const gl::ShaderLoader& shaders, const SurfaceLayout& layout);
   const SurfaceLayout& layout() const { return layout_; }
 
+  /// Builds the programs of mapping variant `mapping` if it is a described method's and
+  /// they are not built yet (the built-in ones are built by create and use_layout).
+  Status ensure_mapping(const gl::ShaderLoader& shaders, std::size_t mapping);
+
   /// Depth and (draw + 1, triangle) of every pixel of one eye. Nothing for patterns.
   void visibility_pass(const Scene& scene, const EyeView& view);
 
@@ -60,7 +64,7 @@ class VisibilityPipeline {
   int eye_w_ = 0, eye_h_ = 0;
   SurfaceLayout layout_;
   gl::Program visibility_prog_, visibility_mask_prog_, tiles_prog_;
-  std::array<gl::Program, 3> classify_progs_, material_progs_, pattern_progs_;  // per MAPPING
+  std::vector<gl::Program> classify_progs_, material_progs_, pattern_progs_;  // per MAPPING variant
   gl::VertexArray empty_vao_;
   std::optional<VisibilityTarget> visibility_;
   std::array<std::optional<MaterialSurface>, 2> eyes_;

@@ -9,6 +9,7 @@
 
 #include "foveal/core/clock.hpp"
 #include "foveal/core/json_file.hpp"
+#include "foveal/core/json_text.hpp"
 #include "foveal/runtime/control_server.hpp"
 
 #include "socket_path.hpp"
@@ -87,7 +88,7 @@ Result<nlohmann::json> control_request(const std::string& path, const nlohmann::
   if (peer.uid != ::geteuid() && peer.uid != 0)
     return bad_input(path + ": served by uid " + std::to_string(peer.uid) + ", not by you (uid " +
                      std::to_string(::geteuid()) + "): not your foveald, refusing to talk to it");
-  const std::string msg = request.dump() + "\n";
+  const std::string msg = json_text(request) + "\n";
   if (send_until(fd, msg, deadline) != 0) {
     if (errno == EAGAIN) return io_error(path + ": request not taken within " + std::to_string(timeout_ms) + " ms");
     return io_error(path + ": send failed: " + std::strerror(errno));

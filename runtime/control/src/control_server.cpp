@@ -15,6 +15,7 @@
 
 #include "foveal/core/clock.hpp"
 #include "foveal/core/json_file.hpp"
+#include "foveal/core/json_text.hpp"
 #include "socket_path.hpp"
 
 namespace foveal {
@@ -114,7 +115,7 @@ void ControlServer::flush(Client& c) {
 
 void ControlServer::queue_reply(Client& c, const nlohmann::json& reply) {
   if (c.fd < 0) return;
-  const std::string line = reply.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  const std::string line = json_text(reply) + "\n";
   if (c.out.size() - c.out_sent + line.size() > kMaxPendingReplyBytes)
     return drop(c, "more than " + std::to_string(kMaxPendingReplyBytes / 1024) +
                        " KiB of replies unread (the client does not read them)");

@@ -9,6 +9,7 @@
 
 #include "foveal/core/data_paths.hpp"
 #include "foveal/core/json_file.hpp"
+#include "foveal/core/json_text.hpp"
 
 namespace foveal {
 
@@ -24,18 +25,18 @@ struct FieldError : std::runtime_error {
 };
 
 float to_float(const nlohmann::json& v) {
-  if (!v.is_number()) throw FieldError("expected a number, got " + v.dump().substr(0, 40));
+  if (!v.is_number()) throw FieldError("expected a number, got " + json_text(v).substr(0, 40));
   const double d = v.get<double>();
-  if (!(std::fabs(d) <= std::numeric_limits<float>::max())) throw FieldError(v.dump() + " is out of range");
+  if (!(std::fabs(d) <= std::numeric_limits<float>::max())) throw FieldError(json_text(v) + " is out of range");
   return static_cast<float>(d);
 }
 
 int to_int(const nlohmann::json& v) {
-  if (!v.is_number_integer()) throw FieldError("expected an integer, got " + v.dump().substr(0, 40));
+  if (!v.is_number_integer()) throw FieldError("expected an integer, got " + json_text(v).substr(0, 40));
   if (v.is_number_unsigned() ? v.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<int>::max())
                              : (v.get<std::int64_t>() < std::numeric_limits<int>::min() ||
                                 v.get<std::int64_t>() > std::numeric_limits<int>::max()))
-    throw FieldError(v.dump() + " is out of range");
+    throw FieldError(json_text(v) + " is out of range");
   return static_cast<int>(v.get<std::int64_t>());
 }
 }  // namespace
@@ -201,7 +202,7 @@ std::string DisplayModel::to_json_text(const std::string& source) const {
                                       {"k", {d.k1, d.k2, d.k3}},
                                       {"channel_scale", {d.channel_scale.x, d.channel_scale.y, d.channel_scale.z}}};
     }
-  return j.dump(2) + "\n";
+  return json_text(j, 2) + "\n";
 }
 
 glm::vec2 LensDistortion::panel(glm::vec2 src, int c, const EyeFrustum& f) const {

@@ -29,6 +29,13 @@ std::string quat_norm_error(const glm::quat& q) {
   return buf;
 }
 
+std::string head_position_error(float m) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%.6g m is out of range (a head position is within ±%g m of the tracking origin)",
+                static_cast<double>(m), static_cast<double>(kMaxHeadPositionM));
+  return buf;
+}
+
 }  // namespace
 
 Error GazeLogReader::row_error(std::uint64_t line, std::string_view column, const std::string& what) const {
@@ -215,6 +222,10 @@ Result<bool> GazeLogReader::next(GazeSample& out) {
     for (int i = 0; i < 7; ++i) read_float(s.head.valid, *dst[i], i == 6);
     if (ok && s.head.valid && !is_unit(h.orientation))
       return row_error(line.number, kHeadQuatColumns, quat_norm_error(h.orientation));
+    for (int i = 0; ok && s.head.valid && i < 3; ++i)
+      if (!(std::abs(*dst[i]) <= kMaxHeadPositionM))
+        return row_error(line.number, gaze_log_columns(header_.version)[kHeadColumn + 1 + static_cast<std::size_t>(i)],
+                         head_position_error(*dst[i]));
     if (!s.head.valid) h = Pose{};  // read_float wrote zeros
   }
   if (!ok || !line.terminated) return describe_row_error(line);

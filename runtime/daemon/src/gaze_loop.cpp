@@ -29,6 +29,11 @@ GazeLoop::GazeLoop(GazeSource& source, Mapper mapper, Observer observer, bool wa
 
 GazeLoop::~GazeLoop() { stop(); }
 
+void GazeLoop::set_no_gaze(const FoveaFrame& f) {
+  no_gaze_ = f;
+  latest_.store(f);
+}
+
 void GazeLoop::start(int rt_priority) {
   rt_priority_ = rt_priority;
   stop_ = false;
@@ -64,7 +69,9 @@ void GazeLoop::publish_stats(bool force) {
 }
 
 bool GazeLoop::reconnect() {
-  // Device loss: keep the last fovea published, retry with backoff until it is back.
+  // Device loss: no gaze until it is back (the centre, when set_no_gaze() said what that
+  // is; else the last fovea stays); retry with backoff.
+  if (no_gaze_) latest_.store(*no_gaze_);
   local_.state = SourceState::reconnecting;
   publish_stats(true);
   if (!reopen_with_backoff(source_, [this] { return stop_.load(std::memory_order_acquire); })) return false;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <set>
 
+#include "foveal/core/display_model.hpp"
 #include "foveal/core/json_file.hpp"
 #include "foveal/core/shown_text.hpp"
 
@@ -14,14 +15,19 @@ namespace {
 
 constexpr const char* kFormat = "foveal-jod-levels v1";
 
-Result<std::vector<double>> grid(const nlohmann::json& j, const std::string& where, const char* key, double above) {
+// An increasing grid of numbers in (above, most], or [above, most] when `closed`.
+Result<std::vector<double>> grid(const nlohmann::json& j, const std::string& where, const char* key, double above, double most,
+                                 bool closed = false) {
   const std::string at = where + ": " + key;
   if (!j.contains(key) || !j.at(key).is_array() || j.at(key).empty() || j.at(key).size() > 64)
     return bad_input(at + ": expected an array of 1 to 64 numbers");
   std::vector<double> v;
   for (const auto& x : j.at(key)) {
-    if (!x.is_number() || !std::isfinite(x.get<double>()) || x.get<double>() <= above || x.get<double>() > 16)
-      return bad_input(at + ": expected numbers in (" + shown_number(above) + ", 16]");
+    const double d = x.is_number() ? x.get<double>() : std::numeric_limits<double>::quiet_NaN();
+    if (!std::isfinite(d) || (closed ? d < above : d <= above) || d > most)
+      return bad_input(at + ": expected numbers in " + (closed ? "[" : "(") + shown_number(above) + ", " + shown_number(most) + "]" +
+                       (closed ? " (RMFR's f where the compositor is tested)" : "") +
+                       (x.is_number() ? ", got " + shown_number(d) : std::string()));
     if (!v.empty() && x.get<double>() <= v.back()) return bad_input(at + ": expected increasing values");
     v.push_back(x.get<double>());
   }
@@ -39,9 +45,9 @@ Result<JodLevelTable> JodLevelTable::from_json(const nlohmann::json& j, const st
   JodLevelTable t;
   if (!j.contains("display") || !j.at("display").is_string()) return bad_input(where + ": display: expected a string");
   t.display = j.at("display").get<std::string>();
-  auto s = grid(j, where, "sigmas", 1.0);
+  auto s = grid(j, where, "sigmas", 1.0, 16.0);
   if (!s) return s.error();
-  auto f = grid(j, where, "f", 0.0);
+  auto f = grid(j, where, "f", kMinRmfrF, kMaxRmfrF, true);
   if (!f) return f.error();
   t.sigmas = std::move(*s), t.fs = std::move(*f);
   if (!j.contains("jod") || !j.at("jod").is_array() || j.at("jod").size() != t.fs.size())
@@ -118,6 +124,13 @@ Result<Profile> apply_quality(const Profile& p, const std::string& display_model
   const std::string path = jod_levels_path(display_model_path);
   auto table = JodLevelTable::load(path);
   if (!table) return Error{table.error().kind, "quality " + p.quality + ": " + table.error().message};
+  // A table measured on another display predicts nothing about this one.
+  auto model = DisplayModel::load(display_model_path);
+  if (!model) return Error{model.error().kind, "quality " + p.quality + ": " + model.error().message};
+  if (table->display != model->name)
+    return bad_input("quality " + p.quality + ": " + path + " is the levels table of display '" + shown_text(table->display, 60) +
+                     "', but the display model in use is '" + shown_text(model->name, 60) + "' (" + display_model_path +
+                     "): its JOD predictions do not hold there; measure a table for it (docs/methods.md) or set quality off");
   auto levels = choose_jod_levels(*table, **target, p.sigma_nd / p.sigma_d);
   if (!levels) return levels.error();
   levels->table = path;

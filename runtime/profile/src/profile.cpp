@@ -131,7 +131,9 @@ Status Profile::validate(const std::string& where) const {
     return bad_input(where + ": sigma_nd (" + shown_number(sigma_nd) + ") must be >= sigma_d (" +
                      shown_number(sigma_d) + "): the non-dominant eye is foveated at least as much");
   for (const auto& [key, f] : {std::pair{"f_x", f_x}, std::pair{"f_y", f_y}})
-    if (f && !(*f > 0.0 && *f <= 100.0)) return bad_input(where + ": " + key + ": must be in (0, 100] or \"auto\"");
+    if (f && !(*f >= kMinRmfrF && *f <= kMaxRmfrF))
+      return bad_input(where + ": " + key + ": " + shown_number(*f) + " is not in [" + shown_number(kMinRmfrF) + ", " +
+                       shown_number(kMaxRmfrF) + "] (the range the compositor is tested at) or \"auto\"");
   if (!(ipd_mm > 40.0 && ipd_mm < 90.0)) return bad_input(where + ": ipd_mm: must be in (40, 90)");
   if (display_model.empty()) return bad_input(where + ": display_model: must not be empty");
   if (auto f = FilterConfig::from_json(filter, where); !f) return f.error();

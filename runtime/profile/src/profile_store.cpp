@@ -12,6 +12,7 @@
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/clock.hpp"
 #include "foveal/core/json_file.hpp"
+#include "foveal/core/json_text.hpp"
 #include "foveal/core/read_file.hpp"
 #include "foveal/runtime/profile.hpp"
 
@@ -62,7 +63,7 @@ Status ProfileStore::save(const Profile& p) const {
   std::error_code ec;
   fs::create_directories(root_ + "/profiles", ec);
   if (ec) return io_error(root_ + "/profiles: cannot create: " + ec.message());
-  return write_file_atomically(path_of(p.name), p.to_json().dump(2) + "\n");
+  return write_file_atomically(path_of(p.name), json_text(p.to_json(), 2) + "\n");
 }
 
 Status ProfileStore::remove(const std::string& name) const {

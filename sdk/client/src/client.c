@@ -44,6 +44,12 @@ struct foveal_client {
 #define kMaxSigma 16.0
 #define kMaxF 100.0
 #define kMaxIpdM 0.2f
+#define kMaxTangent 100.0f     /* DisplayModel::validate's bound on a frustum tangent */
+#define kMinTangentSpan 0.01f  /* and on right - left, top - bottom (about 0.6 degrees) */
+/* A gaze sample is measured before foveald publishes it; a time further ahead of the
+ * reader's clock than this is no sample of now (an hour ahead would keep a frozen gaze
+ * "fresh" for an hour). Loose enough for a tracker clock mapped with some error. */
+#define kMaxSampleAheadNs 1000000000LL
 
 /* A block truncated while mapped (ftruncate by its owner, or a foveald of another build
  * taking it over) turns every load from the lost page into SIGBUS. Checking the size with
@@ -215,18 +221,23 @@ static int valid_name(const char *name) {
 }
 
 /* Checks who made the block and its header; 0, or an error code with err filled.
- * *map_size: how much of it this library reads (the view from version 3 on). */
+ * *map_size: how much of it this library reads (the view from version 3 on).
+ * Only a plain file of this user's, 0600, as foveald makes it (runtime/exchange
+ * open_for_writing): a FIFO or device another user planted at the name, or their file,
+ * could hang the reader or hand it forged gaze. Root reads only its own, as foveald
+ * writes only its own. */
 static int check_block(int fd, const char *name, size_t *map_size, foveal_error *err) {
   struct stat st;
   if (fstat(fd, &st) != 0) return set_error(err, FOVEAL_ERR_SYSTEM, name, "fstat: %s", strerror(errno));
   if (!S_ISREG(st.st_mode))
-    return set_error(err, FOVEAL_ERR_NOT_FOVEALDS, name, "not a plain shared-memory object");
+    return set_error(err, FOVEAL_ERR_NOT_FOVEALDS, name, "/dev/shm%s is %s, not a plain shared-memory object; not foveald's",
+                     name, S_ISFIFO(st.st_mode) ? "a FIFO" : S_ISDIR(st.st_mode) ? "a directory" : "a special file");
+  if (st.st_uid != geteuid())
+    return set_error(err, FOVEAL_ERR_NOT_FOVEALDS, name, "belongs to uid %u, not to you (uid %u); not foveald's",
+                     (unsigned)st.st_uid, (unsigned)geteuid());
   if ((st.st_mode & 077) != 0) /* foveald makes it 0600: a wider block is someone else's bait */
     return set_error(err, FOVEAL_ERR_NOT_FOVEALDS, name, "mode %04o lets other users write it; not a block of foveald's",
-                (unsigned)(st.st_mode & 07777));
-  if (st.st_uid != geteuid() && geteuid() != 0)
-    return set_error(err, FOVEAL_ERR_NOT_FOVEALDS, name, "belongs to uid %u, not to you (uid %u)", (unsigned)st.st_uid,
-                (unsigned)geteuid());
+                     (unsigned)(st.st_mode & 07777));
   /* The header is read, not mapped: a short or older block is named, never mapped past its end. */
   uint32_t header[3] = {0, 0, 0};
   const ssize_t got = pread(fd, header, sizeof header, 0);
@@ -259,11 +270,19 @@ foveal_client *foveal_client_open(const char *shm_name_or_null, foveal_error *er
   if (!valid_name(name))
     return fail(err, FOVEAL_ERR_INVALID_ARGUMENT, name, "not a shared-memory name (one leading '/', no other, at most 255 bytes)");
 
-  const int fd = shm_open(name, O_RDONLY | O_CLOEXEC, 0);
+  /* NONBLOCK: a FIFO planted at the name would otherwise hold open(2) until a writer
+   * comes, before any check can refuse it. NOFOLLOW: a symbolic link there is refused,
+   * never followed (glibc's shm_open passes these flags on to open on /dev/shm). */
+  const int fd = shm_open(name, O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_NOCTTY | O_CLOEXEC, 0);
   if (fd < 0) {
-    if (errno == ENOENT) return fail(err, FOVEAL_ERR_NO_WRITER, name, "no such block (/dev/shm%s): is foveald running?", name);
-    if (errno == EACCES) return fail(err, FOVEAL_ERR_NOT_FOVEALDS, name, "permission denied: another user's block");
-    return fail(err, FOVEAL_ERR_SYSTEM, name, "shm_open: %s", strerror(errno));
+    const int e = errno;
+    if (e == ENOENT) return fail(err, FOVEAL_ERR_NO_WRITER, name, "no such block (/dev/shm%s): is foveald running?", name);
+    if (e == EACCES) return fail(err, FOVEAL_ERR_NOT_FOVEALDS, name, "permission denied: another user's block");
+    if (e == ELOOP)
+      return fail(err, FOVEAL_ERR_NOT_FOVEALDS, name, "/dev/shm%s is a symbolic link, not foveald's block; not followed", name);
+    if (e == ENXIO) /* a socket, or a device without its driver */
+      return fail(err, FOVEAL_ERR_NOT_FOVEALDS, name, "/dev/shm%s is a socket or a device, not foveald's block", name);
+    return fail(err, FOVEAL_ERR_SYSTEM, name, "shm_open: %s", strerror(e));
   }
   size_t size = 0;
   if (check_block(fd, name, &size, err) != 0) {
@@ -314,6 +333,7 @@ typedef struct {
   size_t seq_offset, words_offset, n;
   uint64_t *words;
   uint64_t fovea_frame; /* the fovea's frame counter, read after the section */
+  int64_t now_ns;       /* this reader's CLOCK_MONOTONIC when it checked the writer (>= 0) */
 } section_read;
 
 static int section_op(const unsigned char *block, size_t size, void *arg) {
@@ -322,6 +342,7 @@ static int section_op(const unsigned char *block, size_t size, void *arg) {
   writer_words w;
   const int problem = writer_problem(block, &w);
   if (problem) return problem;
+  r->now_ns = w.now_ns;
   if (!seqlock_read(block, r->seq_offset, r->words_offset, r->words, r->n)) return FOVEAL_ERR_BUSY;
   r->fovea_frame = load_u64(block, FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, frame), __ATOMIC_ACQUIRE);
   return 0;
@@ -329,9 +350,13 @@ static int section_op(const unsigned char *block, size_t size, void *arg) {
 
 static int in_range(float v, float lo, float hi) { return v >= lo && v <= hi; } /* false for NaN */
 
-/* Whether a published fovea is one foveald could have written: a viewport, finite pixels
- * inside it (foveald clamps onto the viewport), confidences in [0, 1], known states. */
-static int fovea_is_plausible(const foveal_shm_fovea *f) {
+/* Whether a published fovea is one foveald could have written: a sample time of this
+ * clock, a viewport, finite pixels inside it (foveald clamps onto the viewport),
+ * confidences in [0, 1], known states. */
+static int fovea_is_plausible(const foveal_shm_fovea *f, int64_t now_ns) {
+  /* A CLOCK_MONOTONIC time: positive, and not ahead of now by more than the margin. Both
+   * are positive here, so the difference cannot overflow (t_ns = INT64_MIN never gets to it). */
+  if (f->t_ns <= 0 || f->t_ns - now_ns > kMaxSampleAheadNs) return 0;
   if (f->eye_width == 0 || f->eye_height == 0 || f->eye_width > kMaxEyePixels || f->eye_height > kMaxEyePixels) return 0;
   for (int e = 0; e < 2; ++e)
     if (!in_range(f->x[e], 0.0f, (float)f->eye_width) || !in_range(f->y[e], 0.0f, (float)f->eye_height) ||
@@ -343,12 +368,12 @@ static int fovea_is_plausible(const foveal_shm_fovea *f) {
 int foveal_client_read(foveal_client *c, foveal_fovea *out) {
   if (!c || !out) return FOVEAL_ERR_INVALID_ARGUMENT;
   uint64_t words[FOVEAL_SHM_FOVEA_WORDS];
-  section_read r = {FOVEAL_SHM_FOVEA_SEQ_OFFSET, FOVEAL_SHM_FOVEA_WORDS_OFFSET, FOVEAL_SHM_FOVEA_WORDS, words, 0};
+  section_read r = {FOVEAL_SHM_FOVEA_SEQ_OFFSET, FOVEAL_SHM_FOVEA_WORDS_OFFSET, FOVEAL_SHM_FOVEA_WORDS, words, 0, 0};
   const int rc = guarded(c, section_op, &r);
   if (rc) return rc;
   foveal_shm_fovea f;
   memcpy(&f, words, sizeof f);
-  if (f.frame != 0 && !fovea_is_plausible(&f)) return FOVEAL_ERR_BAD_DATA;
+  if (f.frame != 0 && !fovea_is_plausible(&f, r.now_ns)) return FOVEAL_ERR_BAD_DATA;
   out->t_ns = f.t_ns;
   out->eye_width = f.eye_width;
   out->eye_height = f.eye_height;
@@ -365,7 +390,7 @@ int foveal_client_read(foveal_client *c, foveal_fovea *out) {
 int foveal_client_settings(foveal_client *c, foveal_settings *out) {
   if (!c || !out) return FOVEAL_ERR_INVALID_ARGUMENT;
   uint64_t words[FOVEAL_SHM_SETTINGS_WORDS];
-  section_read r = {FOVEAL_SHM_SETTINGS_SEQ_OFFSET, FOVEAL_SHM_SETTINGS_WORDS_OFFSET, FOVEAL_SHM_SETTINGS_WORDS, words, 0};
+  section_read r = {FOVEAL_SHM_SETTINGS_SEQ_OFFSET, FOVEAL_SHM_SETTINGS_WORDS_OFFSET, FOVEAL_SHM_SETTINGS_WORDS, words, 0, 0};
   const int rc = guarded(c, section_op, &r);
   if (rc) return rc;
   foveal_shm_settings s;
@@ -391,17 +416,21 @@ int foveal_client_view(foveal_client *c, foveal_view *out) {
   if (!c || !out) return FOVEAL_ERR_INVALID_ARGUMENT;
   if (c->size < FOVEAL_SHM_V3_SIZE) return FOVEAL_ERR_WRONG_VERSION;
   uint64_t words[FOVEAL_SHM_VIEW_WORDS];
-  section_read r = {FOVEAL_SHM_VIEW_SEQ_OFFSET, FOVEAL_SHM_VIEW_WORDS_OFFSET, FOVEAL_SHM_VIEW_WORDS, words, 0};
+  section_read r = {FOVEAL_SHM_VIEW_SEQ_OFFSET, FOVEAL_SHM_VIEW_WORDS_OFFSET, FOVEAL_SHM_VIEW_WORDS, words, 0, 0};
   const int rc = guarded(c, section_op, &r);
   if (rc) return rc;
   foveal_shm_view v;
   memcpy(&v, words, sizeof v);
   if (v.published == 0) return FOVEAL_ERR_NO_DATA;
   if (v.published != 1) return FOVEAL_ERR_BAD_DATA;
-  for (int e = 0; e < 2; ++e) /* finite, and each frustum the right way round (the comparisons fail for NaN) */
-    if (!isfinite(v.tan_left[e]) || !isfinite(v.tan_right[e]) || !isfinite(v.tan_bottom[e]) || !isfinite(v.tan_top[e]) ||
-        !(v.tan_left[e] < v.tan_right[e]) || !(v.tan_bottom[e] < v.tan_top[e]))
-      return FOVEAL_ERR_BAD_DATA;
+  /* Within the bounds foveald's display model keeps (each comparison fails for NaN, and
+   * a bounded tangent is finite): a frustum the right way round, at least 0.01 wide. */
+  for (int e = 0; e < 2; ++e) {
+    const float t[4] = {v.tan_left[e], v.tan_right[e], v.tan_bottom[e], v.tan_top[e]};
+    for (int k = 0; k < 4; ++k)
+      if (!(fabsf(t[k]) <= kMaxTangent)) return FOVEAL_ERR_BAD_DATA;
+    if (!(t[1] - t[0] >= kMinTangentSpan) || !(t[3] - t[2] >= kMinTangentSpan)) return FOVEAL_ERR_BAD_DATA;
+  }
   if (!(v.ipd_m > 0.0f && v.ipd_m <= kMaxIpdM)) return FOVEAL_ERR_BAD_DATA;
   for (int e = 0; e < 2; ++e) {
     out->tan_left[e] = v.tan_left[e];
@@ -440,14 +469,16 @@ const char *foveal_error_message(int code) {
     case FOVEAL_ERR_NO_WRITER: return "no foveald publishes there (not running, starting, or stopped)";
     case FOVEAL_ERR_WRONG_VERSION: return "not a fovea block this library reads (wrong magic, version or size)";
     case FOVEAL_ERR_DEAD_WRITER: return "the foveald that published there died or hangs (no heartbeat for 2 s)";
-    case FOVEAL_ERR_NOT_FOVEALDS: return "the block is not foveald's (another user's, or open to other users)";
+    case FOVEAL_ERR_NOT_FOVEALDS:
+      return "the block is not foveald's (another user's, open to other users, or a FIFO, link or device)";
     case FOVEAL_ERR_NO_DATA: return "foveald has published no fovea yet";
     case FOVEAL_ERR_BUSY: return "every try overlapped a write; try again";
     case FOVEAL_ERR_SYSTEM: return "a system call failed";
     case FOVEAL_ERR_REFUSED: return "foveald refused the request";
     case FOVEAL_ERR_TIMEOUT: return "foveald did not answer in time";
     case FOVEAL_ERR_BAD_DATA:
-      return "the block holds values foveald never writes, or was cut short under the mapping: open a new client";
+      return "the block holds values foveald never writes (a sample time ahead of the clock, a pixel off the viewport...), "
+             "or was cut short under the mapping: open a new client";
     default: return "unknown error code";
   }
 }

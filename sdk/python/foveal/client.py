@@ -1,6 +1,7 @@
 """The live fovea and settings: ctypes over libfoveal-client (include/foveal/client.h)."""
 import ctypes
 import os
+import warnings
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
@@ -39,6 +40,50 @@ class Fovea:
     frame: int                      # increments with every published sample
 
 
+class Eye(str):
+    """An eye: the string 'left' or 'right' (as profiles and `foveal ctl` name it).
+    For code written when Settings.dominant_eye was an int, an Eye also compares equal
+    to its index (0 left, 1 right; deprecated, with a DeprecationWarning), and int(eye)
+    or using it as an index gives that number. Truth testing is a str's: both are true."""
+    __slots__ = ()
+    _NAMES = ("left", "right")
+
+    def __new__(cls, value):
+        if isinstance(value, Eye):
+            return value
+        if isinstance(value, int) and not isinstance(value, bool) and value in (0, 1):
+            return super().__new__(cls, cls._NAMES[value])
+        if isinstance(value, str) and value in cls._NAMES:
+            return super().__new__(cls, value)
+        raise ValueError(f"an eye is 'left' or 'right' (or 0, 1), not {value!r}")
+
+    @property
+    def index(self) -> int:
+        """0 for the left eye, 1 for the right (the C API's dominant_eye)."""
+        return self._NAMES.index(str(self))
+
+    def __int__(self) -> int:
+        return self.index
+
+    __index__ = __int__
+
+    def __eq__(self, other):
+        if isinstance(other, int) and not isinstance(other, bool):
+            warnings.warn("comparing an Eye with an int: dominant_eye is 'left' or 'right' now", DeprecationWarning,
+                          stacklevel=2)
+            return self.index == other
+        return str.__eq__(self, other)
+
+    def __ne__(self, other):
+        equal = self.__eq__(other)
+        return equal if equal is NotImplemented else not equal
+
+    __hash__ = str.__hash__
+
+    def __repr__(self) -> str:
+        return repr(str(self))
+
+
 @dataclass(frozen=True)
 class Settings:
     """The active profile's settings; generation increments with every change."""
@@ -46,7 +91,7 @@ class Settings:
     sigma_nd: float
     f_x: float                      # negative: automatic
     f_y: float
-    dominant_eye: int               # 0 left, 1 right
+    dominant_eye: Eye               # 'left' or 'right' (a str; == 0 / == 1 still work, deprecated)
     generation: int
 
 
@@ -196,7 +241,7 @@ class Client:
             raise ClientError(INVALID_ARGUMENT, "the client is closed")
         s = _Settings()
         self._check(self._lib.foveal_client_settings(self._handle, ctypes.byref(s)))
-        return Settings(s.sigma_d, s.sigma_nd, s.f_x, s.f_y, s.dominant_eye, s.generation)
+        return Settings(s.sigma_d, s.sigma_nd, s.f_x, s.f_y, Eye(s.dominant_eye), s.generation)
 
     def close(self) -> None:
         if self._handle is not None:

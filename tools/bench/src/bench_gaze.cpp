@@ -20,6 +20,7 @@
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/data_paths.hpp"
 #include "foveal/core/gaze_log.hpp"
+#include "foveal/core/json_text.hpp"
 #include "foveal/image/metrics.hpp"
 #include "foveal/render/compositor.hpp"
 #include "foveal/render/egl_context.hpp"
@@ -104,7 +105,7 @@ std::string csv_line(const nlohmann::json& row, const std::vector<std::string>& 
     if (!line.empty()) line += ",";
     if (row.is_null()) line += c;
     else if (row.at(c).is_string()) line += row.at(c).get<std::string>();
-    else if (row.at(c).is_number_integer() || row.at(c).is_number_unsigned()) line += row.at(c).dump();
+    else if (row.at(c).is_number_integer() || row.at(c).is_number_unsigned()) line += json_text(row.at(c));
     else line += fmt(row.at(c).get<double>());
   }
   return line + "\n";

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "foveal/bench/bench_outputs.hpp"
+#include "foveal/core/json_text.hpp"
 #include "foveal/tools/cli.hpp"
 
 namespace foveal::bench {
@@ -59,8 +60,8 @@ int run_merge(const MergeOptions& a) {
   }
   for (const auto& f : files) {
     if (f.summary.value("renderer", nlohmann::json()) != summary.value("renderer", nlohmann::json()))
-      cli::warn(f.path + ": rendered on '" + shown(f.summary.value("renderer", nlohmann::json()).dump()) + "', " + files.front().path +
-                " on '" + shown(summary.value("renderer", nlohmann::json()).dump()) + "': the timing columns mix machines");
+      cli::warn(f.path + ": rendered on '" + shown(json_text(f.summary.value("renderer", nlohmann::json()))) + "', " + files.front().path +
+                " on '" + shown(json_text(summary.value("renderer", nlohmann::json()))) + "': the timing columns mix machines");
   }
   summary["shards"] = files.size();
   return bench::write_outputs(a.out, *merged, summary, files.front().kind, !a.no_png, a.json);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "foveal/core/data_paths.hpp"
+#include "foveal/core/json_text.hpp"
 #include "foveal/tools/cli.hpp"
 #include "foveal/tools/run_program.hpp"
 #include "foveal/tools/staged_outputs.hpp"
@@ -103,14 +104,22 @@ int write_outputs(const std::string& dir, const SweepRows& rows, nlohmann::json 
   auto out = cli::StagedOutputs::create(dir);
   if (!out) return fail(out.error());
   if (Status s = write_tables(*out, rows); !s) return fail(s.error());
-  if (Status s = out->write(k->json_file, summary.dump(2) + "\n"); !s) return fail(s.error());
+  if (Status s = out->write(k->json_file, json_text(summary, 2) + "\n"); !s) return fail(s.error());
   if (charts)
     if (Status s = run_charts(k->charts, *out); !s) return fail(s.error());
   if (auto moved = out->commit(); !moved) return fail(moved.error());
   if (json) cli::print_json(summary);
-  else
-    std::printf("bench: %zu rows -> %s/%s and its tables%s\n", summary["rows"].size(), dir.c_str(), k->json_file,
+  else {
+    // The rows the tables got, each table's count: what was written, whatever the JSON lists hold.
+    std::size_t total = 0;
+    std::string each;
+    for (const std::string& t : rows.tables()) {
+      total += rows.lines(t);
+      each += (each.empty() ? "" : ", ") + t + " " + std::to_string(rows.lines(t));
+    }
+    std::printf("bench: %zu rows (%s) -> %s/%s and its tables%s\n", total, each.c_str(), dir.c_str(), k->json_file,
                 charts ? " and charts" : "");
+  }
   return cli::kExitOk;
 }
 
@@ -122,7 +131,7 @@ int write_shard(const std::string& dir, const SweepRows& rows, const nlohmann::j
   auto out = cli::StagedOutputs::create(dir);
   if (!out) return fail(out.error());
   if (Status s = write_tables(*out, rows); !s) return fail(s.error());
-  if (Status s = out->write("shard.json", file.dump(1) + "\n"); !s) return fail(s.error());
+  if (Status s = out->write("shard.json", json_text(file, 1) + "\n"); !s) return fail(s.error());
   if (auto moved = out->commit(); !moved) return fail(moved.error());
   const std::size_t own = rows.list("rows").size();
   if (json) cli::print_json({{"shard", rows.shard().text()}, {"points", rows.points()}, {"rows", own}, {"out", dir + "/shard.json"}});

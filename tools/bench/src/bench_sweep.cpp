@@ -6,6 +6,9 @@
 #include <cstdlib>
 #include <map>
 
+#include "foveal/bench/shard_cells.hpp"
+#include "foveal/core/shown_text.hpp"
+
 namespace foveal::bench {
 
 namespace {
@@ -153,11 +156,17 @@ Result<SweepRows> SweepRows::from_json(const nlohmann::json& j, const std::strin
       return bad("field '" + field + "': expected {header, lines}");
     Table& table = r.tables_[file];
     table.header = t["header"].get<std::string>();
+    // Rows are copied into the merged CSV verbatim: each must be one plain row.
+    const std::string at = where + ": " + shown_text(file, 40);
+    if (Status s = check_csv_line(table.header, "", at + " header"); !s) return s.error();
+    std::size_t line = 1;  // the header is line 1 of the shard's own table file
     for (const auto& l : t["lines"]) {
       auto p = point_of(l, field + ".lines");
       if (!p) return p.error();
       if (!l[1].is_string()) return bad("field '" + field + ".lines': a line must be a string");
-      table.lines.push_back({*p, l[1].get<std::string>()});
+      const std::string& text = l[1].get_ref<const std::string&>();
+      if (Status s = check_csv_line(text, table.header, at + " line " + std::to_string(++line)); !s) return s.error();
+      table.lines.push_back({*p, text});
     }
   }
   if (!j.contains("lists") || !j["lists"].is_object()) return bad("field 'lists': expected an object");

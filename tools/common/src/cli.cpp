@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "foveal/core/json_text.hpp"
+
 namespace foveal::cli {
 
 int report(const Error& e, const char* program) {
@@ -18,7 +20,7 @@ void warn(const std::string& message, const char* program) {
   std::fprintf(stderr, "%s: warning: %s\n", program, message.c_str());
 }
 
-void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << std::endl; }
+void print_json(const nlohmann::json& j) { std::cout << json_text(j, 2) << std::endl; }
 
 Progress::Progress(std::string label, std::uint64_t total, bool enabled)
     : label_(std::move(label)), total_(total), enabled_(enabled && ::isatty(STDERR_FILENO)) {}

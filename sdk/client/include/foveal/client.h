@@ -35,7 +35,8 @@ enum foveal_error_code {
   FOVEAL_ERR_NO_WRITER = 2,        /* no foveald publishes there (not running, starting, or stopped) */
   FOVEAL_ERR_WRONG_VERSION = 3,    /* the block is not one this library reads (older foveald, not a fovea block) */
   FOVEAL_ERR_DEAD_WRITER = 4,      /* the foveald that published there died or hangs (no heartbeat for 2 s) */
-  FOVEAL_ERR_NOT_FOVEALDS = 5,     /* the block is readable or writable by other users: not one foveald made */
+  FOVEAL_ERR_NOT_FOVEALDS = 5,     /* not one foveald made: another user's, open to other users, or no plain file
+                                      (a FIFO, a symbolic link, a device) */
   FOVEAL_ERR_NO_DATA = 6,          /* foveald runs but has published no fovea yet (waiting for its tracker) */
   FOVEAL_ERR_BUSY = 7,             /* every try overlapped a write (practically never): try again */
   FOVEAL_ERR_SYSTEM = 8,           /* an operating-system call failed; the message says which */
@@ -56,7 +57,8 @@ enum foveal_fovea_state {
 
 /* The latest fovea. Index 0 is the left eye, 1 the right. */
 typedef struct {
-  int64_t t_ns;                  /* CLOCK_MONOTONIC time of the gaze sample, ns */
+  int64_t t_ns;                  /* CLOCK_MONOTONIC time of the gaze sample, ns (> 0, at most 1 s ahead of the
+                                    reader's clock when read) */
   uint32_t eye_width, eye_height; /* the eye viewport (pixels) that x and y refer to */
   float x[2], y[2];              /* viewport pixels, origin at the top-left corner, y down */
   float confidence[2];           /* 0..1 */
@@ -98,8 +100,11 @@ typedef struct foveal_client foveal_client;
  * err: filled on failure when not NULL (code and message); left alone on success.
  * Returns the client, or NULL on failure with err->code one of INVALID_ARGUMENT,
  *   NO_WRITER (no block: is foveald running?; or foveald stopped), WRONG_VERSION,
- *   NOT_FOVEALDS, DEAD_WRITER, BAD_DATA (a writer state or heartbeat foveald never
- *   writes), SYSTEM.
+ *   NOT_FOVEALDS (anything at the name but a plain file of the calling user's with mode
+ *   0600: another user's file, even for root, a FIFO, a symbolic link, a device),
+ *   DEAD_WRITER, BAD_DATA (a writer state or heartbeat foveald never writes), SYSTEM.
+ * Never blocks: the name is opened non-blocking and not followed if it is a link, so
+ *   a FIFO planted there is refused at once instead of waiting for a writer.
  * Thread safety: may be called from any thread. Allocates the client; the only call
  *   that does. A client stays bound to the block it mapped: after foveald restarts,
  *   reads return NO_WRITER (or DEAD_WRITER) and the program opens a new client. */
@@ -109,8 +114,9 @@ FOVEAL_CLIENT_API foveal_client *foveal_client_open(const char *shm_name_or_null
  *
  * Returns FOVEAL_OK, or INVALID_ARGUMENT (c or out NULL), NO_WRITER (foveald stopped),
  *   DEAD_WRITER, NO_DATA (nothing published yet; *out then holds zeros and the viewport
- *   size), BUSY, BAD_DATA (a value foveald never writes: a non-finite or off-viewport
- *   pixel, a confidence outside [0, 1], an unknown state or writer state, a zero
+ *   size), BUSY, BAD_DATA (a value foveald never writes: a sample time t_ns that is not
+ *   positive or more than 1 s ahead of this reader's CLOCK_MONOTONIC, a non-finite or
+ *   off-viewport pixel, a confidence outside [0, 1], an unknown state or writer state, a zero
  *   viewport, a heartbeat no clock gives; or the block was truncated while mapped). On an
  *   error other than NO_DATA, *out is unchanged.
  * Wait-free for the writer; no lock, allocation or system call (the clock is read
@@ -136,8 +142,9 @@ FOVEAL_CLIENT_API int foveal_client_settings(foveal_client *c, foveal_settings *
  *
  * Returns FOVEAL_OK, or INVALID_ARGUMENT, WRONG_VERSION (an older foveald's block,
  *   without the view), NO_WRITER, DEAD_WRITER, NO_DATA (not yet published), BUSY,
- *   BAD_DATA (a non-finite tangent, left >= right or bottom >= top, an IPD outside
- *   (0, 0.2] m, a published flag not 0 or 1).
+ *   BAD_DATA (a tangent that is not finite or beyond +-100 (the bound of foveald's display
+ *   model), right - left or top - bottom under 0.01, an IPD outside (0, 0.2] m, a
+ *   published flag not 0 or 1).
  * Wait-free, no lock, allocation or system call. Thread safety as foveal_client_read. */
 FOVEAL_CLIENT_API int foveal_client_view(foveal_client *c, foveal_view *out);
 

@@ -4,7 +4,9 @@
 // `#include "path"` pulls in another file relative to the shader root (`foveal/...`
 // names foveal-rmfr's GLSL, which comes from the library: foveal::rmfr::glsl_file).
 // Compile and link errors are reported as "file:line: message" for the file the line
-// came from.
+// came from. `method/...` names are virtual files the caller gives with the program (a
+// described foveation method's kernel, foveal/image/method_description.hpp); one not
+// given is empty.
 #include <string>
 #include <vector>
 
@@ -18,6 +20,12 @@ struct ShaderStage {
   std::string path;  ///< relative to the shader root
 };
 
+/// Text an `#include "method/NAME"` line takes instead of a file.
+struct VirtualFile {
+  std::string name;  ///< "method/NAME"
+  std::string text;
+};
+
 class ShaderLoader {
  public:
   /// `root` holds the shader files; default: data_path("shaders").
@@ -26,11 +34,13 @@ class ShaderLoader {
   /// Compiles and links. `defines` are inserted after #version (e.g. "#define X 1\n").
   /// Errors: a missing file (io, names it), a compile or link error (bad_input, with
   /// file:line of every message). Needs a current context.
-  Result<Program> program(const std::vector<ShaderStage>& stages, const std::string& defines = {}) const;
+  Result<Program> program(const std::vector<ShaderStage>& stages, const std::string& defines = {},
+                          const std::vector<VirtualFile>& virtual_files = {}) const;
 
   /// The expanded source of one file with #line markers, and the file of each source
   /// number (index = GLSL source-string number). For tests and error mapping.
-  Result<std::string> expand(const std::string& path, std::vector<std::string>& files) const;
+  Result<std::string> expand(const std::string& path, std::vector<std::string>& files,
+                             const std::vector<VirtualFile>& virtual_files = {}) const;
 
   const std::string& root() const { return root_; }
 

@@ -21,7 +21,10 @@ namespace foveal::render {
 // uniform and fixed are the choices without eye tracking (docs/methods.md): uniform
 // shades a W/σ × H/σ grid and upsamples (RMFR's passes with the identity map); fixed is
 // RMFR with the fovea pinned at the eye's optical centre, whatever the gaze.
+// Methods described in one file (foveal/image/method_description.hpp: inset,
+// inset-fixed) have values from kDescribedMethodBase on, one per row of their list.
 enum class Method { full, rmfr, kfr, hyperbolic, linear, uniform, fixed };
+constexpr int kDescribedMethodBase = 64;
 const char* method_name(Method m);
 /// One of method_names(); bad_input otherwise.
 Result<Method> parse_method(const std::string& s);
@@ -42,6 +45,10 @@ struct EyeFoveation {
                                         ///< NaN/Inf -> centre, outside [0,1] -> clamped
   double kfr_alpha = 4.0;               ///< KFR kernel exponent (Meng et al. recommend 4)
   double layer_scale = 0.0;             ///< layered methods: eccentricity scale; 0 = match σ's cost
+  /// inset: the inner view's half-extent, degrees (its tangent at the optical centre, both
+  /// axes); 0 = 35% of the frustum's tangent half-extent per axis (Quad-Views-Foveated's)
+  double inset_deg = 0.0;
+  double inset_band_deg = 3.0;          ///< inset: band over which the inner view blends in, degrees
 };
 
 /// One layer of the layered methods: a screen rectangle shaded at 1/pixel_size² rate.
@@ -60,7 +67,8 @@ struct EyePlan {
   glm::dvec2 f{0.3};               ///< RMFR: effective f per axis (1e30 at σ = 1: no warp)
   double kfr_log_max = 1, kfr_alpha = 4;  ///< KFR: L = ln(largest fovea-corner distance, px)
   double layer_scale = 1;          ///< layered: the eccentricity scale used
-  std::vector<Layer> layers;       ///< layered methods, innermost first
+  std::vector<Layer> layers;       ///< layered and described methods, innermost first
+  glm::dvec4 kernel_params{0.0};   ///< described methods: their kernel's u_kernel_params
   EyeFrustum frustum;              ///< for eccentricities
 
   /// Samples the lighting pass shades for this eye.

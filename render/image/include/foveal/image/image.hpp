@@ -27,6 +27,13 @@ struct Rect {
 
 /// Loads PNG, JPEG, BMP, TGA (stb_image) as RGBA8. Errors name the file and the reason.
 Result<Image> load(const std::string& path);
+/// What a file's header says, read without decoding it: for sizing the work before any.
+struct ImageHeader {
+  int width = 0, height = 0;
+  std::uint64_t file_bytes = 0;
+};
+/// The header of an image load() would read (same checks: regular file, sizes foveal reads).
+Result<ImageHeader> probe(const std::string& path);
 /// Writes a PNG atomically (temporary file + rename).
 Status save_png(const std::string& path, const Image& img);
 

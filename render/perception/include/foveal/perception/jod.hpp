@@ -29,8 +29,12 @@ struct EyeGeometry {
 /// size gives the model's own).
 EyeGeometry eye_geometry(const DisplayModel& model, Eye e, int w, int h);
 
+/// The luminance the model takes (its CSF table's span, cd/m²): black and peak within.
+inline constexpr double kMinLuminanceCdM2 = 0.001, kMaxLuminanceCdM2 = 10000;
+
 /// The panel's light: sRGB-encoded values shown between black and peak (cd/m²).
-/// Defaults: FovVideoVDP's HTC Vive Pro (133.3 and 0.1 cd/m²).
+/// Defaults: FovVideoVDP's HTC Vive Pro (133.3 and 0.1 cd/m²). validate(): finite,
+/// kMinLuminanceCdM2 <= black < peak <= kMaxLuminanceCdM2.
 struct Photometry {
   double peak_cd_m2 = 133.3;
   double black_cd_m2 = 0.1;

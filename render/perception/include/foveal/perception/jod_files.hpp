@@ -3,6 +3,8 @@
 // folder of frames (sorted by name) or a .txt list of frame paths; side-by-side stereo
 // frames scored per eye (docs/metrics.md, "JOD").
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,8 +41,31 @@ struct JodReport {
 };
 
 /// The frames `path` names: itself if an image file, a folder's image files sorted by
-/// name, or the non-empty lines of a .txt file (relative to its folder).
+/// name, or the non-empty lines of a .txt file (relative to its folder). The list is read
+/// through the project's file entry point: a regular file of at most kMaxListBytes.
 Result<std::vector<std::string>> frame_paths(const std::string& path, const char* what);
+
+/// The largest frame list or fovea list read (each line one frame: a million frames fit).
+inline constexpr std::size_t kMaxListBytes = std::size_t{64} << 20;
+
+/// What run_jod will score and about how much memory that takes, from the frame lists and
+/// the first frames' headers alone (nothing decoded): callers refuse work past a bound
+/// before it starts.
+struct JodPlan {
+  std::vector<std::string> refs, tests;
+  int width = 0, height = 0;  ///< of one eye's image
+  int eyes = 1;
+  std::uint64_t bytes = 0;    ///< jod_working_set_bytes of this request
+};
+Result<JodPlan> plan_jod(const JodRequest& request);
+
+/// The peak memory run_jod needs, about (within ~10 %, docs/metrics.md "Memory"): the
+/// metric's per-eye planes, a video's ring of ceil(fps/4) frames (at most its frame
+/// count) of both videos per eye,
+/// one frame's pyramids, and the decoded frames (file_bytes: the largest frame file).
+/// frames > 1 is a video at `fps`.
+std::uint64_t jod_working_set_bytes(int eye_width, int eye_height, int eyes, std::size_t frames, double fps,
+                                    std::uint64_t file_bytes);
 
 Result<JodReport> run_jod(const JodRequest& request);
 

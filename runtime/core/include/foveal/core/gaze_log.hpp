@@ -21,6 +21,10 @@ constexpr int kGazeLogV2 = 2;  ///< gaze and the head pose (head_valid, head_x_m
 /// Timestamps are in [-2^62, 2^62) ns (±146 years), so the difference of any two of
 /// them (durations, gaps, replay offsets) fits in an int64 without wrapping.
 constexpr std::int64_t kMaxGazeLogTimeNs = std::int64_t{1} << 62;
+/// A head position further than this from the tracking origin on any axis (metres) is
+/// not a room-scale pose: refused by the reader, as the SRanipal importer refuses it
+/// (a float of 3e38 m would otherwise overflow the camera's arithmetic).
+constexpr float kMaxHeadPositionM = 1000.0f;
 constexpr std::string_view kGazeLogMagic = "# foveal-gaze-log v";
 
 struct GazeLogHeader {

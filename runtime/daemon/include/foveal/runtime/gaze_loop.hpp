@@ -4,6 +4,7 @@
 #include <atomic>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -59,6 +60,10 @@ class GazeLoop {
   void stop();
   bool finished() const { return finished_.load(std::memory_order_acquire); }
 
+  /// What latest() holds before the first sample and from a device loss until the next
+  /// sample (no_gaze_fovea(): the centre); without it, a default FoveaFrame before the
+  /// first sample and the last fovea through a loss. Before start() only.
+  void set_no_gaze(const FoveaFrame& f);
   const SeqLock<FoveaFrame>& latest() const { return latest_; }
   GazeLoopStats stats() const;
   void set_paused(bool p) { paused_.store(p, std::memory_order_relaxed); }
@@ -84,6 +89,7 @@ class GazeLoop {
   Mapper next_mapper_;
   std::atomic<bool> mapper_pending_{false};
   bool wait_for_source_ = false;
+  std::optional<FoveaFrame> no_gaze_;  // set before start(), read by the gaze thread
 
   // Gaze-thread-only state.
   LatencyHistogram latency_;

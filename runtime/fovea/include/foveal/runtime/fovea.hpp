@@ -40,4 +40,10 @@ struct FoveaFrame {
   const FoveaPoint& eye(Eye e) const { return eyes[static_cast<std::size_t>(e)]; }
 };
 
+/// What the runtime shows when it has no gaze to show (before a tracker's first sample,
+/// while a lost device is waited for): both eyes at the viewport centre, the optical
+/// centre where the gaze pipeline also puts an eye it has lost, state lost, confidence 0,
+/// no sample (times 0).
+FoveaFrame no_gaze_fovea(int eye_width, int eye_height);
+
 }  // namespace foveal

@@ -20,7 +20,7 @@ namespace foveal {
 struct JodLevelTable {
   std::string display;              ///< the display model's name
   std::vector<double> sigmas;       ///< increasing, each > 1 (σ = 1 is full rendering: JOD 10)
-  std::vector<double> fs;           ///< RMFR f (f_x = f_y), each > 0
+  std::vector<double> fs;           ///< RMFR f (f_x = f_y), each in [kMinRmfrF, kMaxRmfrF]
   std::vector<std::vector<double>> jod;
   nlohmann::json reference;         ///< what the table was measured on (scenes, logs, frames, commands)
 
@@ -56,7 +56,8 @@ std::string jod_levels_path(const std::string& display_model_path);
 
 /// The profile's levels with its `quality` applied: unchanged when quality is off;
 /// otherwise σ_d, σ_nd and f_x = f_y from the display model's table, the EFR ratio taken
-/// from the profile's own pair (σ_nd / σ_d). Errors: the table is missing or bad.
+/// from the profile's own pair (σ_nd / σ_d). Errors: the table is missing or bad, or it
+/// names another display than the model at `display_model_path` (both named).
 Result<Profile> apply_quality(const Profile& p, const std::string& display_model_path, JodLevels* chosen = nullptr);
 
 }  // namespace foveal

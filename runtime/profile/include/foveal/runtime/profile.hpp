@@ -29,12 +29,17 @@ struct ProfileGazeQuality {
   std::string source;               ///< where the gaze came from (log path or source spec)
 };
 
+/// RMFR's f (a fraction of the eye's width or height) where the compositor is tested:
+/// docs/stability.md runs every method at f in {0.01, 0.05, 0.3, 1, 10}. Profiles and the
+/// levels tables hold f inside it (f = 1e-300 was taken as it was).
+inline constexpr double kMinRmfrF = 0.01, kMaxRmfrF = 10.0;
+
 struct Profile {
   std::string name;
   Eye dominant_eye = Eye::right;   ///< ~70% of people are right-eye dominant
   double sigma_d = 2.0;            ///< dominant eye's foveation level (EFR seed: sigma_UF)
   double sigma_nd = 3.0;           ///< non-dominant eye's level (EFR seed: sigma_NF), >= sigma_d
-  std::optional<double> f_x = 0.3; ///< fraction of W; nullopt = "auto"
+  std::optional<double> f_x = 0.3; ///< fraction of W, [kMinRmfrF, kMaxRmfrF]; nullopt = "auto"
   std::optional<double> f_y = 0.3; ///< fraction of H; nullopt = "auto"
   double ipd_mm = 63.0;
   std::string display_model = "htc_vive_pro_eye";  ///< a name in data/display or a path

@@ -3,9 +3,11 @@
 // or $FOVEAL_LOG (error, warn, info, debug). Thread-safe (whole lines from each thread).
 //
 // By default a line is written at once. A daemon calls start_writer_thread(): lines then
-// go through a bounded queue to a thread of their own, so that a stderr nobody reads (a
-// full pipe, a stopped terminal) never blocks a thread that serves clients or signals;
-// lines that find the queue full are dropped and counted (dropped_lines()).
+// go through a bounded queue to a thread of their own, and stdout and stderr become the
+// program's own non-blocking descriptions of what they were (a pipe, a FIFO, a terminal),
+// so that a reader that does not read (a full pipe, a stopped terminal) never blocks any
+// thread, a library's direct writes and the exit-time flush included; lines that find the
+// queue full or the reader gone are dropped and counted (dropped_lines()).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -31,13 +33,20 @@ inline void debug(const std::string& m) { write(Level::debug, m); }
 
 /// Bytes of text the queue holds before it drops lines.
 inline constexpr std::size_t kMaxQueuedBytes = 256 * 1024;
-/// From here on lines are queued and written by a thread (all signals blocked in it).
-/// Call once, early; there is no way back (the thread may be stuck in write() at exit).
+/// From here on lines are queued and written by a thread (all signals blocked in it),
+/// which waits for room in poll(), never in write(); stdout and stderr no longer block
+/// (above; a socket is written with MSG_DONTWAIT, a pipe that cannot be reopened only
+/// as far as poll() says it fits). Call once, early; there is no way back.
 void start_writer_thread();
-/// Lines dropped because the queue was full (0 without the writer thread).
+/// Lines dropped because the queue was full or stderr's reader was gone (0 without the
+/// writer thread).
 std::uint64_t dropped_lines();
 /// Waits until the queue is written out; false when the writer made no progress for
-/// `stall_ms` (stderr stuck), so that an exit is never held up by a silent reader.
+/// `stall_ms` (stderr stuck) or took twice that in all, so that an exit is never held up
+/// by a silent reader.
 bool flush(int stall_ms);
+/// Writes `text` to stdout (a summary, JSON), waiting for room as flush() does; false
+/// when not all of it went. Without the writer thread: stdio, as it is.
+bool out(const std::string& text, int stall_ms);
 
 }  // namespace foveal::log

@@ -1,0 +1,333 @@
+// Quad views for OpenXR apps (issue 37): an app that renders the Dungeon into four views
+// (examples/openxr_quad_views) through EGL on Monado's null compositor, which offers only
+// stereo, with foveal's layer in between and foveald serving gaze (or not).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "foveal/image/image.hpp"
+#include "openxr_harness.hpp"
+
+namespace foveal {
+namespace {
+
+using nlohmann::json;
+using test::OpenXRRig;
+
+constexpr const char* kLayerShare = FOVEAL_TEST_LAYER_SHARE;
+constexpr int kQuad = 1000037000;  // XR_VIEW_CONFIGURATION_TYPE_PRIMARY_QUAD_VARJO
+
+/// A view's field as tangents: left, right, down, up.
+struct Tan {
+  double l, r, d, u;
+  double cx() const { return 0.5 * (l + r); }
+  double cy() const { return 0.5 * (d + u); }
+};
+Tan tangents(const json& view) {
+  const json& f = view["fov"];  // angles left, right, up, down
+  return {std::tan(f[0].get<double>()), std::tan(f[1].get<double>()), std::tan(f[3].get<double>()),
+          std::tan(f[2].get<double>())};
+}
+
+class QuadViews : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (std::string(FOVEAL_TEST_OPENXR_RUNTIME).empty())
+      GTEST_SKIP() << "no OpenXR runtime: scripts/build_monado.sh builds Monado from ../shared/vendor/monado";
+  }
+  void wait_for_block() const {
+    for (int i = 0; i < 500 && !std::filesystem::exists("/dev/shm" + rig_.shm()); ++i)
+      sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
+    ASSERT_TRUE(std::filesystem::exists("/dev/shm" + rig_.shm())) << rig_.err("foveald");
+  }
+  /// Runs the example to its end; its lines.
+  std::vector<json> run_app(const std::vector<std::string>& args, const std::string& name,
+                            const std::vector<std::string>& env = {}) {
+    auto app = rig_.quad_app(args, env, name, kLayerShare);
+    EXPECT_EQ(app->wait(240000), 0) << rig_.err(name);
+    return rig_.lines(name);
+  }
+  static json event(const std::vector<json>& lines, const std::string& name) {
+    for (const json& l : lines)
+      if (l.is_object() && l.value("event", "") == name) return l;
+    return json::object();
+  }
+  static std::vector<json> frames(const std::vector<json>& lines) {
+    std::vector<json> f;
+    for (const json& l : lines)
+      if (l.is_object() && l.value("event", "") == "frame") f.push_back(l);
+    return f;
+  }
+  /// The fixed inset's centre is the outer view's: true when every frame's inner views sit there.
+  static int frames_at_the_fixed_place(const std::vector<json>& fs) {
+    int n = 0;
+    for (const json& f : fs) {
+      bool fixed = true;
+      for (int e = 0; e < 2; ++e) {
+        const Tan o = tangents(f["views"][e]), i = tangents(f["views"][e + 2]);
+        fixed &= std::abs(i.cx() - o.cx()) < 1e-4 && std::abs(i.cy() - o.cy()) < 1e-4 &&
+                 std::abs((i.r - i.l) / (o.r - o.l) - 0.5) < 1e-3;
+      }
+      n += fixed;
+    }
+    return n;
+  }
+
+  OpenXRRig rig_;
+};
+
+TEST_F(QuadViews, TheLayerOffersQuadViewsOnAStereoRuntimeAndNotWhenItIsOff) {
+  const auto on = run_app({"--frames", "2", "--stereo"}, "on");
+  const auto off = run_app({"--frames", "2", "--stereo"}, "off", {"FOVEAL_OPENXR_DISABLE=1"});
+  const json s_on = event(on, "system"), s_off = event(off, "system");
+  ASSERT_TRUE(s_on.contains("view_configurations")) << rig_.err("on");
+  ASSERT_TRUE(s_off.contains("view_configurations")) << rig_.err("off");
+  auto lists = [](const json& s, int c) {
+    const auto& v = s["view_configurations"];
+    return std::find(v.begin(), v.end(), c) != v.end();
+  };
+  EXPECT_TRUE(lists(s_on, kQuad)) << s_on.dump();
+  EXPECT_TRUE(s_on["quad_views_extension"].get<bool>());
+  EXPECT_FALSE(lists(s_off, kQuad)) << "Monado itself offers no quad views: " << s_off.dump();
+  EXPECT_FALSE(s_off["quad_views_extension"].get<bool>());
+  // Stereo stays first: an app that takes the first configuration it knows is not moved.
+  EXPECT_EQ(s_on["view_configurations"][0], s_off["view_configurations"][0]);
+}
+
+TEST_F(QuadViews, WithFovealdEveryFrameObeysTheRulesAndTheInnerViewsFollowTheGaze) {
+  const test::RunResult synth = test::run(test::bin("foveal") + " synth --seed 11 --duration 40 --noise 0.2 --blink-rate 0.5 -o " +
+                                          rig_.path("synth.csv") + " --truth " + rig_.path("truth.csv"));
+  ASSERT_EQ(synth.exit_code, 0) << synth.err;
+  const auto stereo = run_app({"--frames", "2", "--stereo"}, "stereo");
+  const json stereo_sizes = event(stereo, "views")["sizes"];
+  ASSERT_EQ(stereo_sizes.size(), 2u) << rig_.err("stereo");
+
+  auto fd = rig_.foveald({"--source", "replay:" + rig_.path("synth.csv"), "--no-render", "--out", rig_.path("fd")}, "foveald");
+  wait_for_block();
+  const auto lines = run_app({"--frames", "40"}, "quad");
+  fd->signal(SIGTERM);
+  ASSERT_EQ(fd->wait(30000), 0) << rig_.err("foveald");
+
+  const json sys = event(lines, "system"), views = event(lines, "views");
+  EXPECT_EQ(sys.value("supportsFoveatedRendering", -1), 1) << sys.dump();
+  ASSERT_EQ(views.value("configuration", ""), "quad") << rig_.err("quad");
+  EXPECT_TRUE(views["foveated"].get<bool>());
+  // Sizes from the default profile (EFR): right eye dominant at σ_d 2, left at σ_nd 3;
+  // the inner views at full density over 0.35 of the view.
+  const json& sz = views["sizes"];
+  const double sigma[2] = {3.0, 2.0};
+  for (int e = 0; e < 2; ++e) {
+    const double w = stereo_sizes[e][0].get<double>(), h = stereo_sizes[e][1].get<double>();
+    EXPECT_EQ(sz[e][0].get<int>(), std::lround(w / sigma[e])) << "outer width, eye " << e;
+    EXPECT_EQ(sz[e][1].get<int>(), std::lround(h / sigma[e])) << "outer height, eye " << e;
+    EXPECT_EQ(sz[e + 2][0].get<int>(), std::lround(w * 0.35)) << "inner width, eye " << e;
+    EXPECT_EQ(sz[e + 2][1].get<int>(), std::lround(h * 0.35)) << "inner height, eye " << e;
+  }
+
+  // The specification's rules, every frame.
+  const auto fs = frames(lines);
+  ASSERT_GE(fs.size(), 40u) << rig_.err("quad");
+  for (const json& f : fs) {
+    ASSERT_EQ(f["views"].size(), 4u);
+    for (int e = 0; e < 2; ++e) {
+      EXPECT_EQ(f["views"][e]["q"], f["views"][e + 2]["q"]) << "views " << e << " and " << e + 2 << " share a pose";
+      EXPECT_EQ(f["views"][e]["p"], f["views"][e + 2]["p"]);
+      const Tan o = tangents(f["views"][e]), i = tangents(f["views"][e + 2]);
+      EXPECT_TRUE(i.l > o.l && i.r < o.r && i.d > o.d && i.u < o.u) << "inner view " << e + 2 << " leaves its outer view: " << f.dump();
+    }
+  }
+
+  // The inner views' centres against the scanpath's truth, per eye, in settled fixations
+  // (the same fixation 100 ms before the locate: past the filter's stated 50 ms settling).
+  const auto summary = json::parse(test::read_file(rig_.path("fd/summary.json")));
+  const TimeNs t0 = summary["trace_t0_ns"].get<TimeNs>();
+  struct Truth {
+    TimeNs t;
+    std::string event;
+    int index;
+    glm::vec3 dir[2];
+  };
+  std::vector<Truth> truth;
+  for (const auto& r : test::read_csv_rows(test::read_file(rig_.path("truth.csv"))))
+    truth.push_back({t0 + std::stoll(r.at("t_ns")), r.at("event"), std::stoi(r.at("event_index")),
+                     {{std::stof(r.at("left_dir_x")), std::stof(r.at("left_dir_y")), std::stof(r.at("left_dir_z"))},
+                      {std::stof(r.at("right_dir_x")), std::stof(r.at("right_dir_y")), std::stof(r.at("right_dir_z"))}}});
+  auto truth_at = [&](TimeNs t) -> const Truth* {
+    const Truth* best = nullptr;
+    for (const Truth& x : truth)
+      if (x.t <= t) best = &x;
+    return best;
+  };
+  int settled = 0, within = 0, clamped = 0;
+  double worst = 0;
+  for (const json& f : fs) {
+    const TimeNs at = f["locate_ns"].get<TimeNs>();
+    const Truth* now = truth_at(at - 15 * kNsPerMs);
+    const Truth* before = truth_at(at - 100 * kNsPerMs);
+    if (!now || !before || now->event != "fixation" || before->event != "fixation" || now->index != before->index) continue;
+    for (int e = 0; e < 2; ++e) {
+      const Tan o = tangents(f["views"][e]), i = tangents(f["views"][e + 2]);
+      // An inset pushed in from an edge is centred beside the gaze, by design.
+      if (i.l - o.l < 2e-3 * (o.r - o.l) || o.r - i.r < 2e-3 * (o.r - o.l) || i.d - o.d < 2e-3 * (o.u - o.d) ||
+          o.u - i.u < 2e-3 * (o.u - o.d)) {
+        ++clamped;
+        continue;
+      }
+      // The sample the layer read is the newest foveald had published at the locate: on
+      // a loaded machine foveald's replay may publish late, so the truth of the last
+      // 250 ms counts (the inset follows the gaze either way; a centred or unrotated
+      // inset is tens of degrees off).
+      const glm::vec3 centre(static_cast<float>(i.cx()), static_cast<float>(i.cy()), -1.0f);
+      double err = 180;
+      for (const Truth& x : truth)
+        if (x.t <= at && x.t >= at - 250 * kNsPerMs) err = std::min(err, test::angle_deg(centre, x.dir[e]));
+      ++settled;
+      within += err <= 1.0;
+      worst = std::max(worst, err);
+    }
+  }
+  std::printf("quad views: %zu frames, %d settled eye-frames (%d within 1 deg of the truth, worst %.3f deg), %d at an edge\n",
+              fs.size(), settled, within, worst, clamped);
+  ASSERT_GT(settled, 12) << "too few settled fixations seen";
+  EXPECT_EQ(within, settled) << "inner views more than 1 deg from the gaze; worst " << worst << " deg";
+  EXPECT_LT(frames_at_the_fixed_place(fs), static_cast<int>(fs.size()) / 2) << "the inset did not follow the gaze";
+}
+
+TEST_F(QuadViews, WithoutFovealdTheAppRunsOnWithTheFixedInset) {
+  const auto lines = run_app({"--frames", "8"}, "quad");
+  const json sys = event(lines, "system");
+  EXPECT_EQ(sys.value("supportsFoveatedRendering", -1), 0) << "no gaze: " << sys.dump();
+  const auto fs = frames(lines);
+  ASSERT_EQ(fs.size(), 8u) << rig_.err("quad");
+  EXPECT_EQ(frames_at_the_fixed_place(fs), 8);
+  EXPECT_NE(event(lines, "end").value("frames", 0), 0);
+}
+
+TEST_F(QuadViews, FovealdStoppingMidRunSendsTheInsetBackToTheFixedPlaceWithoutAJump) {
+  const test::RunResult synth = test::run(test::bin("foveal") + " synth --seed 5 --duration 30 --noise 0.2 --blink-rate 0 -o " +
+                                          rig_.path("synth.csv"));
+  ASSERT_EQ(synth.exit_code, 0) << synth.err;
+  auto fd = rig_.foveald({"--source", "replay:" + rig_.path("synth.csv"), "--no-render", "--out", rig_.path("fd")}, "foveald");
+  wait_for_block();
+  auto app = rig_.quad_app({"--frames", "40"}, {}, "quad", kLayerShare);
+  // Stop foveald once the app has rendered 10 frames with gaze, then let it go on.
+  for (int i = 0; i < 30000 && frames(rig_.lines("quad")).size() < 10; ++i) sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
+  fd->signal(SIGTERM);
+  ASSERT_EQ(fd->wait(30000), 0) << rig_.err("foveald");
+  const std::size_t stopped_at = frames(rig_.lines("quad")).size();
+  ASSERT_EQ(app->wait(300000), 0) << rig_.err("quad");
+  const auto fs = frames(rig_.lines("quad"));
+  ASSERT_EQ(fs.size(), 40u);
+  // After the stop the inset eases to the fixed place over 150 ms of display time: no
+  // step between two frames is larger than the smoothstep allows for the display time
+  // between them (at most 1.5 times the linear share), however far apart a loaded
+  // machine puts the frames.
+  const double from = tangents(fs[stopped_at - 1]["views"][3]).cx();
+  const double to = tangents(fs.back()["views"][1]).cx();
+  const double distance = std::abs(to - from);
+  int worse = 0;
+  for (std::size_t k = stopped_at; k < fs.size(); ++k) {
+    const double step = std::abs(tangents(fs[k]["views"][3]).cx() - tangents(fs[k - 1]["views"][3]).cx());
+    const double dt_ms = static_cast<double>(fs[k]["display_ns"].get<TimeNs>() - fs[k - 1]["display_ns"].get<TimeNs>()) / 1e6;
+    const double allowed = distance * std::min(1.0, 1.5 * dt_ms / 150.0) + 1e-4;
+    if (step > allowed) {
+      ++worse;
+      ADD_FAILURE() << "frame " << k << ": the inset moved " << step << " in " << dt_ms << " ms (at most " << allowed << ")";
+    }
+  }
+  EXPECT_EQ(frames_at_the_fixed_place({fs.back()}), 1) << "the inset is not back at the fixed place";
+  EXPECT_GT(distance, 0.0) << "the inset was at the fixed place before the stop: the gaze never moved it";
+  EXPECT_EQ(worse, 0);
+}
+
+/// The two eyes' images side by side, as the layer's capture lays them out.
+image::Image side_by_side(const image::Image& l, const image::Image& r) {
+  image::Image out(l.width + r.width, std::max(l.height, r.height));
+  for (int y = 0; y < l.height; ++y) std::copy(l.at(0, y), l.at(0, y) + l.width * 4, out.at(0, y));
+  for (int y = 0; y < r.height; ++y) std::copy(r.at(0, y), r.at(0, y) + r.width * 4, out.at(l.width, y));
+  return out;
+}
+
+/// The pixels of eye e's output that lie inside its inner view by more than the blend
+/// band (3 degrees) and a pixel: there the composed image is the inner view's alone.
+image::Rect inside_inner(const json& frame, int e, int eye_w, int h) {
+  const Tan o = tangents(frame["views"][e]), i = tangents(frame["views"][e + 2]);
+  const double band = 3.0 * M_PI / 180.0;
+  auto px_x = [&](double t) { return (t - o.l) / (o.r - o.l) * eye_w; };
+  auto px_y = [&](double t) { return (o.u - t) / (o.u - o.d) * h; };  // top row first
+  const int x0 = static_cast<int>(std::ceil(px_x(std::tan(std::atan(i.l) + band)))) + 1;
+  const int x1 = static_cast<int>(std::floor(px_x(std::tan(std::atan(i.r) - band)))) - 1;
+  const int y0 = static_cast<int>(std::ceil(px_y(std::tan(std::atan(i.u) - band)))) + 1;
+  const int y1 = static_cast<int>(std::floor(px_y(std::tan(std::atan(i.d) + band)))) - 1;
+  return {x0 + e * eye_w, y0, x1 - x0, y1 - y0};
+}
+
+TEST_F(QuadViews, TheComposedImageMatchesItsGoldenAndIsTheFullDensityFrameInsideTheInnerViews) {
+  // Quad views without foveation (their fixed inset, at the sizes for it) and --still
+  // draw every run alike: a golden frame.
+  std::filesystem::create_directories(rig_.path("capture"));
+  std::filesystem::create_directories(rig_.path("full"));
+  const auto quad = run_app({"--frames", "6", "--still", "--no-foveated"}, "quad",
+                            {"FOVEAL_OPENXR_CAPTURE_DIR=" + rig_.path("capture"), "FOVEAL_OPENXR_CAPTURE_FRAME=2"});
+  run_app({"--frames", "3", "--stereo", "--still", "--save-frame", "2", "--save-dir", rig_.path("full")}, "full",
+          {"FOVEAL_OPENXR_DISABLE=1"});
+  auto composed = image::load(rig_.path("capture/composed.png"));
+  ASSERT_TRUE(composed) << composed.error().message << "\n" << rig_.err("quad");
+  auto l = image::load(rig_.path("full/view_0.png")), r = image::load(rig_.path("full/view_1.png"));
+  ASSERT_TRUE(l && r) << rig_.err("full");
+  const image::Image full = side_by_side(*l, *r);
+  ASSERT_EQ(composed->width, full.width) << "the layer's stereo images are the runtime's recommended size";
+  ASSERT_EQ(composed->height, full.height);
+
+  const std::string golden = test::source_path("tests/openxr/golden/quad_composed_fixed_inset.png");
+  if (const char* u = std::getenv("FOVEAL_UPDATE_GOLDEN"); u && std::string(u) == "1") {
+    ASSERT_TRUE(image::save_png(golden, *composed));
+  } else {
+    auto ref = image::load(golden);
+    ASSERT_TRUE(ref) << ref.error().message << " (FOVEAL_UPDATE_GOLDEN=1 writes it)";
+    const double p = image::psnr(*ref, *composed);
+    if (p < 40.0) {
+      (void)image::save_png(rig_.path("composed.diff.png"), image::diff_image(*ref, *composed));
+      std::filesystem::copy_file(rig_.path("composed.diff.png"), std::string(FOVEAL_BIN_DIR) + "/../quad_composed.diff.png",
+                                 std::filesystem::copy_options::overwrite_existing);
+    }
+    EXPECT_GE(p, 40.0) << "PSNR against the golden image; diff in build/quad_composed.diff.png";
+  }
+
+  // Inside each inner view the composed image is the full-density one; outside, the
+  // outer view's lower density shows.
+  const auto fs = frames(quad);
+  ASSERT_GE(fs.size(), 3u);  // without foveald every frame's views are the same: any frame's fields serve
+  const int eye_w = l->width;
+  for (int e = 0; e < 2; ++e) {
+    const image::Rect in = inside_inner(fs[2], e, eye_w, l->height);
+    ASSERT_GT(in.w, 10);
+    ASSERT_GT(in.h, 10);
+    const double inside = image::psnr(full, *composed, in);
+    const double whole = image::psnr(image::Image(side_by_side(*l, *r)), *composed, {e * eye_w, 0, eye_w, l->height});
+    std::printf("eye %d: PSNR against the full-density frame %.1f dB inside the inner view, %.1f dB over the eye\n", e,
+                inside, whole);
+    EXPECT_GE(inside, 35.0) << "eye " << e << ": the inner view is not what the composed image shows there";
+    EXPECT_LT(whole, inside) << "eye " << e << ": the outer view shows no loss of density";
+  }
+}
+
+TEST_F(QuadViews, AStereoAppsFramesAreTheSameByteForByteWithTheLayerOnAndOff) {
+  std::filesystem::create_directories(rig_.path("on"));
+  std::filesystem::create_directories(rig_.path("off"));
+  const auto on = run_app({"--frames", "3", "--stereo", "--still", "--save-frame", "2", "--save-dir", rig_.path("on")}, "on");
+  const auto off = run_app({"--frames", "3", "--stereo", "--still", "--save-frame", "2", "--save-dir", rig_.path("off")},
+                           "off", {"FOVEAL_OPENXR_DISABLE=1"});
+  EXPECT_EQ(event(on, "views"), event(off, "views"));
+  for (int v = 0; v < 2; ++v) {
+    const std::string name = "/view_" + std::to_string(v) + ".png";
+    const std::string a = test::read_file(rig_.path("on") + name), b = test::read_file(rig_.path("off") + name);
+    ASSERT_FALSE(a.empty());
+    EXPECT_TRUE(a == b) << name << " differs with the layer on";
+  }
+}
+
+}  // namespace
+}  // namespace foveal
