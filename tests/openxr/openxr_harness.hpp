@@ -50,6 +50,7 @@ class Child {
   Child(const Child&) = delete;
   Child& operator=(const Child&) = delete;
   bool started() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
   void signal(int sig) const { if (pid_ > 0) ::kill(pid_, sig); }
   /// The exit code (128 + signal when killed), or -1 when still running after `ms`.
   int wait(int ms) {

@@ -8,6 +8,11 @@
 #include <algorithm>
 #include <filesystem>
 
+#include <atomic>
+#include <fstream>
+#include <thread>
+
+#include "foveal/runtime/fovea_shm.hpp"
 #include "openxr_harness.hpp"
 
 namespace foveal {
@@ -377,6 +382,48 @@ TEST_F(OpenXRLayer, AFifoAtTheBlocksNameNeitherHangsTheAppNorItsExit) {
       EXPECT_FALSE(l["active"].get<bool>()) << l.dump();
     }
   }
+}
+
+/// How many mappings of the block `shm` process `pid` holds now.
+int mappings_of(pid_t pid, const std::string& shm) {
+  std::ifstream maps("/proc/" + std::to_string(pid) + "/maps");
+  int n = 0;
+  for (std::string line; std::getline(maps, line);) n += line.find("/dev/shm" + shm) != std::string::npos;
+  return n;
+}
+
+TEST_F(OpenXRLayer, ABlockWhoseFoveaIsRefusedIsRetriedWithABackoffAndLeaksNoMappings) {
+  // Issue 38 item 3: a live block (its heartbeat kept fresh) whose fovea every reader
+  // refuses (confidence 2.0). The layer gave up and remapped it every 100 ms, keeping each
+  // mapping (1 -> 121 in 12 s) and logging 20 lines a second.
+  auto shm = FoveaShm::create(rig_.shm());
+  ASSERT_TRUE(shm) << shm.error().message;
+  shm->publish_view(DisplayModel::vive_pro_eye());
+  FoveaFrame f;
+  f.t_ns = monotonic_now_ns();
+  for (auto& e : f.eyes) e = {{720.0f, 800.0f}, FoveaState::fixation, 2.0f, {}, {}, true};
+  shm->publish(f, 1440, 1600);
+  std::atomic<bool> stop{false};
+  std::thread beat([&] {
+    while (!stop.load()) {
+      shm->heartbeat();
+      sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
+    }
+  });
+  auto app = rig_.app({"--duration", "4"}, rig_.app_env(kLayerShare));
+  int most = 0, rc = -1;
+  for (int i = 0; i < 6000 && (rc = app->wait(1)) < 0; ++i) {  // sampled for as long as the app runs (2 min guard)
+    most = std::max(most, mappings_of(app->pid(), rig_.shm()));
+    sleep_until_ns(monotonic_now_ns() + 20 * kNsPerMs);
+  }
+  stop = true;
+  beat.join();
+  EXPECT_EQ(rc, 0) << rig_.err();
+  EXPECT_LE(most, 2) << "mappings of the refused block held at once by the app";
+  const std::string err = rig_.err();
+  int said = 0;
+  for (std::size_t at = err.find("unusable"); at != std::string::npos; at = err.find("unusable", at + 1)) ++said;
+  EXPECT_EQ(said, 1) << "one line for the state, not one per try: " << err;
 }
 
 }  // namespace
