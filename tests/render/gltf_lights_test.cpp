@@ -101,6 +101,8 @@ TEST(GltfLights, BadValuesAreRefusedNamingTheLight) {
   expect_refused(with_lights({{{"intensity", 1.0}}}), l0 + ": 'type' is missing");
   expect_refused(with_lights({{{"type", "area"}}}), l0 + ".type: \"area\" is not one of directional, point, spot");
   expect_refused(with_lights({{{"type", "point"}, {"intensity", -1.0}}}), l0 + ".intensity: -1.0 is negative");
+  // Issue 38 item 15: 3e38 overflowed the shader's floats and lit the surface black.
+  expect_refused(with_lights({{{"type", "point"}, {"intensity", 3e38}}}), l0 + ".intensity: 3e+38 is beyond 1e9");
   expect_refused(with_lights({{{"type", "point"}, {"intensity", "x"}}}), l0 + ".intensity: must be a finite number");
   expect_refused(with_lights({{{"type", "point"}, {"range", 0.0}}}), l0 + ".range: 0.0 is not greater than 0");
   expect_refused(with_lights({{{"type", "point"}, {"color", {1, 1}}}}), l0 + ".color: must be an array of 3 numbers");

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <cstdio>
 #include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -74,6 +75,7 @@ class Builder {
       if (Status s = node(n, glm::mat4(1.0f), 0); !s) return s.error();
     if (out_.draws.empty() || !have_bounds_) return bad_input(file_ + ": the scene draws no triangles");
     if (!camera_found_) out_.view.source = "framing";
+    warn_if_slow();
     return std::move(out_);
   }
 
@@ -230,6 +232,20 @@ class Builder {
     return {};
   }
 
+  // Said before the first frame: a scene this large takes seconds to minutes a frame on
+  // llvmpipe (2^20 instanced draws: 182 s; 50,000 BLEND primitives: 82 s, at c0fb9a1).
+  static constexpr std::size_t kSlowDraws = 65536, kSlowBlendDraws = 10000;
+  void warn_if_slow() {
+    std::size_t blend = 0;
+    for (const DrawItem& d : out_.draws) blend += blends_.count(d.primitive) && blends_.at(d.primitive);
+    if (out_.draws.size() > kSlowDraws)
+      warn_once(file_ + ": " + std::to_string(out_.draws.size()) + " draw items (each instance of EXT_mesh_gpu_instancing "
+                "is one): past " + std::to_string(kSlowDraws) + ", a frame may take many seconds (minutes on llvmpipe)");
+    if (blend > kSlowBlendDraws)
+      warn_once(file_ + ": " + std::to_string(blend) + " alphaMode BLEND draw items, sorted and shaded at full resolution: "
+                "past " + std::to_string(kSlowBlendDraws) + ", a frame may take many seconds (minutes on llvmpipe)");
+  }
+
   void warn_once(const std::string& w) {
     if (std::find(out_.warnings.begin(), out_.warnings.end(), w) == out_.warnings.end()) out_.warnings.push_back(w);
   }
@@ -373,6 +389,8 @@ class Builder {
       out_.triangles += idx.size() / 3;
       out.push_back(p);
       bounds_[p] = minmax(v);
+      blends_[p] = gp.material >= 0 && static_cast<std::size_t>(gp.material) < out_.materials.size() &&
+                   out_.materials[static_cast<std::size_t>(gp.material)].blend;
     }
     meshes_[index] = out;
     return out;
@@ -472,6 +490,20 @@ class Builder {
     if (out_.draws.size() + count * primitives > kMaxDraws)
       return fail(where, std::to_string(count) + " instances of " + std::to_string(primitives) +
                              " primitives take the scene past the " + std::to_string(kMaxDraws) + " draws foveal accepts");
+    // An instance far away drives the framing bounds: one at 3e38 m emptied the frame.
+    auto g = [](float v) {
+      char b[32];
+      std::snprintf(b, sizeof b, "%g", static_cast<double>(v));
+      return std::string(b);
+    };
+    for (std::size_t i = 0; i < t.size(); ++i)
+      if (!(std::abs(t[i]) <= kMaxInstanceOffset))
+        return fail(where + ".TRANSLATION", "element " + std::to_string(i / 3) + " is " + g(t[i]) +
+                                                " from the node, beyond the 1e6 units foveal accepts");
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (!(std::abs(s[i]) <= kMaxInstanceOffset))
+        return fail(where + ".SCALE", "element " + std::to_string(i / 3) + " is " + g(s[i]) +
+                                          ", beyond the 1e6 foveal accepts");
     std::vector<glm::mat4> out(count, glm::mat4(1.0f));
     for (std::size_t i = 0; i < count; ++i) {
       glm::mat4& m = out[i];
@@ -487,6 +519,7 @@ class Builder {
     return out;
   }
   static constexpr std::size_t kMaxDraws = std::size_t{1} << 20;
+  static constexpr float kMaxInstanceOffset = 1e6f;
 
   static glm::mat4 local_matrix(const tinygltf::Node& n) {
     if (n.matrix.size() == 16) {
@@ -564,6 +597,7 @@ class Builder {
   std::map<std::pair<int, bool>, int> textures_;
   std::map<int, std::vector<int>> meshes_;
   std::map<int, std::pair<glm::vec3, glm::vec3>> bounds_;  // by the sink's primitive index
+  std::map<int, bool> blends_;                               // its material is alphaMode BLEND
   bool camera_found_ = false, have_bounds_ = false;
 };
 

@@ -99,6 +99,9 @@ class LightChecker {
     bool has_range = false;
     if (Status s = number(l, "intensity", path, intensity); !s) return s;
     if (intensity < 0) return fail(path + ".intensity", shown(l["intensity"]) + " is negative");
+    // Past this the shader's float arithmetic overflows (3e38 lit the surface black).
+    if (intensity > 1e9)
+      return fail(path + ".intensity", shown(l["intensity"]) + " is beyond 1e9 (candela or lux; the sun is about 1e5 lux)");
     if (Status s = number(l, "range", path, range, &has_range); !s) return s;
     if (has_range && !(range > 0)) return fail(path + ".range", shown(l["range"]) + " is not greater than 0");
     auto spot = l.find("spot");
