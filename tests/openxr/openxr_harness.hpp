@@ -168,6 +168,11 @@ class OpenXRRig {
   std::unique_ptr<Child> quad_app(std::vector<std::string> args, const std::vector<std::string>& extra_env,
                                   const std::string& name, const std::string& layers_share) const {
     args.insert(args.begin(), bin("openxr_quad_views"));
+    // Monado raises its compositor thread to SCHED_FIFO 99 where it may (root can): on a
+    // loaded 2-core machine that starves the app and foveald. Without CAP_SYS_NICE it
+    // stays an ordinary thread; nothing else changes.
+    if (std::filesystem::exists("/usr/bin/setpriv"))
+      args.insert(args.begin(), {"/usr/bin/setpriv", "--bounding-set=-sys_nice", "--inh-caps=-sys_nice"});
     return std::make_unique<Child>(args, app_env(layers_share, extra_env, /*validation=*/false), dir_.path(name + ".out"),
                                    dir_.path(name + ".err"));
   }
