@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "csv_rows.hpp"
@@ -182,6 +183,23 @@ class OpenXRRig {
  private:
   TempDir dir_;
   std::string shm_;
+};
+
+/// The openxr tests' fixture: skipped, by name, without a runtime; one rig per test.
+class OpenXRTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (std::string(FOVEAL_TEST_OPENXR_RUNTIME).empty())
+      GTEST_SKIP() << "no OpenXR runtime: scripts/build_monado.sh builds Monado from ../shared/vendor/monado";
+  }
+  /// Waits until foveald publishes its block (the app could start earlier: it waits too).
+  void wait_for_block() const {
+    for (int i = 0; i < 500 && !std::filesystem::exists("/dev/shm" + rig_.shm()); ++i)
+      sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
+    ASSERT_TRUE(std::filesystem::exists("/dev/shm" + rig_.shm())) << rig_.err("foveald");
+  }
+
+  OpenXRRig rig_;
 };
 
 }  // namespace foveal::test

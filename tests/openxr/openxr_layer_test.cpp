@@ -23,18 +23,8 @@ using nlohmann::json;
 
 constexpr const char* kLayerShare = FOVEAL_TEST_LAYER_SHARE;  // the build tree's manifests
 
-class OpenXRLayer : public ::testing::Test {
+class OpenXRLayer : public test::OpenXRTest {
  protected:
-  void SetUp() override {
-    if (std::string(FOVEAL_TEST_OPENXR_RUNTIME).empty())
-      GTEST_SKIP() << "no OpenXR runtime: scripts/build_monado.sh builds Monado from ../shared/vendor/monado";
-  }
-  /// Waits until foveald publishes its block (the app could start earlier: it waits too).
-  void wait_for_block() const {
-    for (int i = 0; i < 500 && !std::filesystem::exists("/dev/shm" + rig_.shm()); ++i)
-      sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
-    ASSERT_TRUE(std::filesystem::exists("/dev/shm" + rig_.shm())) << rig_.err("foveald");
-  }
   std::vector<json> gaze_lines(const std::string& name = "app") const {
     std::vector<json> g;
     for (const json& l : rig_.lines(name))
@@ -46,8 +36,6 @@ class OpenXRLayer : public ::testing::Test {
       if (l.is_object() && l.value("event", "") == "system") return l;
     return json::object();
   }
-
-  OpenXRRig rig_;
 };
 
 /// The combined direction the layer gives for a trace row: the tracked eyes' mean.

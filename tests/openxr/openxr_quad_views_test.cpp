@@ -31,17 +31,8 @@ Tan tangents(const json& view) {
           std::tan(f[2].get<double>())};
 }
 
-class QuadViews : public ::testing::Test {
+class QuadViews : public test::OpenXRTest {
  protected:
-  void SetUp() override {
-    if (std::string(FOVEAL_TEST_OPENXR_RUNTIME).empty())
-      GTEST_SKIP() << "no OpenXR runtime: scripts/build_monado.sh builds Monado from ../shared/vendor/monado";
-  }
-  void wait_for_block() const {
-    for (int i = 0; i < 500 && !std::filesystem::exists("/dev/shm" + rig_.shm()); ++i)
-      sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
-    ASSERT_TRUE(std::filesystem::exists("/dev/shm" + rig_.shm())) << rig_.err("foveald");
-  }
   /// Runs the example to its end; its lines.
   std::vector<json> run_app(const std::vector<std::string>& args, const std::string& name,
                             const std::vector<std::string>& env = {}) {
@@ -75,7 +66,6 @@ class QuadViews : public ::testing::Test {
     return n;
   }
 
-  OpenXRRig rig_;
 };
 
 TEST_F(QuadViews, TheLayerOffersQuadViewsOnAStereoRuntimeAndNotWhenItIsOff) {
