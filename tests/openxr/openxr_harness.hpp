@@ -169,6 +169,10 @@ class OpenXRRig {
   std::unique_ptr<Child> quad_app(std::vector<std::string> args, const std::vector<std::string>& extra_env,
                                   const std::string& name, const std::string& layers_share) const {
     args.insert(args.begin(), bin("openxr_quad_views"));
+    // Drawn from a head that stands still: the runtime's poses (Monado's simulated HMD
+    // wobbles) are still located, reported and submitted, but the picture repeats, and no
+    // frame meets the pose whose near-plane triangles kept llvmpipe busy for minutes once.
+    args.push_back("--still");
     // Monado raises its compositor thread to SCHED_FIFO 99 where it may (root can): on a
     // loaded 2-core machine that starves the app and foveald. Without CAP_SYS_NICE it
     // stays an ordinary thread; nothing else changes.

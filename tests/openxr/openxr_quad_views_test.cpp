@@ -96,7 +96,7 @@ TEST_F(QuadViews, WithFovealdEveryFrameObeysTheRulesAndTheInnerViewsFollowTheGaz
 
   auto fd = rig_.foveald({"--source", "replay:" + rig_.path("synth.csv"), "--no-render", "--out", rig_.path("fd")}, "foveald");
   wait_for_block();
-  const auto lines = run_app({"--frames", "40"}, "quad");
+  const auto lines = run_app({"--frames", "120"}, "quad");
   fd->signal(SIGTERM);
   ASSERT_EQ(fd->wait(30000), 0) << rig_.err("foveald");
 
@@ -118,7 +118,7 @@ TEST_F(QuadViews, WithFovealdEveryFrameObeysTheRulesAndTheInnerViewsFollowTheGaz
 
   // The specification's rules, every frame.
   const auto fs = frames(lines);
-  ASSERT_GE(fs.size(), 40u) << rig_.err("quad");
+  ASSERT_GE(fs.size(), 120u) << rig_.err("quad");
   for (const json& f : fs) {
     ASSERT_EQ(f["views"].size(), 4u);
     for (int e = 0; e < 2; ++e) {
@@ -154,9 +154,13 @@ TEST_F(QuadViews, WithFovealdEveryFrameObeysTheRulesAndTheInnerViewsFollowTheGaz
   double worst = 0;
   for (const json& f : fs) {
     const TimeNs at = f["locate_ns"].get<TimeNs>();
+    // Settled: one fixation for the last 300 ms (no blink, after which the inset eases
+    // back over 150 ms by design), and not in the first 300 ms of the run (the inset
+    // starts fixed until foveald's first sample).
     const Truth* now = truth_at(at - 15 * kNsPerMs);
-    const Truth* before = truth_at(at - 100 * kNsPerMs);
+    const Truth* before = truth_at(at - 300 * kNsPerMs);
     if (!now || !before || now->event != "fixation" || before->event != "fixation" || now->index != before->index) continue;
+    if (f["display_ns"].get<TimeNs>() - fs.front()["display_ns"].get<TimeNs>() < 300 * kNsPerMs) continue;
     for (int e = 0; e < 2; ++e) {
       const Tan o = tangents(f["views"][e]), i = tangents(f["views"][e + 2]);
       // An inset pushed in from an edge is centred beside the gaze, by design.
@@ -180,7 +184,7 @@ TEST_F(QuadViews, WithFovealdEveryFrameObeysTheRulesAndTheInnerViewsFollowTheGaz
   }
   std::printf("quad views: %zu frames, %d settled eye-frames (%d within 1 deg of the truth, worst %.3f deg), %d at an edge\n",
               fs.size(), settled, within, worst, clamped);
-  ASSERT_GT(settled, 12) << "too few settled fixations seen";
+  ASSERT_GT(settled, 10) << "too few settled fixations seen";
   EXPECT_EQ(within, settled) << "inner views more than 1 deg from the gaze; worst " << worst << " deg";
   EXPECT_LT(frames_at_the_fixed_place(fs), static_cast<int>(fs.size()) / 2) << "the inset did not follow the gaze";
 }
@@ -201,15 +205,23 @@ TEST_F(QuadViews, FovealdStoppingMidRunSendsTheInsetBackToTheFixedPlaceWithoutAJ
   ASSERT_EQ(synth.exit_code, 0) << synth.err;
   auto fd = rig_.foveald({"--source", "replay:" + rig_.path("synth.csv"), "--no-render", "--out", rig_.path("fd")}, "foveald");
   wait_for_block();
-  auto app = rig_.quad_app({"--frames", "40"}, {}, "quad", kLayerShare);
-  // Stop foveald once the app has rendered 10 frames with gaze, then let it go on.
-  for (int i = 0; i < 30000 && frames(rig_.lines("quad")).size() < 10; ++i) sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
+  auto app = rig_.quad_app({"--frames", "120"}, {}, "quad", kLayerShare);
+  // Stop foveald once the inset has followed the gaze for 5 frames (its ease from the
+  // fixed place at the start is over), then let the app go on.
+  auto following = [&] {
+    const auto fs = frames(rig_.lines("quad"));
+    if (fs.size() < 10) return false;
+    const std::vector<json> last(fs.end() - 5, fs.end());
+    return frames_at_the_fixed_place(last) == 0;
+  };
+  for (int i = 0; i < 30000 && !following(); ++i) sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
+  ASSERT_TRUE(following()) << rig_.err("quad");
   fd->signal(SIGTERM);
   ASSERT_EQ(fd->wait(30000), 0) << rig_.err("foveald");
   const std::size_t stopped_at = frames(rig_.lines("quad")).size();
   ASSERT_EQ(app->wait(300000), 0) << rig_.err("quad");
   const auto fs = frames(rig_.lines("quad"));
-  ASSERT_EQ(fs.size(), 40u);
+  ASSERT_EQ(fs.size(), 120u);
   // After the stop the inset eases to the fixed place over 150 ms of display time: no
   // step between two frames is larger than the smoothstep allows for the display time
   // between them (at most 1.5 times the linear share), however far apart a loaded
