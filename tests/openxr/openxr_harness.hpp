@@ -112,6 +112,27 @@ inline std::vector<TraceRow> read_trace(const std::string& dir, const DisplayMod
   return rows;
 }
 
+/// One row of `foveal synth --truth`, on CLOCK_MONOTONIC through the foveald run's
+/// summary.json (trace_t0_ns): the event, its index, each eye's true direction.
+struct TruthRow {
+  TimeNs t;
+  std::string event;
+  int index;
+  glm::vec3 dir[2];
+  glm::vec3 combined() const { return glm::normalize(dir[0] + dir[1]); }
+};
+
+inline std::vector<TruthRow> read_truth(const std::string& truth_csv, const std::string& foveald_dir) {
+  const auto summary = nlohmann::json::parse(read_file(foveald_dir + "/summary.json"));
+  const TimeNs t0 = summary["trace_t0_ns"].get<TimeNs>();
+  std::vector<TruthRow> truth;
+  for (const CsvRow& r : read_csv_rows(read_file(truth_csv)))
+    truth.push_back({t0 + std::stoll(r.at("t_ns")), r.at("event"), std::stoi(r.at("event_index")),
+                     {{std::stof(r.at("left_dir_x")), std::stof(r.at("left_dir_y")), std::stof(r.at("left_dir_z"))},
+                      {std::stof(r.at("right_dir_x")), std::stof(r.at("right_dir_y")), std::stof(r.at("right_dir_z"))}}});
+  return truth;
+}
+
 /// The latest row at or before t (the sample an app reading at t sees), or -1.
 inline long row_at(const std::vector<TraceRow>& rows, TimeNs t) {
   long lo = -1;

@@ -156,20 +156,8 @@ TEST_F(OpenXRLayer, SyntheticScanpathWithinHalfADegreeOfTheTruthAndInactiveThrou
 
   // Against the truth: settled fixations (50 ms in, the filter's stated settling time,
   // docs/filtering.md), where the pipeline's lag is within a sample.
-  const auto summary = json::parse(test::read_file(rig_.path("fd/summary.json")));
-  const TimeNs t0 = summary["trace_t0_ns"].get<TimeNs>();
-  struct Truth {
-    TimeNs t;
-    std::string event;
-    int index;
-    glm::vec3 dir;
-  };
-  std::vector<Truth> truth;
-  for (const auto& r : test::read_csv_rows(test::read_file(rig_.path("truth.csv")))) {
-    const glm::vec3 l{std::stof(r.at("left_dir_x")), std::stof(r.at("left_dir_y")), std::stof(r.at("left_dir_z"))};
-    const glm::vec3 rr{std::stof(r.at("right_dir_x")), std::stof(r.at("right_dir_y")), std::stof(r.at("right_dir_z"))};
-    truth.push_back({t0 + std::stoll(r.at("t_ns")), r.at("event"), std::stoi(r.at("event_index")), glm::normalize(l + rr)});
-  }
+  using Truth = test::TruthRow;
+  const std::vector<Truth> truth = test::read_truth(rig_.path("truth.csv"), rig_.path("fd"));
   auto truth_at = [&](TimeNs t) -> const Truth* {
     const Truth* best = nullptr;
     for (const Truth& x : truth)
@@ -184,7 +172,7 @@ TEST_F(OpenXRLayer, SyntheticScanpathWithinHalfADegreeOfTheTruthAndInactiveThrou
     const Truth* now = truth_at(s);
     const Truth* before = truth_at(s - 50 * kNsPerMs);
     if (!now || !before || now->event != "fixation" || before->event != "fixation" || before->index != now->index) continue;
-    const double e = test::angle_deg(test::vec(l["head_direction"]), now->dir);
+    const double e = test::angle_deg(test::vec(l["head_direction"]), now->combined());
     ++settled;
     within += e <= 0.5;
     worst = std::max(worst, e);

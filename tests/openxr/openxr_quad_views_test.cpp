@@ -129,21 +129,9 @@ TEST_F(QuadViews, WithFovealdEveryFrameObeysTheRulesAndTheInnerViewsFollowTheGaz
     }
   }
 
-  // The inner views' centres against the scanpath's truth, per eye, in settled fixations
-  // (the same fixation 100 ms before the locate: past the filter's stated 50 ms settling).
-  const auto summary = json::parse(test::read_file(rig_.path("fd/summary.json")));
-  const TimeNs t0 = summary["trace_t0_ns"].get<TimeNs>();
-  struct Truth {
-    TimeNs t;
-    std::string event;
-    int index;
-    glm::vec3 dir[2];
-  };
-  std::vector<Truth> truth;
-  for (const auto& r : test::read_csv_rows(test::read_file(rig_.path("truth.csv"))))
-    truth.push_back({t0 + std::stoll(r.at("t_ns")), r.at("event"), std::stoi(r.at("event_index")),
-                     {{std::stof(r.at("left_dir_x")), std::stof(r.at("left_dir_y")), std::stof(r.at("left_dir_z"))},
-                      {std::stof(r.at("right_dir_x")), std::stof(r.at("right_dir_y")), std::stof(r.at("right_dir_z"))}}});
+  // The inner views' centres against the scanpath's truth, per eye, in settled fixations.
+  using Truth = test::TruthRow;
+  const std::vector<Truth> truth = test::read_truth(rig_.path("truth.csv"), rig_.path("fd"));
   auto truth_at = [&](TimeNs t) -> const Truth* {
     const Truth* best = nullptr;
     for (const Truth& x : truth)
