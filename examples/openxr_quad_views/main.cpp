@@ -5,13 +5,16 @@
 // views and their gaze-following inner fields are the layer's (docs/openxr.md).
 //
 //   openxr_quad_views [--scene GLTF] [--frames N] [--stereo] [--no-foveated]
-//                     [--still] [--save-dir DIR --save-frame K] [--help]
+//                     [--still] [--gaze] [--save-dir DIR --save-frame K] [--help]
 //
 // Lines: {"event":"system",...} (view configurations, supportsFoveatedRendering),
 // {"event":"views",...} (the configuration used and each view's recommended size), then
 // one {"event":"frame",...} per frame (display time and the time xrLocateViews was
 // called, as CLOCK_MONOTONIC ns; each view's
 // field of view as angles left,right,up,down, pose, image size) and {"event":"end"}.
+// --gaze: the app reads the eye gaze too (XR_EXT_eye_gaze_interaction), syncing its
+// actions before each xrLocateViews; each frame line then holds "gaze" (active, tracked,
+// the sample's time as CLOCK_MONOTONIC ns).
 // --save-dir: the app's own images of frame K, one PNG per view (view_<i>.png).
 // --still: each view drawn from a head that stands still at the scene's viewer (only
 // the eyes' offset and the fields of view from the runtime), so images repeat exactly.
@@ -26,6 +29,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,6 +39,7 @@
 #include "foveal/image/image.hpp"
 #include "foveal/render/egl_context.hpp"
 #include "foveal/render/gl.hpp"
+#include "gaze_reader.hpp"
 #include "scene_renderer.hpp"
 
 namespace {
@@ -44,6 +49,7 @@ struct Options {
   int frames = 60;
   bool stereo = false, foveated = true;
   bool still = false;  ///< render as if the head stood still at the origin (reproducible images)
+  bool gaze = false;   ///< read the eye gaze through the action system each frame
   std::string save_dir;
   int save_frame = -1;
 };
@@ -51,13 +57,14 @@ struct Options {
 int usage(int rc) {
   std::fprintf(rc ? stderr : stdout,
                "usage: openxr_quad_views [--scene GLTF] [--frames N] [--stereo] [--no-foveated]\n"
-               "                         [--still] [--save-dir DIR --save-frame K]\n"
+               "                         [--still] [--gaze] [--save-dir DIR --save-frame K]\n"
                "  Renders a glTF scene (default: the bundled Dungeon) into OpenXR quad views (stereo with\n"
                "  --stereo) through EGL, headless, and prints JSON lines: what the runtime offered, the\n"
                "  views' sizes, each frame's views. --no-foveated: quad views without gaze.\n"
                "  --save-dir DIR --save-frame K: frame K's images as DIR/view_<i>.png.\n"
                "  --still: draw from a head that stands still (the runtime's fields of view, the eyes'\n"
-               "  offsets), so the images of every run are the same.\n");
+               "  offsets), so the images of every run are the same.\n"
+               "  --gaze: also read the eye gaze (XR_EXT_eye_gaze_interaction) each frame and print it.\n");
   return rc;
 }
 
@@ -131,6 +138,11 @@ int run(const Options& o) {
                                    XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME};
   if (quad_ext) exts.push_back(XR_VARJO_QUAD_VIEWS_EXTENSION_NAME);
   if (fov_ext) exts.push_back(XR_VARJO_FOVEATED_RENDERING_EXTENSION_NAME);
+  if (o.gaze && !has_extension(XR_EXT_EYE_GAZE_INTERACTION_EXTENSION_NAME)) {
+    std::fprintf(stderr, "openxr_quad_views: --gaze: no runtime or layer offers %s\n", XR_EXT_EYE_GAZE_INTERACTION_EXTENSION_NAME);
+    return 1;
+  }
+  if (o.gaze) exts.push_back(XR_EXT_EYE_GAZE_INTERACTION_EXTENSION_NAME);
   XrInstanceCreateInfo ci{XR_TYPE_INSTANCE_CREATE_INFO};
   std::strcpy(ci.applicationInfo.applicationName, "openxr_quad_views");
   ci.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
@@ -192,6 +204,8 @@ int run(const Options& o) {
   XrReferenceSpaceCreateInfo rs{XR_TYPE_REFERENCE_SPACE_CREATE_INFO, nullptr, XR_REFERENCE_SPACE_TYPE_LOCAL, {{0, 0, 0, 1}, {0, 0, 0}}};
   XrSpace local = XR_NULL_HANDLE;
   CHECK(xrCreateReferenceSpace(session, &rs, &local));
+  std::unique_ptr<example::GazeReader> gaze;
+  if (o.gaze && !(gaze = example::GazeReader::create(g_instance, session))) return 1;
 
   std::uint32_t nf = 0;
   CHECK(xrEnumerateSwapchainFormats(session, 0, &nf, nullptr));
@@ -254,10 +268,21 @@ int run(const Options& o) {
     timespec now{};
     clock_gettime(CLOCK_MONOTONIC, &now);
     const std::int64_t locate_ns = static_cast<std::int64_t>(now.tv_sec) * 1000000000 + now.tv_nsec;
+    if (gaze && !gaze->sync()) {
+      std::fprintf(stderr, "openxr_quad_views: xrSyncActions failed\n");
+      return 1;
+    }
     CHECK(xrLocateViews(session, &li, &vs, nv, &located, views.data()));
     std::string line = "{\"event\":\"frame\",\"i\":" + std::to_string(frame) +
                        ",\"display_ns\":" + std::to_string(mono_of(fs.predictedDisplayTime)) +
-                       ",\"locate_ns\":" + std::to_string(locate_ns) + ",\"views\":[";
+                       ",\"locate_ns\":" + std::to_string(locate_ns);
+    if (gaze) {
+      const example::GazeReading r = gaze->read(local, fs.predictedDisplayTime);
+      line += std::string(",\"gaze\":{\"active\":") + (r.active ? "true" : "false") +
+              ",\"tracked\":" + (r.tracked ? "true" : "false") +
+              ",\"sample_ns\":" + std::to_string(r.sample_time ? mono_of(r.sample_time) : 0) + "}";
+    }
+    line += ",\"views\":[";
     for (std::uint32_t i = 0; i < nv; ++i) {
       ViewTarget& t = targets[i];
       std::uint32_t index = 0;
@@ -298,6 +323,7 @@ int run(const Options& o) {
       exit_requested = true;
     }
   }
+  gaze.reset();
   for (auto& t : targets) xrDestroySwapchain(t.swapchain);
   xrDestroySpace(local);
   xrDestroySession(session);
@@ -325,6 +351,7 @@ int main(int argc, char** argv) {
     else if (a == "--stereo") o.stereo = true;
     else if (a == "--no-foveated") o.foveated = false;
     else if (a == "--still") o.still = true;
+    else if (a == "--gaze") o.gaze = true;
     else if (a == "--save-dir") o.save_dir = value("--save-dir");
     else if (a == "--save-frame") o.save_frame = std::atoi(value("--save-frame"));
     else return usage(2);

@@ -201,13 +201,16 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrSyncActions(XrSession session, const XrAc
     s->latched.store(active, g);
     s->gaze_active.store(active, std::memory_order_release);
   }
+  bool reads_gaze = false;
   for (auto& a : l.actions) {
     if (a.handle.load(std::memory_order_acquire) == XR_NULL_HANDLE || !a.gaze.load()) continue;
     bool set_active = false;
     for (std::uint32_t i = 0; i < info->countActiveActionSets && info->activeActionSets; ++i)
       set_active |= info->activeActionSets[i].actionSet == a.set;
     a.set_active.store(set_active, std::memory_order_release);
+    reads_gaze |= set_active;
   }
+  if (s) s->app_reads_gaze.store(reads_gaze, std::memory_order_release);
   return r;
 }
 

@@ -286,6 +286,7 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateSession(XrInstance instance, const 
     slot.view = view;
     slot.focused = false;
     slot.gaze_active = false;
+    slot.app_reads_gaze = false;
     slot.latched.store(false, GazeNow{});
     slot.system = info->systemId;
     quad_session_created(slot, info);

@@ -119,6 +119,9 @@ struct SessionSlot {
   XrSpace view = XR_NULL_HANDLE;  ///< the layer's own VIEW space: the head the gaze is relative to
   std::atomic<bool> focused{false};
   std::atomic<bool> gaze_active{false};  ///< latched by xrSyncActions
+  /// The last sync held an active set with a gaze action: the app reads the gaze, so its
+  /// inner views (quad_views.cpp) are placed on the same latched sample it sees.
+  std::atomic<bool> app_reads_gaze{false};
   LatchedGaze latched;
   XrSystemId system = XR_NULL_SYSTEM_ID;
   std::unique_ptr<QuadSession, QuadSessionDeleter> quad;  ///< set at xrCreateSession where quad views are served

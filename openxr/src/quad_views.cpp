@@ -268,9 +268,14 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrLocateViews(XrSession session, const XrVi
   if (XR_FAILED(r)) return r;
   if (n != 2) return XR_ERROR_RUNTIME_FAILURE;
 
+  // An app that reads the gaze itself gets its inner views on the very sample its action
+  // state latched at xrSyncActions (a gaze cursor sits in the inset's centre); any other
+  // app on the newest sample.
   GazeNow g;
   XrSpaceLocation head{};
-  const bool have_gaze = foveated && l.feed && l.feed->read(g) && g.tracked &&
+  const bool read = slot->app_reads_gaze.load(std::memory_order_acquire) ? slot->latched.load(g)
+                                                                         : l.feed && l.feed->read(g);
+  const bool have_gaze = foveated && read && g.tracked &&
                          XR_SUCCEEDED(locate_head(*slot, info->space, info->displayTime, head)) &&
                          (head.locationFlags & XR_SPACE_LOCATION_ORIENTATION_VALID_BIT);
   for (int e = 0; e < 2; ++e) {
