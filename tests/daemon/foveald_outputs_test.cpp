@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <filesystem>
@@ -42,12 +43,13 @@ class FovealdOutputs : public ::testing::Test {
     }
   }
   std::string env() const {
-    return "XDG_CONFIG_HOME=" + dir_.path("config") + " XDG_RUNTIME_DIR=" + dir_.path("run") + " ";
+    return "XDG_CONFIG_HOME=" + dir_.path("config") + " XDG_RUNTIME_DIR=" + dir_.path("run") +
+           " XDG_STATE_HOME=" + dir_.path("state") + " ";
   }
   /// foveald with `out_fd` as both its stdout and its stderr (-1: this process's).
   void spawn(std::vector<std::string> args, int out_fd) {
     std::vector<std::string> env_store = {"XDG_CONFIG_HOME=" + dir_.path("config"), "XDG_RUNTIME_DIR=" + dir_.path("run"),
-                                          "PATH=/usr/bin:/bin"};
+                                          "XDG_STATE_HOME=" + dir_.path("state"), "PATH=/usr/bin:/bin"};
     args.insert(args.begin(), test::bin("foveald"));
     std::vector<char*> argv, envp;
     for (auto& a : args) argv.push_back(a.data());
@@ -243,6 +245,114 @@ TEST_F(FovealdOutputs, BeforeTheFirstSampleCtlFoveaSaysTheCentre) {
   ASSERT_EQ(::kill(pid_, SIGTERM), 0);
   EXPECT_EQ(test::wait_for_exit(pid_, 20000), 0);
   pid_ = -1;
+}
+
+// `foveal ctl` prints one line a person reads (the whole record with --json), says in
+// which pixel space the fovea is, and that a live change is not saved.
+TEST_F(FovealdOutputs, CtlPrintsOneLineSummariesAndTheWholeRecordWithJson) {
+  spawn({"--source", "auto", "--no-shm", "--no-render", "-q", "--out", dir_.path("out")}, -1);
+  const auto st = wait_status([](const nlohmann::json& s) { return s.contains("state"); });
+  const std::string ctl = env() + test::bin("foveal") + " ctl ";
+  const auto line = test::run(ctl + "status");
+  ASSERT_EQ(line.exit_code, 0) << line.err;
+  EXPECT_EQ(std::count(line.out.begin(), line.out.end(), '\n'), 1) << line.out;
+  for (const std::string& part : std::vector<std::string>{st["state"].get<std::string>() + " · source auto waiting",
+                                                          "profile default: right dominant, sigma 2/3", "no rendering", " · up "})
+    EXPECT_NE(line.out.find(part), std::string::npos) << part << " not in: " << line.out;
+  const auto whole = test::run(ctl + "--json status");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(nlohmann::json::parse(whole.out)["profile"], "default");
+  const auto fovea = test::run(ctl + "fovea");
+  ASSERT_EQ(fovea.exit_code, 0) << fovea.err;
+  EXPECT_NE(fovea.out.find("left 720.0,800.0 (lost), right 720.0,800.0 (lost) · pixels of one eye's 1440x1600 viewport, origin top-left"),
+            std::string::npos) << fovea.out;
+  const auto set = test::run(ctl + "set sigma_d=2.5 sigma_nd=3.5");
+  ASSERT_EQ(set.exit_code, 0) << set.err;
+  EXPECT_NE(set.out.find("sigma 2.5/3.5 · not saved"), std::string::npos) << set.out;
+  ASSERT_EQ(::kill(pid_, SIGTERM), 0);
+  EXPECT_EQ(test::wait_for_exit(pid_, 20000), 0);
+  pid_ = -1;
+}
+
+// The user service (`foveald --service`, the unit's command line): with no tracker and no
+// headset it waits for them, renders nothing, writes under $XDG_STATE_HOME/foveal, and
+// stops cleanly on SIGTERM; options come from foveald.conf, the command line winning.
+TEST_F(FovealdOutputs, TheServiceWaitsForTheTrackerWithoutRenderingAndStopsOnSigterm) {
+  spawn({"--service", "--no-shm", "-q"}, -1);
+  const auto st = wait_status([](const nlohmann::json& s) { return s.contains("state"); });
+  EXPECT_EQ(st["source"]["state"], "waiting") << st.dump();
+  EXPECT_FALSE(st.contains("render") && st["render"].is_object() && st["render"].value("frames", 0) > 0) << st.dump();
+  ASSERT_EQ(::kill(pid_, SIGTERM), 0);
+  EXPECT_EQ(test::wait_for_exit(pid_, 20000), 0);
+  pid_ = -1;
+  const auto summary = nlohmann::json::parse(test::read_file(dir_.path("state/foveal/summary.json")));
+  EXPECT_EQ(summary["state"], "stopped");
+  EXPECT_EQ(summary["samples"].get<int>(), 0);
+}
+
+TEST_F(FovealdOutputs, TheServiceTakesItsOptionsFileAndTheCommandLineWins) {
+  std::filesystem::create_directories(dir_.path("config/foveal"));
+  test::write_file(dir_.path("config/foveal/foveald.conf"),
+                   "# the user's service\nquality = jod:9.5\n\nlatch = early\npredict = off\n");
+  const auto r = test::run(env() + test::bin("foveald") + " --service --latch late --print-config");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* line : {"source = auto\n", "head = auto\n", "render = off\n", "quality = jod:9.5\n", "latch = late\n",
+                           "predict = off\n"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << " missing from:\n" << r.out;
+  EXPECT_NE(r.out.find("out = " + dir_.path("state") + "/foveal\n"), std::string::npos) << r.out;
+  // Without --service the file is read only when named, and nothing else changes.
+  const auto plain = test::run(env() + test::bin("foveald") + " --print-config");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.out.find("# source\n"), std::string::npos) << plain.out;
+  EXPECT_NE(plain.out.find("render = on\n"), std::string::npos) << plain.out;
+  const auto named = test::run(env() + test::bin("foveald") + " --config " + dir_.path("config/foveal/foveald.conf") + " --print-config");
+  ASSERT_EQ(named.exit_code, 0) << named.err;
+  EXPECT_NE(named.out.find("latch = early\n"), std::string::npos) << named.out;
+  EXPECT_NE(named.out.find("render = on\n"), std::string::npos) << named.out;
+}
+
+TEST_F(FovealdOutputs, ABrokenOptionsFileIsRefusedNamingTheFileTheLineAndTheKey) {
+  const std::string conf = dir_.path("broken.conf");
+  struct Case {
+    const char* text;
+    const char* says;
+  } cases[] = {{"source = auto\n\nsideways = 1\n", ":3: unknown key 'sideways'"},
+               {"latch = sideways\n", "--latch"},
+               {"render = maybe\n", "render: on or off"},
+               {"quality = jod:9\nquality = jod:8\n", ":2: quality: given twice"},
+               {"source auto\n", ":1: expected `key = value`"}};
+  for (const Case& c : cases) {
+    test::write_file(conf, c.text);
+    const auto r = test::run(env() + test::bin("foveald") + " --service --config " + conf + " --print-config");
+    EXPECT_EQ(r.exit_code, 2) << c.text;
+    EXPECT_NE(r.err.find(conf), std::string::npos) << c.text << ": " << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.text << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+}
+
+TEST_F(FovealdOutputs, FovealServiceSetsShowsAndUnsetsTheServicesOptions) {
+  const std::string foveal = env() + test::bin("foveal");
+  auto set = test::run(foveal + " service set quality jod:9.5");
+  ASSERT_EQ(set.exit_code, 0) << set.err;
+  ASSERT_EQ(test::run(foveal + " service set source hid").exit_code, 0);
+  const auto shown = test::run(foveal + " service show --json");
+  ASSERT_EQ(shown.exit_code, 0) << shown.err;
+  const auto j = nlohmann::json::parse(shown.out);
+  EXPECT_EQ(j["path"], dir_.path("config") + "/foveal/foveald.conf");
+  EXPECT_EQ(j["entries"]["quality"], "jod:9.5");
+  EXPECT_EQ(j["entries"]["source"], "hid");
+  // What `set` wrote is what the service reads.
+  const auto used = test::run(env() + test::bin("foveald") + " --service --print-config");
+  ASSERT_EQ(used.exit_code, 0) << used.err;
+  EXPECT_NE(used.out.find("source = hid\n"), std::string::npos) << used.out;
+  const auto bad = test::run(foveal + " service set sideways 1");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("unknown key 'sideways'"), std::string::npos) << bad.err;
+  ASSERT_EQ(test::run(foveal + " service unset source").exit_code, 0);
+  const auto after = nlohmann::json::parse(test::run(foveal + " service show --json").out);
+  EXPECT_FALSE(after["entries"].contains("source")) << after.dump();
+  EXPECT_EQ(test::run(foveal + " service unset source").exit_code, 2) << "unsetting what is not set is an error";
 }
 
 }  // namespace

@@ -48,10 +48,10 @@ TEST(RecordCli, MarksReachTheLogAndTheQualityIsReported) {
   ASSERT_EQ(second.exit_code, 0) << second.err;
   EXPECT_EQ(nlohmann::json::parse(second.out)["markers"], 2);
   // The recording's samples are waited for (up to 10 s), not counted against the clock.
-  auto status = test::run(test::bin("foveal") + " ctl --socket " + socket + " status");
+  auto status = test::run(test::bin("foveal") + " ctl --json --socket " + socket + " status");
   for (int i = 0; i < 100 && status.exit_code == 0 && nlohmann::json::parse(status.out).value("samples", 0) <= 30; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    status = test::run(test::bin("foveal") + " ctl --socket " + socket + " status");
+    status = test::run(test::bin("foveal") + " ctl --json --socket " + socket + " status");
   }
   ASSERT_EQ(status.exit_code, 0) << status.err;
   EXPECT_GT(nlohmann::json::parse(status.out)["samples"].get<int>(), 30);

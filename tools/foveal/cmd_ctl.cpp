@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "commands.hpp"
+#include "ctl_summary.hpp"
 #include "foveal/core/json_text.hpp"
 #include "foveal/runtime/control_server.hpp"
 #include "foveal/tools/cli.hpp"
@@ -51,7 +52,7 @@ void add_ctl(CLI::App& app, int& exit_code) {
   ctl->add_option("--timeout-ms", a->timeout_ms, "How long connecting, sending and the reply may take together (per socket)")
       ->check(CLI::Range(1, 3600 * 1000))
       ->capture_default_str();
-  ctl->add_flag("--json", a->json, "Print the reply as JSON (the default prints it indented too)");
+  ctl->add_flag("--json", a->json, "Print the whole reply as JSON (the default: one line for status, fovea, use and set)");
   ctl->callback([a, ctl, &exit_code] {
     const std::string& cmd = a->words.front();
     nlohmann::json req = {{"cmd", cmd}};
@@ -103,8 +104,16 @@ void add_ctl(CLI::App& app, int& exit_code) {
       exit_code = cli::report(reply.error());
       return;
     }
-    std::printf("%s\n", a->json ? reply->dump().c_str() : reply->dump(2).c_str());
-    if (!reply->value("ok", false)) exit_code = cli::kExitBadInput;
+    const bool ok = reply->value("ok", false);
+    if (!ok) exit_code = cli::kExitBadInput;
+    if (a->json || !ok) {
+      std::printf("%s\n", a->json ? reply->dump().c_str() : reply->dump(2).c_str());
+      return;
+    }
+    if (cmd == "status" || cmd == "pause" || cmd == "resume") std::printf("%s\n", status_line(*reply).c_str());
+    else if (cmd == "fovea") std::printf("%s\n", fovea_line(*reply).c_str());
+    else if (cmd == "use" || cmd == "set") std::printf("%s\n", change_line(*reply, cmd).c_str());
+    else std::printf("%s\n", reply->dump(2).c_str());
   });
 }
 

@@ -13,6 +13,7 @@ void add_log_quality(CLI::App& log, int& exit_code);  // `log quality`, called b
 void add_synth(CLI::App& app, int& exit_code);
 void add_hid(CLI::App& app, int& exit_code);  // with FOVEAL_HAVE_HID
 void add_profile(CLI::App& app, int& exit_code);
+void add_service(CLI::App& app, int& exit_code);
 void add_ctl(CLI::App& app, int& exit_code);
 void add_calibrate(CLI::App& app, int& exit_code);
 void add_replay(CLI::App& app, int& exit_code);

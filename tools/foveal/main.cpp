@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   foveal::cmd::add_log(app, exit_code);
   foveal::cmd::add_synth(app, exit_code);
   foveal::cmd::add_profile(app, exit_code);
+  foveal::cmd::add_service(app, exit_code);
   foveal::cmd::add_ctl(app, exit_code);
   foveal::cmd::add_calibrate(app, exit_code);
   foveal::cmd::add_replay(app, exit_code);

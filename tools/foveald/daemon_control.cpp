@@ -134,6 +134,8 @@ nlohmann::json DaemonApp::handle(const nlohmann::json& req) {
     FoveaFrame f;
     if (!loop_ || !loop_->latest().load(f)) return error_reply("no fovea yet");
     nlohmann::json j = fovea_json(f);
+    // The figures' pixel space: one eye's viewport of the display model, origin top-left.
+    j["space"] = {{"eye_width", model_.eye_width}, {"eye_height", model_.eye_height}, {"origin", "top-left, y down"}};
     j["ok"] = true;
     return j;
   }

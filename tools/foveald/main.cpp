@@ -6,18 +6,29 @@
 
 #include <signal.h>
 
+#include <algorithm>
+#include <cstdio>
+
 #include "daemon_app.hpp"
 #include "daemon_output.hpp"
+#include "service_options.hpp"
 #include "foveal/drivers/probe.hpp"
 #include "foveal/image/foveation_plan.hpp"
 #include "foveal/tools/cli.hpp"
 #include "foveal/tools/log.hpp"
 
-int main(int argc, char** argv) {
-  CLI::App app{"foveald: the foveal runtime daemon (gaze -> fovea -> compositor)"};
-  app.set_version_flag("--version", "foveald 0.1.0");
-  foveal::daemon::Options o;
+namespace {
+
+struct Flags {
   int verbose = 0, quiet = 0;
+  bool service = false, print_config = false;
+  std::string config;
+};
+
+/// foveald's options, defined once: the command line is parsed by them, and again with
+/// the options file's entries in front when there is one (service_options.hpp).
+void define_options(CLI::App& app, foveal::daemon::Options& o, Flags& f) {
+  app.set_version_flag("--version", "foveald 0.1.0");
   app.add_option("--source,-s", o.source, "Gaze source (default: replay of the bundled Vive Pro Eye recording):\n" +
                                              foveal::probe::source_spec_help());
   app.add_option("--replay", o.replay, "Short for --source replay:PATH");
@@ -45,7 +56,7 @@ int main(int argc, char** argv) {
   app.add_option("--connector", o.connector, "Direct mode: connector name, e.g. DP-1 (default: the non-desktop or EDID-matching one)")
       ->needs(drm);
   app.add_option("--mode", o.mode, "Direct mode: WxH or WxH@HZ (default: the display model's size and refresh rate)")->needs(drm);
-  app.add_flag("!--no-render", o.render, "Run the gaze side only, no compositor");
+  app.add_flag("--render,!--no-render", o.render, "Run the compositor (the default; off for --service unless set) or only the gaze side");
   app.add_flag("!--no-distortion", o.distortion, "Ignore the display model's lens distortion");
   app.add_option("--frames", o.frames, "Stop after this many frames (default: when the replay ends)");
   app.add_option("--fps", o.fps, "Headless frame rate (default: as fast as the renderer goes)")->check(CLI::Range(0.0, 1000.0));
@@ -67,15 +78,61 @@ int main(int argc, char** argv) {
   app.add_option("--size", o.size, "Side-by-side output WxH (default: the display model's, 2880x1600)");
   app.add_option("--save-every", o.save_every, "Also save every Nth frame as PNG (the first and last always)")->check(CLI::Range(0, 1000000));
   app.add_flag("--json", o.json, "Print the summary as JSON");
-  app.add_flag("-v,--verbose", verbose, "More log output (repeatable); also $FOVEAL_LOG=debug|info|warn|error");
-  app.add_flag("-q,--quiet", quiet, "Less log output, no live status line");
+  app.add_flag("-v,--verbose", f.verbose, "More log output (repeatable); also $FOVEAL_LOG=debug|info|warn|error");
+  app.add_flag("-q,--quiet", f.quiet, "Less log output, no live status line");
+  app.add_flag("--service", f.service,
+               "Run as the user service: wait for the tracker and the headset (--source auto --head auto), serve the "
+               "fovea without rendering, options from $XDG_CONFIG_HOME/foveal/foveald.conf (docs/daemon.md, \"Service\")");
+  app.add_option("--config", f.config, "Options file (default with --service: $XDG_CONFIG_HOME/foveal/foveald.conf); "
+                                       "the command line wins over it");
+  app.add_flag("--print-config", f.print_config, "Print the options file's keys as this run would use them, and exit");
+}
+
+int parse_error(CLI::App& app, const CLI::ParseError& e) {
+  const int rc = app.exit(e);
+  return rc == 0 ? 0 : foveal::cli::kExitBadInput;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"foveald: the foveal runtime daemon (gaze -> fovea -> compositor)"};
+  foveal::daemon::Options o;
+  Flags f;
+  define_options(app, o, f);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : foveal::cli::kExitBadInput;
+    return parse_error(app, e);
   }
-  o.verbosity = verbose - quiet;
+  if (f.service || !f.config.empty()) {
+    // Parsed again with the file's entries (and the service's defaults) in front of the
+    // command line's, so each value meets the same checks as on the command line.
+    const std::string path = f.config.empty() ? foveal::daemon::default_config_path() : f.config;
+    auto args = foveal::daemon::service_arguments(path, f.service, [&](const std::string& option) { return app.count(option) > 0; });
+    if (!args) {
+      std::fprintf(stderr, "foveald: %s\n", args.error().message.c_str());
+      return foveal::cli::kExitBadInput;
+    }
+    for (int i = 1; i < argc; ++i) args->emplace_back(argv[i]);
+    CLI::App again{app.get_description()};
+    o = {};
+    f = {};
+    define_options(again, o, f);
+    std::reverse(args->begin(), args->end());  // CLI11 takes a vector last argument first
+    try {
+      again.parse(*args);
+    } catch (const CLI::ParseError& e) {
+      if (e.get_exit_code() == 0) return parse_error(again, e);
+      std::fprintf(stderr, "foveald: %s: %s\n", path.c_str(), e.what());
+      return foveal::cli::kExitBadInput;
+    }
+  }
+  if (f.print_config) {
+    std::fputs(foveal::daemon::config_text(o).c_str(), stdout);
+    return 0;
+  }
+  o.verbosity = f.verbose - f.quiet;
   foveal::log::init("foveald", o.verbosity);
   // stderr (or stdout) may be a pipe nobody reads, or whose reader died: lines go through
   // a queue to a thread of their own (dropped and counted when it is full), no write to
