@@ -47,6 +47,25 @@ TEST_F(ProfileCli, CreateUseShowSetExportImportDelete) {
   EXPECT_EQ(foveal("show bob").exit_code, 2);
 }
 
+// Issue 39 item 5: before any profile exists, `show` shows the built-in defaults foveald
+// uses (not an error about a profile the user never made), and `set` says how a running
+// foveald takes the change.
+TEST_F(ProfileCli, ShowBeforeAnyProfileIsTheBuiltInDefaultsAndSetSaysHowFovealdTakesIt) {
+  auto r = foveal("show");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("no profile made yet: foveald uses the built-in defaults"), std::string::npos) << r.out;
+  r = foveal("show --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["builtin"], true);
+  EXPECT_EQ(j["dominant_eye"], "right");
+  EXPECT_EQ(foveal("show nobody").exit_code, 2) << "a named profile that is not there is still an error";
+  ASSERT_EQ(foveal("create alice").exit_code, 0);
+  r = foveal("set alice sigma_nd 3.5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("a running foveald takes it at `foveal ctl use alice` or a reload"), std::string::npos) << r.out;
+}
+
 TEST_F(ProfileCli, BadValuesExitTwoAndChangeNothing) {
   ASSERT_EQ(foveal("create alice").exit_code, 0);
   const std::string before = test::read_file(dir_.path("foveal/profiles/alice.json"));

@@ -136,6 +136,22 @@ void add_profile(CLI::App& app, int& exit_code) {
     auto active = store.active();
     if (!active) return fail(active.error());
     const std::string name = a->name.empty() ? *active : a->name;
+    if (a->name.empty() && !store.exists(name)) {
+      // No profile made yet: foveald runs with the built-in defaults, which is what is shown.
+      Profile builtin;
+      builtin.name = name;
+      if (a->json) {
+        nlohmann::json j = builtin.to_json();
+        j["name"] = name;
+        j["active"] = true;
+        j["builtin"] = true;
+        cli::print_json(j);
+        return;
+      }
+      std::printf("no profile made yet: foveald uses the built-in defaults (`foveal profile create NAME` makes one)\n");
+      print_profile(builtin, true, false);
+      return;
+    }
     auto p = store.load(name);
     if (!p) return fail(p.error());
     print_profile(*p, *active == name, a->json);
@@ -159,6 +175,9 @@ void add_profile(CLI::App& app, int& exit_code) {
     if (!active) return fail(active.error());
     if (Status s = store.save(*p); !s) return fail(s.error());
     print_profile(*p, *active == a->name, a->json);
+    if (!a->json)
+      std::printf("saved; a running foveald takes it at `foveal ctl use %s` or a reload (SIGHUP; `systemctl --user reload foveald`)\n",
+                  a->name.c_str());
   });
 
   CLI::App* use = prof->add_subcommand("use", "Make a profile the active one");
