@@ -33,6 +33,13 @@ class TempDir {
   std::string path_;
 };
 
+/// Bounds for "returns instead of blocking" and "exits on SIGTERM": far above the timeout
+/// under test and any delay a loaded 2-core machine adds, far below forever. A test checks
+/// that the event happened; how fast it happens is for benchmarks and printed figures
+/// (docs/testing.md, "Events, not times").
+inline constexpr long long kReturnsWithinNs = 10'000'000'000LL;
+inline constexpr int kExitsWithinMs = 30000;
+
 /// Waits up to `ms` for child `pid` to exit: its exit code (128 + the signal when
 /// killed), or -1 while it still runs (the child is then left as it is).
 inline int wait_for_exit(pid_t pid, int ms) {
