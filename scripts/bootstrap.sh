@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(
-  build-essential cmake ninja-build pkg-config git
+  build-essential cmake ninja-build pkg-config git ccache
   libhidapi-dev libusb-1.0-0-dev zlib1g-dev  # zlib: the Vive config (docs/headset.md)
   libglfw3-dev libglm-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libdrm-dev libgbm-dev  # direct mode (EGL on GBM, KMS)
@@ -48,5 +48,6 @@ else
   echo "bootstrap: no Monado snapshot and no cached build: the openxr tests will be reported as not run"
 fi
 
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${openxr[@]}" "$@"
+source scripts/compiler_cache.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" "${openxr[@]}" "$@"
 cmake --build build -j "$(nproc)"

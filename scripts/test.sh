@@ -32,13 +32,14 @@ fi
 (( ctest_rc == 0 )) || exit "$ctest_rc"
 [[ "${1:-}" == "--quick" ]] && exit 0
 
-step() { printf '\n== %s\n' "$*"; }
+step() { printf '\n== %s (%s)\n' "$*" "$(date -u +%H:%M:%S)"; }
+source scripts/compiler_cache.sh
 
 step "ASan + UBSan: CPU unit tests"
 # -O1 without debug info compiles about twice as fast; reports then name functions, not
 # lines (rebuild with -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" to dig in).
 fast=(-DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O1 -DCMAKE_C_FLAGS_DEBUG=-O1 -DFOVEAL_BUILD_BENCHMARKS=OFF)
-cmake -S . -B build-asan -G Ninja "${fast[@]}" -DFOVEAL_SANITIZE=address,undefined > /dev/null
+cmake -S . -B build-asan -G Ninja "${fast[@]}" "${launcher[@]}" -DFOVEAL_SANITIZE=address,undefined > /dev/null
 ninja -C build-asan -j"$jobs" foveal_core_tests foveal_profile_tests foveal_control_tests foveal_exchange_tests \
   foveal_daemon_tests foveal_calibration_tests foveal_filter_tests foveal_hid_tests foveal_usb_tests \
   foveal_image_tests foveal_gltf_tests foveal_probe_tests foveal_quality_tests foveal_quality_cli_tests \
@@ -50,13 +51,13 @@ ninja -C build-asan -j"$jobs" foveal_core_tests foveal_profile_tests foveal_cont
 ctest --test-dir build-asan -L cpu -E 'Foveald' --output-on-failure -j"$jobs"
 
 step "TSan: threaded runtime tests"
-cmake -S . -B build-tsan -G Ninja "${fast[@]}" -DFOVEAL_SANITIZE=thread > /dev/null
+cmake -S . -B build-tsan -G Ninja "${fast[@]}" "${launcher[@]}" -DFOVEAL_SANITIZE=thread > /dev/null
 ninja -C build-tsan -j"$jobs" foveal_exchange_tests foveal_daemon_tests foveal_control_tests foveal_client_tests \
   foveal_head_tests
 ctest --test-dir build-tsan -R 'SeqLock|FoveaShm|PoseTrack|GazeLoop|LatencyHistogram|ControlSocket|FovealClient|HeadTracker' --output-on-failure -j"$jobs"
 
 step "libFuzzer: each target ${FOVEAL_FUZZ_SECONDS:-15} s"
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DFOVEAL_FUZZ=ON "${fast[@]}" > /dev/null
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DFOVEAL_FUZZ=ON "${fast[@]}" "${launcher[@]}" > /dev/null
 targets=(fuzz_gaze_log fuzz_import fuzz_profile fuzz_control fuzz_hid fuzz_psvr2 fuzz_display fuzz_gltf fuzz_hmd fuzz_vive fuzz_shard)
 ninja -C build-fuzz -j"$jobs" "${targets[@]}"
 for t in "${targets[@]}"; do
