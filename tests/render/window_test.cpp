@@ -56,6 +56,18 @@ TEST(Window, CalibrationTakesAnswersFromTheKeyboard) {
   const auto out = nlohmann::json::parse(test::read_file(d.path("out.json")));
   EXPECT_EQ(out["dominant_eye"], "left");
   EXPECT_EQ(out["saved"], true);
+  // Each step is told in the terminal too (and drawn into the picture); the 2880x1600
+  // frames do not fit Xvfb's 1280x720 screen, so they are shrunk, warned about, and the
+  // result says what the answers were judged on.
+  const std::string err = test::read_file(d.path("err.txt"));
+  for (const char* step : {"foveal calibrate: dominant_eye, trial 1: ", "foveal calibrate: dominant_eye, trial 3: ",
+                           "foveal calibrate: sigma_uniform, trial 1: ", "foveal calibrate: validation, trial 1: "})
+    EXPECT_NE(err.find(step), std::string::npos) << step << " not in:\n" << err;
+  EXPECT_NE(err.find("warning: the 2880x1600 frames are shown at 1280x711"), std::string::npos) << err;
+  EXPECT_EQ(out["judged_on"]["frames"], nlohmann::json({2880, 1600}));
+  EXPECT_EQ(out["judged_on"]["shown"], nlohmann::json({1280, 711}));
+  EXPECT_NEAR(out["judged_on"]["scale"].get<double>(), 1280.0 / 2880.0, 1e-3);
+  EXPECT_TRUE(out["judged_on"]["monitor"].is_null());
   const auto profile = nlohmann::json::parse(test::read_file(d.path("foveal/profiles/w.json")));
   EXPECT_EQ(profile["dominant_eye"], "left");
 }

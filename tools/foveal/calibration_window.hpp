@@ -26,8 +26,23 @@ struct ValidationGaze {
   std::vector<std::pair<TimeNs, TimeNs>> fixations;
 };
 
-/// Runs `cal` to completion. Errors: no display or window (unsupported), the user quit
+/// What the answers were judged on: the frames' size (the display model's) and the size
+/// they were shown at. A window smaller than the frames shrinks them, which hides the
+/// foveation being judged: sigma then comes out too high.
+struct CalibrationDisplay {
+  int frame_width = 0, frame_height = 0;
+  int shown_width = 0, shown_height = 0;
+  std::string monitor;  ///< empty: a window on the desktop
+  double scale() const { return frame_width > 0 ? static_cast<double>(shown_width) / frame_width : 0.0; }
+};
+
+/// Each prompt's instruction, for the picture and the terminal: the stage, the trial, the
+/// question and the keys.
+std::string calibration_instruction(const CalibrationPrompt& p);
+
+/// Runs `cal` to completion, telling each step in the picture and on stderr. Errors: no display or window (unsupported), the user quit
 /// (Esc or closing the window: bad_input, nothing is saved), GL failures.
-Status run_calibration_window(Calibration& cal, const CalibrationWindowOptions& o, ValidationGaze* gaze = nullptr);
+Status run_calibration_window(Calibration& cal, const CalibrationWindowOptions& o, ValidationGaze* gaze = nullptr,
+                              CalibrationDisplay* display = nullptr);
 
 }  // namespace foveal::cmd

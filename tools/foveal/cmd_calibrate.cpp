@@ -139,6 +139,7 @@ void add_calibrate(CLI::App& app, int& exit_code) {
     }
     Calibration cal;
     std::vector<nlohmann::json> steps;
+    std::optional<CalibrationDisplay> judged_on;  // the in-headset mode's picture
     if (a->answers.empty()) {
       // In-headset mode: the same state machine, answered from the keyboard or a gamepad.
       CalibrationWindowOptions wo;
@@ -156,7 +157,7 @@ void add_calibrate(CLI::App& app, int& exit_code) {
         if (Status st = source->source->start(); !st) return fail(st.error());
         wo.gaze = source->source.get();
       }
-      Status st = run_calibration_window(cal, wo, source ? &live : nullptr);
+      Status st = run_calibration_window(cal, wo, source ? &live : nullptr, &judged_on.emplace());
       if (source) source->source->close();
       if (!st) {
         Error e = st.error();
@@ -215,6 +216,12 @@ void add_calibrate(CLI::App& app, int& exit_code) {
                         {"validation", {{"trials", r.validation_trials}, {"failures", r.validation_failures}, {"passed", r.passed()}}},
                         {"gaze_quality", gaze ? gaze_quality_json(*gaze) : nlohmann::json(nullptr)},
                         {"saved", save},
+                        {"judged_on", judged_on ? nlohmann::json{{"frames", {judged_on->frame_width, judged_on->frame_height}},
+                                                                 {"shown", {judged_on->shown_width, judged_on->shown_height}},
+                                                                 {"scale", judged_on->scale()},
+                                                                 {"monitor", judged_on->monitor.empty() ? nlohmann::json(nullptr)
+                                                                                                        : nlohmann::json(judged_on->monitor)}}
+                                                : nlohmann::json(nullptr)},
                         {"steps", steps}};
     if (save)
       if (Status st = store.save(p); !st) return fail(st.error());
@@ -224,6 +231,11 @@ void add_calibrate(CLI::App& app, int& exit_code) {
                   eye_name(r.dominant_eye), r.dominant_consistent ? "" : " (trials disagreed)", r.sigma_uniform,
                   r.sigma_non_dominant, r.validation_trials - r.validation_failures, r.validation_trials,
                   save ? ("saved to profile " + name).c_str() : a->dry_run ? "not saved (dry run)" : "NOT saved");
+      if (judged_on)
+        std::printf("judged on %s: the %dx%d frames shown at %dx%d (%.2fx%s)\n",
+                    judged_on->monitor.empty() ? "a desktop window" : ("monitor " + judged_on->monitor).c_str(),
+                    judged_on->frame_width, judged_on->frame_height, judged_on->shown_width, judged_on->shown_height,
+                    judged_on->scale(), judged_on->scale() < 0.99 ? ": shrunk, sigma is likely too high" : "");
       if (gaze)
         std::printf("gaze in the validation trials (%d targets): accuracy L %.3f R %.3f deg, precision RMS-S2S "
                     "L %.3f R %.3f deg, STD L %.3f R %.3f deg, data loss L %.1f%% R %.1f%%\n",

@@ -1,5 +1,7 @@
 #include "foveal/render/window.hpp"
 
+#include <algorithm>
+
 #include "foveal/core/clock.hpp"
 
 #define GLFW_INCLUDE_NONE  // GL comes from foveal/render/gl.hpp (core profile)
@@ -68,6 +70,12 @@ Result<Window> Window::open(const WindowOptions& o) {
     w = mode->width;
     h = mode->height;
     glfwWindowHint(GLFW_REFRESH_RATE, mode->refreshRate);
+  } else if (GLFWmonitor* primary = glfwGetPrimaryMonitor(); o.fit_to_monitor && primary) {
+    if (const GLFWvidmode* mode = glfwGetVideoMode(primary); mode && (w > mode->width || h > mode->height)) {
+      const double k = std::min(static_cast<double>(mode->width) / w, static_cast<double>(mode->height) / h);
+      w = std::max(1, static_cast<int>(w * k));
+      h = std::max(1, static_cast<int>(h * k));
+    }
   }
   auto impl = std::make_unique<Impl>();
   impl->window = glfwCreateWindow(w, h, o.title.c_str(), monitor, nullptr);
@@ -104,6 +112,12 @@ void Window::present(GLuint framebuffer, int width, int height) {
 const PresentStats& Window::stats() const { return impl_->stats; }
 std::vector<std::int64_t> Window::take_shown() { return impl_->stats.take_shown(); }
 std::int64_t Window::last_ready_ns() const { return impl_->ready_ns; }
+
+std::pair<int, int> Window::framebuffer_size() const {
+  int fw = 0, fh = 0;
+  glfwGetFramebufferSize(impl_->window, &fw, &fh);
+  return {fw, fh};
+}
 
 bool Window::should_close() const { return glfwWindowShouldClose(impl_->window) != 0; }
 

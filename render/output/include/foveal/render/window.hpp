@@ -5,6 +5,7 @@
 // Create, use and destroy on one thread (GLFW's main-thread rule).
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "foveal/core/error.hpp"
@@ -15,6 +16,9 @@ namespace foveal::render {
 
 struct WindowOptions {
   int width = 1440, height = 800;  ///< window size (ignored when fullscreen)
+  /// Windowed: a size larger than the primary monitor shrinks to fit it, keeping its
+  /// aspect (a window partly off the screen would hide part of the picture).
+  bool fit_to_monitor = false;
   std::string monitor;             ///< fullscreen on the monitor whose name contains this; empty: windowed
   bool vsync = true;
   std::string title = "foveal";
@@ -40,6 +44,8 @@ class Window {
   /// for vsync).
   std::int64_t last_ready_ns() const;
   bool should_close() const;
+  /// The window's framebuffer in pixels: what present() scales each frame to.
+  std::pair<int, int> framebuffer_size() const;
   /// Keys pressed since the last call (GLFW key codes), for interactive tools.
   std::vector<int> take_keys();
 
