@@ -5,11 +5,20 @@
 #   2. the CPU unit tests under ASan + UBSan (build-asan/)
 #   3. the threaded runtime tests under TSan (build-tsan/)
 #   4. every libFuzzer target for a short fixed time on its seed corpus (build-fuzz/)
-# Usage: scripts/test.sh [--quick]   (--quick: step 1 only)
+# Usage: scripts/test.sh [--quick]
+#   --quick: step 1 without the VM and cluster tests (ctest -LE 'vm|cluster'): the CPU, GL,
+#   OpenXR and SDK tests; the other steps do not run.
 # FOVEAL_FUZZ_SECONDS (default 15) sets the time per fuzz target. docs/testing.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
+ctest_only=()
+case "${1:-}" in
+  "") ;;
+  --quick) ctest_only=(-LE 'vm|cluster') ;;
+  -h|--help) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  *) echo "scripts/test.sh: unknown argument '$1' (usage: scripts/test.sh [--quick])" >&2; exit 2 ;;
+esac
 
 # ctest's own summary lists skipped tests among many lines; one closing line names them and
 # why (the tests' GTEST_SKIP reasons, from ctest's log), so a plain clone without an OpenXR
@@ -17,7 +26,7 @@ jobs=$(nproc)
 ctest_log=$(mktemp)
 trap 'rm -f "$ctest_log"' EXIT
 set +e
-ctest --test-dir build --output-on-failure -j"$jobs" 2>&1 | tee "$ctest_log"
+ctest --test-dir build --output-on-failure -j"$jobs" ${ctest_only[@]+"${ctest_only[@]}"} 2>&1 | tee "$ctest_log"
 ctest_rc=${PIPESTATUS[0]}
 set -e
 not_run=$(sed -n '/^The following tests did not run:/,/^$/s/^[[:space:]]*[0-9][0-9]* - \(.*\)$/\1/p' "$ctest_log" |
