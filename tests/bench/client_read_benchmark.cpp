@@ -26,7 +26,13 @@ std::int64_t now_ns() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+    std::printf("usage: foveal_client_bench [READS]\n  Times foveal_client reads of a fovea block written at 1 kHz "
+                "(default 2,000,000 reads).\n");
+    return 0;
+  }
   const int reads = argc > 1 ? std::atoi(argv[1]) : 2'000'000;
+  if (reads < 1) return std::fprintf(stderr, "foveal_client_bench: READS must be a positive number, not '%s'\n", argv[1]), 2;
   const std::string name = "/foveal-client-bench-" + std::to_string(::getpid());
   auto writer = foveal::FoveaShm::create(name);
   if (!writer) return std::fprintf(stderr, "%s\n", writer.error().message.c_str()), 1;
