@@ -2,6 +2,7 @@
 // with messages that name the file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 
@@ -50,6 +51,25 @@ TEST(Scene, DungeonLoadsWithItsViewFileAndUnlitTorch) {
   // The view file puts the head inside the room's bounds.
   const glm::vec3 eye(s.view.head_to_world[3]);
   EXPECT_TRUE(glm::all(glm::greaterThan(eye, s.bounds.min)) && glm::all(glm::lessThan(eye, s.bounds.max)));
+}
+
+// bundled:NAME finds a shipped scene wherever foveal's data is (docs/scenes.md); the name
+// chooses a folder of data/scenes and nothing else.
+TEST(Scene, BundledNamesLoadTheShippedScenesAndNothingElse) {
+  ASSERT_TRUE(test::gl_ready());
+  auto dungeon = render::load_scene("bundled:Dungeon");
+  ASSERT_TRUE(dungeon) << dungeon.error().message;
+  EXPECT_EQ(dungeon->triangles, 42606u);
+  EXPECT_NE(dungeon->view.source.find("view file"), std::string::npos) << "its view file comes with it";
+  EXPECT_TRUE(render::load_scene("bundled:WaterBottle"));
+  const auto names = render::bundled_scene_names();
+  EXPECT_NE(std::find(names.begin(), names.end(), "Dungeon"), names.end());
+  for (const char* bad : {"bundled:Nope", "bundled:../scenes/Dungeon", "bundled:", "bundled:Dungeon/x"}) {
+    auto r = render::load_scene(bad);
+    ASSERT_FALSE(r) << bad;
+    EXPECT_EQ(r.error().kind, ErrorKind::bad_input) << bad;
+    EXPECT_NE(r.error().message.find("bundled: Dungeon, WaterBottle"), std::string::npos) << r.error().message;
+  }
 }
 
 TEST(Scene, PatternSpecs) {

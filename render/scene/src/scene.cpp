@@ -1,11 +1,13 @@
 #include "foveal/render/scene.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "foveal/core/data_paths.hpp"
 #include "foveal/render/view_file.hpp"
 #include "scene_internal.hpp"
 
@@ -32,10 +34,39 @@ ViewPose framing_view(const Bounds& b) {
 
 }  // namespace
 
+std::vector<std::string> bundled_scene_names() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(data_path("data/scenes"), ec))
+    if (e.is_directory()) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+Result<std::string> bundled_scene_path(const std::string& name) {
+  // The name picks a folder of data/scenes and nothing else: no separators, no dots.
+  const bool plain = !name.empty() && name.size() <= 64 && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_';
+  });
+  std::string list;
+  for (const std::string& n : bundled_scene_names()) list += (list.empty() ? "" : ", ") + n;
+  if (plain) {
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(data_path("data/scenes/" + name), ec))
+      if (e.path().extension() == ".gltf" || e.path().extension() == ".glb") return e.path().string();
+  }
+  return bad_input("bundled:" + name + ": no such bundled scene (bundled: " + (list.empty() ? "none" : list) + ")");
+}
+
 Result<Scene> load_scene(const std::string& spec, const SceneOptions& options) {
   if (spec.rfind("pattern:", 0) == 0) {
     if (!options.variant.empty()) return bad_input(spec + ": a pattern has no material variants");
     return detail::make_pattern_scene(spec);
+  }
+  if (spec.rfind("bundled:", 0) == 0) {
+    auto path = bundled_scene_path(spec.substr(std::string("bundled:").size()));
+    if (!path) return path.error();
+    return load_scene(*path, options);
   }
   auto scene = detail::load_gltf_scene(spec, options.variant);
   if (!scene) return scene;

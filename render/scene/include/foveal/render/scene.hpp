@@ -98,14 +98,21 @@ struct SceneOptions {
   std::string variant;  ///< KHR_materials_variants variant to draw; "": the default materials
 };
 
-/// Loads `spec` with `options`; an unknown variant (or one asked of a pattern) is
-/// bad_input naming the file's variants.
+/// Loads `spec` with `options`: a glTF path, `pattern:NAME`, or `bundled:NAME` (the
+/// scene shipped in data/scenes/NAME, found wherever foveal's data is: works outside the
+/// repository). An unknown variant (or one asked of a pattern) is bad_input naming the
+/// file's variants; an unknown bundled name names the bundled ones.
 Result<Scene> load_scene(const std::string& spec, const SceneOptions& options = {});
 
 /// Moves the viewer along its line of sight to 1.05 bounding radii from the scene's
 /// centre, so that an object scene fills the view (the benchmarks' "filled" framing; an
 /// object seen from its framing distance covers a fraction of the frame).
 void fill_view(Scene& scene);
+
+/// The bundled scenes' names (the folders of data/scenes), for `bundled:NAME`.
+std::vector<std::string> bundled_scene_names();
+/// The glTF file of bundled scene `name`; bad_input naming the bundled ones otherwise.
+Result<std::string> bundled_scene_path(const std::string& name);
 
 /// The names load_scene accepts after "pattern:".
 const std::vector<std::string>& pattern_names();
