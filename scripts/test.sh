@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The whole test suite, after scripts/bootstrap.sh has built ./build:
+# The whole test suite, after scripts/bootstrap.sh --tests has built ./build with its tests:
 #   1. every test of the normal build (CPU, GL on llvmpipe, VM device tests, the one-node
 #      Slurm cluster of label `cluster`): ctest
 #   2. the CPU unit tests under ASan + UBSan (build-asan/)

@@ -135,7 +135,7 @@ PartitionName=test Nodes={NODE} Default=YES MaxTime=INFINITE State=UP
     def __enter__(self):
         missing = missing_programs()
         if missing:
-            raise ClusterError("not installed: " + ", ".join(missing) + " (apt-get install slurm-wlm munge; scripts/bootstrap.sh)")
+            raise ClusterError("not installed: " + ", ".join(missing) + " (apt-get install slurm-wlm munge; scripts/bootstrap.sh --tests)")
         self.dir = tempfile.mkdtemp(prefix="foveal-slurm-")
         os.chmod(self.dir, 0o700)  # munged refuses a key or socket others could reach
         try:

@@ -186,11 +186,11 @@ def find_kernel(module):
 def host_ready(name, module, work):
     """(qemu, kver) when the guest can run here, with `work` made an empty directory;
     else prints why and returns the exit code: SKIP without qemu or a kernel with
-    `module`, 1 without a static busybox (scripts/bootstrap.sh installs busybox-static
+    `module`, 1 without a static busybox (scripts/bootstrap.sh --tests installs busybox-static
     with qemu: not a reason to skip)."""
     qemu = shutil.which("qemu-system-x86_64")
     if not qemu:
-        print("SKIPPED: qemu-system-x86_64 is not installed (apt-get install qemu-system-x86; scripts/bootstrap.sh does it)")
+        print("SKIPPED: qemu-system-x86_64 is not installed (apt-get install qemu-system-x86; scripts/bootstrap.sh --tests does it)")
         return SKIP
     kver = find_kernel(module)
     if not kver:
