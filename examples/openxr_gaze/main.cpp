@@ -3,7 +3,7 @@
 // installed and foveald running, the gaze it prints is foveald's (docs/openxr.md).
 //
 //   openxr_gaze [--duration S] [--interval-ms MS] [--per-eye] [--frame-loop] [--bench N]
-//               [--second-set] [--help]
+//               [--second-set] [--ahead-ms MS] [--help]
 //
 // Line 1: {"event":"system", ...} what the runtime (and the layers) offer.
 // Then, every interval: {"event":"gaze", "t_ns":..., "state":..., "active":...,
@@ -42,6 +42,7 @@ struct Options {
   bool frame_loop = false;
   int bench = 0;
   bool second_set = false;
+  int ahead_ms = 0;
 };
 
 int usage(int rc) {
@@ -50,7 +51,10 @@ int usage(int rc) {
                "  Reads eye gaze through OpenXR (XR_EXT_eye_gaze_interaction; with --per-eye also\n"
                "  XR_FB_eye_tracking_social) in a headless session and prints JSON lines.\n"
                "  --frame-loop: run xrWaitFrame/xrBeginFrame/xrEndFrame and locate at the predicted\n"
-               "  display time (default: locate at the current time).\n"
+               "  display time (default: locate at the current time; Monado's headless sessions have no\n"
+               "  frame loop).\n"
+               "  --ahead-ms MS: locate MS ahead of the current time, as at a frame's predicted display\n"
+               "  time (0-1000; foveal's layer predicts the gaze there).\n"
                "  --bench N: time N gaze-space and N VIEW-space locates once the gaze is active.\n"
                "  --second-set: after the session, bind the gaze to a new action set (a next session's).\n");
   return rc;
@@ -171,13 +175,14 @@ int main(int argc, char** argv) {
     else if (a == "--frame-loop") o.frame_loop = true;
     else if (a == "--bench") o.bench = std::atoi(value("--bench"));
     else if (a == "--second-set") o.second_set = true;
+    else if (a == "--ahead-ms") o.ahead_ms = std::atoi(value("--ahead-ms"));
     else {
       std::fprintf(stderr, "openxr_gaze: unknown option %s\n", a.c_str());
       return usage(2);
     }
   }
-  if (!(o.duration_s > 0) || o.interval_ms < 1 || o.bench < 0) {
-    std::fprintf(stderr, "openxr_gaze: --duration must be > 0, --interval-ms >= 1 and --bench >= 0\n");
+  if (!(o.duration_s > 0) || o.interval_ms < 1 || o.bench < 0 || o.ahead_ms < 0 || o.ahead_ms > 1000) {
+    std::fprintf(stderr, "openxr_gaze: --duration must be > 0, --interval-ms >= 1, --bench >= 0 and --ahead-ms 0-1000\n");
     return 2;
   }
 
@@ -350,7 +355,7 @@ int main(int argc, char** argv) {
       }
       ev = {XR_TYPE_EVENT_DATA_BUFFER};
     }
-    XrTime when = xr_now();
+    XrTime when = xr_now() + static_cast<XrTime>(o.ahead_ms) * 1'000'000;
     if (running && o.frame_loop) {
       XrFrameState fs{XR_TYPE_FRAME_STATE};
       CHECK(xrWaitFrame(session, nullptr, &fs));

@@ -1,7 +1,9 @@
 // What the layer's quad-view composition costs and buys, per frame at a display's size
 // (default 2880x1600, the Vive Pro Eye): the composer's time for both eyes (GPU time
-// from timer queries, and wall time to glFinish), and the pixels an app shades with
-// quad views against stereo, for the profile's EFR pair. docs/openxr.md, "Quad views".
+// from timer queries, and wall time to glFinish), the Vulkan composer's (wall time to its
+// fences, on the first CPU device or else the first device) where built with Vulkan, and
+// the pixels an app shades with quad views against stereo, for the profile's EFR pair.
+// docs/openxr.md, "Quad views".
 //
 //   foveal_quad_compose_bench [--size WxH] [--sigma-d S] [--sigma-nd S] [--inset SHARE]
 //                             [--frames N] [--json]
@@ -20,6 +22,9 @@
 #include "foveal/render/gl.hpp"
 #include "gl_composer.hpp"
 #include "inset.hpp"
+#ifdef FOVEAL_BENCH_VULKAN
+#include "vk_headless.hpp"
+#endif
 
 namespace {
 
@@ -38,6 +43,47 @@ double percentile(std::vector<double> v, double p) {
   std::sort(v.begin(), v.end());
   return v[static_cast<std::size_t>(p * static_cast<double>(v.size() - 1))];
 }
+
+#ifdef FOVEAL_BENCH_VULKAN
+/// Both eyes' composition on Vulkan, wall time from the first submit to the fences; the
+/// device's name in `device`; empty without a Vulkan device.
+std::vector<double> vulkan_ms(const foveal::openxr::QuadSizes& q, const foveal::openxr::ComposeSource gl_src[4],
+                              int eye_w, int height, int frames, std::string& device) {
+  using namespace foveal::openxr;
+  std::string error;
+  auto vk = VkHeadless::create(error);
+  auto composer = vk ? VkComposer::create(vk->binding(), error) : nullptr;
+  if (!composer) {
+    device = "none (" + error + ")";
+    return {};
+  }
+  device = vk->device_name();
+  ComposeSource src[4];
+  for (int v = 0; v < 4; ++v) {
+    const int w = static_cast<int>(q.width[v]), h = static_cast<int>(q.height[v]);
+    std::vector<std::uint8_t> px(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
+    std::mt19937 rng(7u + static_cast<unsigned>(v));
+    for (auto& b : px) b = static_cast<std::uint8_t>(rng());
+    src[v] = gl_src[v];
+    src[v].image = reinterpret_cast<std::uint64_t>(vk->image(w, h, VK_FORMAT_R8G8B8A8_SRGB, px.data()));
+    src[v].format = VK_FORMAT_R8G8B8A8_SRGB;
+    src[v].serial = static_cast<std::uint64_t>(v) + 1;
+  }
+  ComposeTarget target[2];
+  for (int e = 0; e < 2; ++e)
+    target[e] = {reinterpret_cast<std::uint64_t>(vk->image(eye_w, height, VK_FORMAT_R8G8B8A8_SRGB, nullptr)),
+                 VK_FORMAT_R8G8B8A8_SRGB, 10u + static_cast<std::uint64_t>(e), eye_w, height};
+  std::vector<double> ms;
+  for (int f = -3; f < frames; ++f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int e = 0; e < 2; ++e) composer->compose(src[e], src[e + 2], target[e], gl_src[e].fov, 3.0f);
+    composer->finish();
+    if (f >= 0) ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  composer.reset();  // before its device
+  return ms;
+}
+#endif
 
 }  // namespace
 
@@ -85,7 +131,8 @@ int main(int argc, char** argv) {
   const foveal::openxr::TanRect outer{-1.19f, 1.19f, -1.19f, 1.19f};
   foveal::openxr::ComposeSource src[4];
   for (int v = 0; v < 4; ++v) {
-    src[v].texture = noise_texture(static_cast<int>(q.width[v]), static_cast<int>(q.height[v]), GL_SRGB8_ALPHA8, 7u + static_cast<unsigned>(v));
+    src[v].format = GL_SRGB8_ALPHA8;
+    src[v].image = noise_texture(static_cast<int>(q.width[v]), static_cast<int>(q.height[v]), GL_SRGB8_ALPHA8, 7u + static_cast<unsigned>(v));
     src[v].image_w = src[v].w = static_cast<int>(q.width[v]);
     src[v].image_h = src[v].h = static_cast<int>(q.height[v]);
     src[v].fov = v < 2 ? outer : foveal::openxr::place_inset(outer, share, share, 0.2f, -0.1f);
@@ -101,7 +148,8 @@ int main(int argc, char** argv) {
   for (int f = -3; f < frames; ++f) {  // three frames of warm-up
     const auto t0 = std::chrono::steady_clock::now();
     glBeginQuery(GL_TIME_ELAPSED, query);
-    for (int e = 0; e < 2; ++e) composer->compose(src[e], src[e + 2], target[e], eye_w, height, outer, 3.0f, true);
+    for (int e = 0; e < 2; ++e)
+      composer->compose(src[e], src[e + 2], {target[e], GL_SRGB8_ALPHA8, 0, eye_w, height}, outer, 3.0f);
     glEndQuery(GL_TIME_ELAPSED);
     glFinish();
     const auto t1 = std::chrono::steady_clock::now();
@@ -116,17 +164,30 @@ int main(int argc, char** argv) {
   const double stereo_px = 2.0 * eye_w * height;
   char renderer[160];
   std::snprintf(renderer, sizeof renderer, "%s", reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
+  std::string vk_device = "not built";
+  std::vector<double> vk_ms;
+#ifdef FOVEAL_BENCH_VULKAN
+  vk_ms = vulkan_ms(q, src, eye_w, height, frames, vk_device);
+#endif
+  const double vk_p50 = vk_ms.empty() ? -1 : percentile(vk_ms, 0.5), vk_p95 = vk_ms.empty() ? -1 : percentile(vk_ms, 0.95);
   if (json) {
     std::printf("{\"renderer\":\"%s\",\"size\":[%d,%d],\"sigma_d\":%g,\"sigma_nd\":%g,\"inset\":%g,\"frames\":%d,"
                 "\"compose_gpu_ms\":{\"p50\":%.3f,\"p95\":%.3f},\"compose_wall_ms\":{\"p50\":%.3f,\"p95\":%.3f},"
+                "\"vulkan_device\":\"%s\",\"compose_vulkan_wall_ms\":{\"p50\":%.3f,\"p95\":%.3f},"
                 "\"pixels\":{\"quad\":%.0f,\"stereo\":%.0f,\"ratio\":%.4f}}\n",
                 renderer, width, height, sigma_d, sigma_nd, share, frames, percentile(gpu_ms, 0.5), percentile(gpu_ms, 0.95),
-                percentile(wall_ms, 0.5), percentile(wall_ms, 0.95), quad_px, stereo_px, quad_px / stereo_px);
+                percentile(wall_ms, 0.5), percentile(wall_ms, 0.95), vk_device.c_str(), vk_p50, vk_p95, quad_px, stereo_px,
+                quad_px / stereo_px);
   } else {
     std::printf("renderer: %s\nsize %dx%d, σ_d %g (right), σ_nd %g (left), inset %.2f of the view\n", renderer, width, height,
                 sigma_d, sigma_nd, share);
     std::printf("composition, both eyes: GPU p50 %.3f ms, p95 %.3f ms; wall to glFinish p50 %.3f ms (%d frames)\n",
                 percentile(gpu_ms, 0.5), percentile(gpu_ms, 0.95), percentile(wall_ms, 0.5), frames);
+    if (vk_ms.empty())
+      std::printf("Vulkan composition: no Vulkan device (%s)\n", vk_device.c_str());
+    else
+      std::printf("Vulkan composition on %s, both eyes: wall to the fences p50 %.3f ms, p95 %.3f ms\n",
+                  vk_device.c_str(), vk_p50, vk_p95);
     std::printf("pixels shaded by the app: quad %.0f, stereo %.0f: %.3f of stereo (%.2fx fewer)\n", quad_px, stereo_px,
                 quad_px / stereo_px, stereo_px / quad_px);
   }

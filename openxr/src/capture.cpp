@@ -24,14 +24,17 @@
 
 namespace foveal::openxr {
 
-void capture_stereo(GlComposer& composer, const std::uint32_t images[2], const OutputSwapchain out[2],
+void capture_stereo(Composer& composer, const std::uint64_t images[2], const OutputSwapchain out[2],
                     const std::string& dir) {
   std::vector<std::uint8_t> eye[2];
-  for (int e = 0; e < 2; ++e)
-    if (!composer.read(images[e], static_cast<int>(out[e].width), static_cast<int>(out[e].height), eye[e])) {
+  for (int e = 0; e < 2; ++e) {
+    const ComposeTarget target{images[e], out[e].format, out[e].serial, static_cast<int>(out[e].width),
+                               static_cast<int>(out[e].height)};
+    if (!composer.read(target, eye[e])) {
       log_line("capture: the composed image could not be read back");
       return;
     }
+  }
   const int w0 = static_cast<int>(out[0].width), w1 = static_cast<int>(out[1].width);
   const int h = static_cast<int>(std::max(out[0].height, out[1].height));
   const int w = w0 + w1;

@@ -6,12 +6,12 @@
 #include <cstdint>
 #include <string>
 
-#include "gl_composer.hpp"
+#include "composer.hpp"
 
 namespace foveal::openxr {
 
 struct OutputSwapchain;
-void capture_stereo(GlComposer& composer, const std::uint32_t images[2], const OutputSwapchain out[2],
+void capture_stereo(Composer& composer, const std::uint64_t images[2], const OutputSwapchain out[2],
                     const std::string& dir);
 
 }  // namespace foveal::openxr

@@ -2,6 +2,8 @@
 // profile's bindings out of the app's suggestions, answers the action state of the
 // actions bound there and locates their action spaces from the runtime's head pose and
 // foveald's gaze. Everything else goes to the runtime unchanged. docs/openxr.md.
+#include <cstring>
+#include <type_traits>
 #include <vector>
 
 #include "eye_gaze_system.hpp"
@@ -11,15 +13,13 @@
 namespace foveal::openxr {
 
 void LatchedGaze::store(bool active, const GazeNow& g) {
+  static_assert(std::is_trivially_copyable_v<GazeNow>);
+  std::array<std::uint64_t, kWords> w{};
+  std::memcpy(w.data(), &g, sizeof g);
   const std::uint32_t s = seq_.load(std::memory_order_relaxed);
   seq_.store(s + 1, std::memory_order_relaxed);
   std::atomic_thread_fence(std::memory_order_release);
-  const float w[14] = {g.eye_dir[0].x, g.eye_dir[0].y, g.eye_dir[0].z, g.eye_dir[1].x, g.eye_dir[1].y, g.eye_dir[1].z,
-                       g.confidence[0], g.confidence[1], g.combined.x, g.combined.y, g.combined.z, g.ipd_m, 0, 0};
-  for (std::size_t i = 0; i < words_.size(); ++i) words_[i].store(w[i], std::memory_order_relaxed);
-  t_ns_.store(g.t_ns, std::memory_order_relaxed);
-  eyes_.store(static_cast<std::uint8_t>((g.eye_tracked[0] ? 1 : 0) | (g.eye_tracked[1] ? 2 : 0) | (g.tracked ? 4 : 0)),
-              std::memory_order_relaxed);
+  for (std::size_t i = 0; i < kWords; ++i) words_[i].store(w[i], std::memory_order_relaxed);
   active_.store(active, std::memory_order_relaxed);
   seq_.store(s + 2, std::memory_order_release);
 }
@@ -29,22 +29,11 @@ bool LatchedGaze::load(GazeNow& g) const {
     const std::uint32_t before = seq_.load(std::memory_order_acquire);
     if (before & 1) continue;  // a store is under way on another thread: a few instructions
     const bool active = active_.load(std::memory_order_relaxed);
-    float w[14];
-    for (std::size_t i = 0; i < words_.size(); ++i) w[i] = words_[i].load(std::memory_order_relaxed);
-    const std::int64_t t = t_ns_.load(std::memory_order_relaxed);
-    const std::uint8_t eyes = eyes_.load(std::memory_order_relaxed);
+    std::array<std::uint64_t, kWords> w;
+    for (std::size_t i = 0; i < kWords; ++i) w[i] = words_[i].load(std::memory_order_relaxed);
     std::atomic_thread_fence(std::memory_order_acquire);
     if (seq_.load(std::memory_order_relaxed) != before) continue;
-    g.eye_dir[0] = {w[0], w[1], w[2]};
-    g.eye_dir[1] = {w[3], w[4], w[5]};
-    g.confidence[0] = w[6];
-    g.confidence[1] = w[7];
-    g.combined = {w[8], w[9], w[10]};
-    g.ipd_m = w[11];
-    g.t_ns = t;
-    g.eye_tracked[0] = eyes & 1;
-    g.eye_tracked[1] = eyes & 2;
-    g.tracked = eyes & 4;
+    std::memcpy(static_cast<void*>(&g), w.data(), sizeof g);
     return active;
   }
 }
@@ -256,20 +245,23 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateActionSpace(XrSession session, cons
 
 namespace {
 
-/// A gaze action space's pose in the head frame, or false when the gaze is not there
-/// (not bound, not active, no sample).
-bool gaze_space_in_head(const SpaceSlot& sp, GazeNow& g, XrPosef& pose, const SessionSlot*& session) {
+/// A gaze action space's pose in the head frame at `time`, or false when the gaze is not
+/// there (not bound, not active, no sample): the sample latched at the last sync,
+/// predicted to `time` (gaze_at). g keeps the sample's time.
+bool gaze_space_in_head(const SpaceSlot& sp, XrTime time, GazeNow& g, XrPosef& pose, const SessionSlot*& session) {
   Layer& l = layer();
   const ActionSlot& a = l.actions[static_cast<std::size_t>(sp.action)];
   session = find_session(sp.session);
   if (!session || !session->gaze_active.load(std::memory_order_acquire) || !a.set_active.load()) return false;
   if (!session->latched.load(g)) return false;
+  g = gaze_at(g, time);
   pose = compose(gaze_in_head(g), sp.pose_in_action);
   return true;
 }
 
-/// The structs an app may chain to a gaze space's location: the sample's time (the
-/// sample is the latest, not extrapolated: the time says when it was taken) and no velocity.
+/// The structs an app may chain to a gaze space's location: the sample's time (when the
+/// sample the pose comes from was taken, also when the pose is predicted from it to the
+/// locate's time, as the extension says) and no velocity.
 void fill_chain(XrSpaceLocation* location, const GazeNow* g) {
   for (auto* p = reinterpret_cast<XrBaseOutStructure*>(location->next); p; p = p->next) {
     if (p->type == XR_TYPE_EYE_GAZE_SAMPLE_TIME_EXT)
@@ -301,7 +293,7 @@ XrResult locate_gaze_action_space(XrSpace space, XrSpace base, XrTime time, XrSp
     GazeNow g2;
     XrPosef gaze_base{};
     const SessionSlot* s2 = nullptr;
-    if (gaze_space_in_head(*sp, g, gaze, session) && gaze_space_in_head(*bp, g2, gaze_base, s2)) {
+    if (gaze_space_in_head(*sp, time, g, gaze, session) && gaze_space_in_head(*bp, time, g2, gaze_base, s2)) {
       location->pose = compose(inverse(gaze_base), gaze);
       location->locationFlags = kOrientation | XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_POSITION_TRACKED_BIT;
       fill_chain(location, &g);
@@ -312,7 +304,7 @@ XrResult locate_gaze_action_space(XrSpace space, XrSpace base, XrTime time, XrSp
   }
   const SpaceSlot& gaze_slot = space_gaze ? *sp : *bp;
   fill_chain(location, nullptr);
-  if (!gaze_space_in_head(gaze_slot, g, gaze, session)) return XR_SUCCESS;  // inactive: no flags
+  if (!gaze_space_in_head(gaze_slot, time, g, gaze, session)) return XR_SUCCESS;  // inactive: no flags
   XrSpaceLocation head{};
   location->next = nullptr;
   const XrResult r = space_gaze ? locate_head(*session, base, time, head)

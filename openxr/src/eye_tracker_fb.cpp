@@ -65,6 +65,7 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrGetEyeGazesFB(XrEyeTrackerFB tracker, con
   GazeNow g;
   // Invalid when the app has no focus, as the specification says, or without a sample.
   if (!session->focused.load(std::memory_order_acquire) || !l.feed || !l.feed->read(g)) return XR_SUCCESS;
+  g = gaze_at(g, info->time);  // the newest sample, predicted to the asked time
   XrSpaceLocation head{};
   const XrResult r = locate_head(*session, info->baseSpace, info->time, head);
   if (XR_FAILED(r)) return r;
@@ -74,7 +75,9 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrGetEyeGazesFB(XrEyeTrackerFB tracker, con
     const XrPosef eye_in_head{look_rotation(g.eye_dir[e]), {(e == 0 ? -0.5f : 0.5f) * g.ipd_m, 0, 0}};
     gazes->gaze[e] = XrEyeGazeFB{XR_TRUE, compose(head.pose, eye_in_head), g.confidence[e]};
   }
-  gazes->time = l.feed->to_xr_time(g.t_ns);  // the latest sample's, not extrapolated
+  // The time the gazes are for: info->time when predicted there, else the sample's own
+  // (prediction off, an older foveald, or as far as the 50 ms horizon reaches).
+  gazes->time = l.feed->to_xr_time(g.at_ns);
   return XR_SUCCESS;
 }
 

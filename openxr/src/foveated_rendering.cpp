@@ -82,6 +82,7 @@ XrResult locate_combined_eye_space(XrSpace space, XrSpace base, XrTime time, XrS
   if (XR_FAILED(r) || !(location->locationFlags & XR_SPACE_LOCATION_ORIENTATION_VALID_BIT)) return r;
   GazeNow g;
   const bool tracked = gaze_now(g);
+  if (tracked) g = gaze_at(g, time);  // predicted to the locate's time
   const XrPosef turn{tracked ? look_rotation(g.combined) : XrQuaternionf{0, 0, 0, 1}, {0, 0, 0}};
   XrPosef pose = location->pose;
   if (space_eye) pose = compose(pose, compose(turn, sp->pose_in_action));

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 namespace foveal::openxr {
@@ -40,6 +41,11 @@ std::uint64_t pack(float a, float b) {
 
 GazeFeed::GazeFeed(std::function<bool(std::int64_t, XrTime&)> to_xr_time, std::function<void(const char*)> log)
     : to_xr_time_(std::move(to_xr_time)), log_(std::move(log)) {
+  if (const char* v = std::getenv("FOVEAL_OPENXR_PREDICT"); v && *v) {
+    predict_ = std::strcmp(v, "off") != 0;
+    if (!predict_) log_("FOVEAL_OPENXR_PREDICT=off: gaze located at its sample, not predicted to the asked time");
+    else if (std::strcmp(v, "on") != 0) log_("FOVEAL_OPENXR_PREDICT: neither on nor off; prediction stays on");
+  }
   // An app that starts with foveald running has gaze, and its times, from its first frame.
   const std::int64_t now = monotonic_ns();
   measure_offset(now);
@@ -182,6 +188,44 @@ std::int64_t GazeFeed::check_connection(std::int64_t now) {
   return kPollNs;
 }
 
+namespace {
+
+/// Directions of the eyes marked tracked, from f's pixels through g.view; an eye whose
+/// pixel gives none is dropped. Then the combined direction.
+void set_directions(GazeNow& g, const foveal_fovea& f) {
+  XrVector3f sum{0, 0, 0};
+  for (int e = 0; e < 2; ++e) {
+    float d[3];
+    if (!g.eye_tracked[e]) continue;
+    if (foveal_view_direction(&g.view, &f, e, d) != FOVEAL_OK || !std::isfinite(d[0]) || !std::isfinite(d[1]) ||
+        !std::isfinite(d[2])) {
+      g.eye_tracked[e] = false;
+      continue;
+    }
+    g.eye_dir[e] = {d[0], d[1], d[2]};
+    sum = {sum.x + d[0], sum.y + d[1], sum.z + d[2]};
+  }
+  const float n = std::sqrt(sum.x * sum.x + sum.y * sum.y + sum.z * sum.z);
+  g.tracked = n > 1e-6f;
+  g.combined = g.tracked ? XrVector3f{sum.x / n, sum.y / n, sum.z / n} : XrVector3f{0, 0, -1};
+}
+
+}  // namespace
+
+GazeNow gaze_at(const GazeNow& g, XrTime time) {
+  if (!g.predictable || !g.offset_known || time <= 0) return g;
+  std::int64_t t_ns = 0;
+  if (__builtin_sub_overflow(time, g.xr_offset_ns, &t_ns)) return g;
+  GazeNow out = g;
+  foveal_fovea p;
+  if (foveal_client_predict(&g.fovea, &g.motion, t_ns, &p) != FOVEAL_OK) return g;
+  set_directions(out, p);
+  // Where the rule stopped: the sample's time plus the horizon it used.
+  const std::int64_t h = std::clamp<std::int64_t>(t_ns - std::min(t_ns, g.t_ns), 0, FOVEAL_PREDICT_MAX_HORIZON_NS);
+  out.at_ns = g.t_ns + h;
+  return out;
+}
+
 bool GazeFeed::read(GazeNow& out) const {
   readers_.fetch_add(1, std::memory_order_seq_cst);
   struct Leave {
@@ -191,26 +235,35 @@ bool GazeFeed::read(GazeNow& out) const {
   const Connection* c = current_.load(std::memory_order_seq_cst);
   if (!c) return false;
   foveal_fovea f;
-  if (foveal_client_read(c->client, &f) != FOVEAL_OK) return false;
+  foveal_motion m{};
+  // The motion right after the fovea: the same frame, or foveald published in between
+  // (once more then; still apart, this read predicts nothing).
+  bool paired = false;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (foveal_client_read(c->client, &f) != FOVEAL_OK) return false;
+    if (!predict_ || foveal_client_motion(c->client, &m) != FOVEAL_OK) break;  // off, or an older foveald's block
+    paired = m.frame == f.frame;
+    if (paired || m.frame < f.frame) break;
+  }
   out = GazeNow{};
-  out.t_ns = f.t_ns;
+  out.t_ns = out.at_ns = f.t_ns;
   out.ipd_m = c->view.ipd_m;
+  out.fovea = f;
+  out.view = c->view;
+  out.motion = m;
+  out.predictable = paired;
+  out.offset_known = offset_known_.load(std::memory_order_acquire);
+  out.xr_offset_ns = xr_offset_ns_.load(std::memory_order_relaxed);
   // Both bounds without overflow: a time far in the past or ahead is no fresh sample.
   const std::int64_t now = monotonic_ns();
   const bool fresh = f.t_ns > 0 && f.t_ns <= now + kFutureNs && now - f.t_ns < kStaleNs;
-  XrVector3f sum{0, 0, 0};
   for (int e = 0; e < 2; ++e) {
-    float d[3];
-    if (!fresh || !eye_is_tracked(f, e) || foveal_view_direction(&c->view, &f, e, d) != FOVEAL_OK) continue;
-    if (!std::isfinite(d[0]) || !std::isfinite(d[1]) || !std::isfinite(d[2])) continue;
-    out.eye_tracked[e] = true;
-    out.eye_dir[e] = {d[0], d[1], d[2]};
-    out.confidence[e] = std::clamp(f.confidence[e], 0.0f, 1.0f);
-    sum = {sum.x + d[0], sum.y + d[1], sum.z + d[2]};
+    out.eye_tracked[e] = fresh && eye_is_tracked(f, e);
+    if (out.eye_tracked[e]) out.confidence[e] = std::clamp(f.confidence[e], 0.0f, 1.0f);
   }
-  const float n = std::sqrt(sum.x * sum.x + sum.y * sum.y + sum.z * sum.z);
-  out.tracked = n > 1e-6f;
-  if (out.tracked) out.combined = {sum.x / n, sum.y / n, sum.z / n};
+  set_directions(out, f);
+  for (int e = 0; e < 2; ++e)
+    if (!out.eye_tracked[e]) out.confidence[e] = 0;
   return true;
 }
 

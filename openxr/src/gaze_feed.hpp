@@ -21,7 +21,8 @@
 
 namespace foveal::openxr {
 
-/// One read of the latest sample, in the head (VIEW) frame.
+/// One read of the latest sample, in the head (VIEW) frame. Plain data (LatchedGaze
+/// copies it as words): the directions, and what predicting them to a time needs.
 struct GazeNow {
   bool eye_tracked[2] = {false, false};
   XrVector3f eye_dir[2] = {{0, 0, -1}, {0, 0, -1}};  ///< unit, x right, y up, -z forward
@@ -30,7 +31,24 @@ struct GazeNow {
   XrVector3f combined{0, 0, -1}; ///< the tracked eyes' directions averaged
   float ipd_m = 0.063f;
   std::int64_t t_ns = 0;         ///< CLOCK_MONOTONIC of the gaze sample
+  std::int64_t at_ns = 0;        ///< the time the directions are for: t_ns, or where gaze_at predicted them to
+  // For gaze_at: the sample's pixels, the view that turns them into directions, and
+  // the motion foveald published with them (paired by frame).
+  foveal_fovea fovea{};
+  foveal_view view{};
+  foveal_motion motion{};
+  bool predictable = false;      ///< the motion is this sample's and prediction is on
+  bool offset_known = false;
+  std::int64_t xr_offset_ns = 0; ///< XrTime - CLOCK_MONOTONIC when read
 };
+
+/// The gaze predicted to `time` (XrTime) by foveald's own rule (foveal_client_predict:
+/// predictable eyes extrapolated by their velocity and lag, up to 50 ms; a saccade,
+/// blink or loss held), directions recomputed from the predicted pixels; g unchanged
+/// when it cannot be predicted (prediction off, an older foveald without motion, a
+/// time not after the sample). Which eyes are tracked, confidences and t_ns stay the
+/// sample's. Pure: no lock, allocation or system call.
+GazeNow gaze_at(const GazeNow& g, XrTime time);
 
 /// The EFR pair foveald serves (its active profile), for the quad views' sizes.
 struct GazeSettings {
@@ -42,6 +60,7 @@ class GazeFeed {
  public:
   /// to_xr_time: the runtime's CLOCK_MONOTONIC -> XrTime conversion (called on the
   /// feed's thread only); log: one line per change of state (connected, lost, bad block).
+  /// Prediction to the locate's time is on unless FOVEAL_OPENXR_PREDICT=off (read here, once).
   GazeFeed(std::function<bool(std::int64_t, XrTime&)> to_xr_time, std::function<void(const char*)> log);
   ~GazeFeed();
   GazeFeed(const GazeFeed&) = delete;
@@ -83,6 +102,7 @@ class GazeFeed {
   std::atomic<int> held_{0};
   std::atomic<std::int64_t> xr_offset_ns_{0};
   std::atomic<bool> offset_known_{false};
+  bool predict_ = true;  ///< FOVEAL_OPENXR_PREDICT: on (the default, as foveald's own) or off
   std::atomic<std::uint64_t> settings_bits_{0};  ///< two floats: σ left, σ right (0: none)
   State state_ = State::starting;
   std::int64_t backoff_ns_ = 0, next_try_ns_ = 0;

@@ -102,11 +102,10 @@ class LatchedGaze {
   bool load(GazeNow& g) const;  ///< false: no active gaze at the last sync
 
  private:
+  static constexpr std::size_t kWords = (sizeof(GazeNow) + 7) / 8;
   mutable std::atomic<std::uint32_t> seq_{0};
   std::atomic<bool> active_{false};
-  std::array<std::atomic<float>, 14> words_{};  // eye dirs, confidences, combined, ipd
-  std::atomic<std::int64_t> t_ns_{0};
-  std::atomic<std::uint8_t> eyes_{0};
+  std::array<std::atomic<std::uint64_t>, kWords> words_{};  // the GazeNow, whole: gaze_at predicts from it
 };
 
 struct QuadSession;  // quad_session.hpp: the quad views of a session that asked for them

@@ -5,6 +5,10 @@
 #include <EGL/egl.h>
 #define XR_USE_PLATFORM_EGL          // XrGraphicsBindingEGLMNDX
 #define XR_USE_GRAPHICS_API_OPENGL   // XrSwapchainImageOpenGLKHR
+#ifdef FOVEAL_OPENXR_VULKAN
+#include <vulkan/vulkan.h>
+#define XR_USE_GRAPHICS_API_VULKAN   // XrGraphicsBindingVulkanKHR, XrSwapchainImageVulkanKHR
+#endif
 #include "layer.hpp"
 
 #include <array>
@@ -12,8 +16,12 @@
 #include <memory>
 #include <string>
 
+#include "composer.hpp"
 #include "gl_composer.hpp"
 #include "inset.hpp"
+#ifdef FOVEAL_OPENXR_VULKAN
+#include "vk_composer.hpp"
+#endif
 
 namespace foveal::openxr {
 
@@ -24,18 +32,28 @@ struct SwapchainRecord {
   std::int64_t format = 0;
   std::uint32_t width = 0, height = 0, array_size = 1;
   std::uint32_t image_count = 0;
-  std::uint32_t images[8] = {};  ///< GL texture names
+  std::uint64_t images[8] = {};  ///< GL texture names or VkImages
+  std::uint64_t serial = 0;      ///< new for every swapchain (the Vulkan composer's view cache)
   int acquired[8] = {};
   int acquired_head = 0, acquired_count = 0;
   std::atomic<int> released{-1};  ///< the image its last xrReleaseSwapchainImage gave back
+  /// Vulkan: the app released an image that the runtime has not been told of yet. A Vulkan
+  /// runtime takes the image off the app's queue at release (Monado: to another layout and
+  /// queue family), so the layer samples it first and releases it at xrEndFrame.
+  std::atomic<bool> release_held{false};
 };
 
 /// The layer's own stereo swapchain for one eye.
 struct OutputSwapchain {
   XrSwapchain handle = XR_NULL_HANDLE;
   std::uint32_t width = 0, height = 0, image_count = 0;
-  std::uint32_t images[8] = {};
+  std::int64_t format = 0;
+  std::uint64_t images[8] = {};
+  std::uint64_t serial = 0;
 };
+
+/// A serial no swapchain had before (SwapchainRecord::serial).
+std::uint64_t next_swapchain_serial();
 
 constexpr int kMaxFrameLayers = 16;
 
@@ -44,6 +62,9 @@ struct QuadSession {
   XrSession session = XR_NULL_HANDLE;
   Api api = Api::unknown;
   GlGetProcAddress get_proc = nullptr;
+#ifdef FOVEAL_OPENXR_VULKAN
+  VkBinding vk;  ///< from XrGraphicsBindingVulkanKHR (XR_KHR_vulkan_enable2's is the same struct)
+#endif
   std::atomic<bool> began_quad{false};
   std::uint32_t stereo_w[2] = {}, stereo_h[2] = {};
   InsetSettings inset;
@@ -51,8 +72,7 @@ struct QuadSession {
   std::array<SwapchainRecord, 32> swapchains;
   // Composition (the thread that calls xrEndFrame only).
   OutputSwapchain out[2];
-  std::int64_t out_format = 0;
-  std::unique_ptr<GlComposer> composer;
+  std::unique_ptr<Composer> composer;
   bool composer_failed = false, said_degraded = false;
   long frames_composed = 0;
   std::string capture_dir;  ///< FOVEAL_OPENXR_CAPTURE_DIR: where the capture goes
@@ -64,6 +84,12 @@ struct QuadSession {
 
 /// The swapchain record of `s` in any session, or null. Lock-free.
 SwapchainRecord* find_swapchain(XrSwapchain s, QuadSession** session = nullptr);
+
+/// Vulkan quad sessions: whether xrReleaseSwapchainImage of `s` waits for xrEndFrame.
+bool holds_release(const QuadSession* q, const SwapchainRecord* s);
+/// Passes a held release of `s` on to the runtime; the image is then no longer the
+/// layer's to sample.
+void forward_release(SwapchainRecord& s);
 
 /// xrEndFrame for a quad session: 4-view projection layers composed into stereo ones
 /// (frame_composition.cpp).

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "inset_quality.hpp"
 #include "pose_math.hpp"
 #include "quad_session.hpp"
 
@@ -40,6 +41,17 @@ using GlxGetProc = void* (*)(const unsigned char*);
 GlxGetProc g_glx_get_proc = nullptr;
 void* glx_get_proc(const char* name) { return g_glx_get_proc(reinterpret_cast<const unsigned char*>(name)); }
 
+#ifdef FOVEAL_OPENXR_VULKAN
+/// The app's Vulkan loader: vkGetInstanceProcAddr as the process has it, or from the
+/// libvulkan it loaded (the handles it gave us are that loader's). Kept open.
+PFN_vkGetInstanceProcAddr app_vulkan_loader() {
+  if (void* f = ::dlsym(RTLD_DEFAULT, "vkGetInstanceProcAddr")) return reinterpret_cast<PFN_vkGetInstanceProcAddr>(f);
+  void* lib = ::dlopen("libvulkan.so.1", RTLD_NOW | RTLD_NOLOAD);
+  if (!lib) lib = ::dlopen("libvulkan.so.1", RTLD_NOW);
+  return lib ? reinterpret_cast<PFN_vkGetInstanceProcAddr>(::dlsym(lib, "vkGetInstanceProcAddr")) : nullptr;
+}
+#endif
+
 const InsetSettings& settings_once() {
   static const InsetSettings s = [] {
     const char* problem = nullptr;
@@ -47,6 +59,25 @@ const InsetSettings& settings_once() {
     if (problem) log_line(problem);
     return v;
   }();
+  return s;
+}
+
+// FOVEAL_OPENXR_QUALITY's table, loaded once (at the first size or session, never in a frame).
+const InsetQuality& quality_once() {
+  static const InsetQuality q = [] {
+    InsetQuality v = InsetQuality::from_environment();
+    if (!v.problem().empty()) log_line(v.problem().c_str());
+    return v;
+  }();
+  return q;
+}
+
+// The inset's settings and the outer views' densities (0 left, 1 right): the quality's
+// choice from its table where it is on, else FOVEAL_OPENXR_INSET and 1/σ of foveald's pair.
+InsetSettings sized_inset(const GazeSettings& gs, float density[2]) {
+  InsetSettings s = settings_once();
+  density[0] = 1.0f / gs.sigma[0], density[1] = 1.0f / gs.sigma[1];
+  quality_once().apply(gs.sigma, s, density);
   return s;
 }
 
@@ -86,8 +117,14 @@ void quad_session_created(SessionSlot& slot, const XrSessionCreateInfo* info) {
       g_egl_get_proc = egl_get;
       q->get_proc = egl_get_proc;
     }
-  } else if (find_in(info->next, XR_TYPE_GRAPHICS_BINDING_VULKAN_KHR)) {
-    q->api = QuadSession::Api::vulkan;
+  } else if (const auto* vk = find_in(info->next, XR_TYPE_GRAPHICS_BINDING_VULKAN_KHR)) {
+    q->api = QuadSession::Api::vulkan;  // XR_TYPE_GRAPHICS_BINDING_VULKAN2_KHR is the same value and struct
+#ifdef FOVEAL_OPENXR_VULKAN
+    const auto* b = reinterpret_cast<const XrGraphicsBindingVulkanKHR*>(vk);
+    q->vk = {app_vulkan_loader(), b->instance, b->physicalDevice, b->device, b->queueFamilyIndex, b->queueIndex};
+#else
+    (void)vk;
+#endif
   }
   XrViewConfigurationView views[2] = {{XR_TYPE_VIEW_CONFIGURATION_VIEW, nullptr, 0, 0, 0, 0, 0, 0},
                                       {XR_TYPE_VIEW_CONFIGURATION_VIEW, nullptr, 0, 0, 0, 0, 0, 0}};
@@ -100,7 +137,8 @@ void quad_session_created(SessionSlot& slot, const XrSessionCreateInfo* info) {
     q->stereo_w[e] = views[e].recommendedImageRectWidth;
     q->stereo_h[e] = views[e].recommendedImageRectHeight;
   }
-  q->inset = settings_once();
+  float densities[2];
+  q->inset = sized_inset(l.feed ? l.feed->settings() : GazeSettings{}, densities);
   if (const char* dir = std::getenv("FOVEAL_OPENXR_CAPTURE_DIR"); dir && *dir) {
     q->capture_dir = dir;
     const char* frame = std::getenv("FOVEAL_OPENXR_CAPTURE_FRAME");
@@ -112,6 +150,7 @@ void quad_session_created(SessionSlot& slot, const XrSessionCreateInfo* info) {
 void quad_session_destroyed(SessionSlot& slot) {
   if (!slot.quad) return;
   QuadSession& q = *slot.quad;
+  q.composer.reset();  // first: a Vulkan composer waits for its work on the images before they go
   for (auto& o : q.out)
     if (o.handle != XR_NULL_HANDLE) layer().next.DestroySwapchain(o.handle);
   slot.quad.reset();  // the composer's GL objects go with the app's context, which is current here or gone
@@ -191,10 +230,10 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrEnumerateViewConfigurationViews(XrInstanc
             find_in(views[0].next, XR_TYPE_FOVEATED_VIEW_CONFIGURATION_VIEW_VARJO)))
       foveated = f->foveatedRenderingActive;
   const GazeSettings gs = l.feed ? l.feed->settings() : GazeSettings{};
-  const InsetSettings& inset = settings_once();
+  float density[2];
+  const InsetSettings inset = sized_inset(gs, density);
   const std::uint32_t w[2] = {stereo[0].recommendedImageRectWidth, stereo[1].recommendedImageRectWidth};
   const std::uint32_t h[2] = {stereo[0].recommendedImageRectHeight, stereo[1].recommendedImageRectHeight};
-  const float density[2] = {1.0f / gs.sigma[0], 1.0f / gs.sigma[1]};
   const QuadSizes sizes = quad_sizes(w, h, density, foveated ? inset.foveated_share_x : inset.fixed_share_x,
                                      foveated ? inset.foveated_share_y : inset.fixed_share_y);
   for (int i = 0; i < 4; ++i) {
@@ -214,8 +253,14 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrBeginSession(XrSession session, const XrS
   if (!serving() || !info || info->primaryViewConfigurationType != kQuad) return l.next.BeginSession(session, info);
   QuadSession* q = quad_of(session);
   if (!q) return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
-  if (q->api != QuadSession::Api::opengl) {
-    log_line("quad views: the layer composes them on OpenGL sessions; this session's graphics API is not one");
+#ifdef FOVEAL_OPENXR_VULKAN
+  const bool composable = q->api == QuadSession::Api::opengl || q->api == QuadSession::Api::vulkan;
+#else
+  const bool composable = q->api == QuadSession::Api::opengl;
+#endif
+  if (!composable) {
+    log_line("quad views: the layer composes them on OpenGL and Vulkan sessions (Vulkan where it was built with "
+             "libvulkan-dev and glslang-tools); this session's graphics API is not one");
     return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
   }
   XrSessionBeginInfo down = *info;
@@ -270,11 +315,13 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrLocateViews(XrSession session, const XrVi
 
   // An app that reads the gaze itself gets its inner views on the very sample its action
   // state latched at xrSyncActions (a gaze cursor sits in the inset's centre); any other
-  // app on the newest sample.
+  // app on the newest sample. Either is predicted to displayTime, as the app's own locate
+  // of the gaze at that time is.
   GazeNow g;
   XrSpaceLocation head{};
   const bool read = slot->app_reads_gaze.load(std::memory_order_acquire) ? slot->latched.load(g)
                                                                          : l.feed && l.feed->read(g);
+  if (read) g = gaze_at(g, info->displayTime);  // that sample, predicted to when the frame is shown
   const bool have_gaze = foveated && read && g.tracked &&
                          XR_SUCCEEDED(locate_head(*slot, info->space, info->displayTime, head)) &&
                          (head.locationFlags & XR_SPACE_LOCATION_ORIENTATION_VALID_BIT);
@@ -316,6 +363,7 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateSwapchain(XrSession session, const 
     s.image_count = 0;
     s.acquired_head = s.acquired_count = 0;
     s.released = -1;
+    s.serial = next_swapchain_serial();
   });
   if (!claimed) log_line("more than 32 swapchains in a session: the later ones cannot be composed");
   return r;
@@ -323,6 +371,7 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateSwapchain(XrSession session, const 
 
 XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroySwapchain(XrSwapchain swapchain) {
   Layer& l = layer();
+  if (SwapchainRecord* s = find_swapchain(swapchain)) forward_release(*s);  // a release held for xrEndFrame goes first
   {
     std::lock_guard lock(l.mutex);
     if (SwapchainRecord* s = find_swapchain(swapchain)) s->handle.store(XR_NULL_HANDLE);
@@ -339,11 +388,19 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrEnumerateSwapchainImages(XrSwapchain swap
     s->image_count = std::min<std::uint32_t>(*count, 8);
     for (std::uint32_t i = 0; i < s->image_count; ++i) s->images[i] = gl[i].image;
   }
+#ifdef FOVEAL_OPENXR_VULKAN
+  if (s && images->type == XR_TYPE_SWAPCHAIN_IMAGE_VULKAN_KHR) {
+    const auto* vk = reinterpret_cast<const XrSwapchainImageVulkanKHR*>(images);
+    s->image_count = std::min<std::uint32_t>(*count, 8);
+    for (std::uint32_t i = 0; i < s->image_count; ++i) s->images[i] = reinterpret_cast<std::uint64_t>(vk[i].image);
+  }
+#endif
   return r;
 }
 
 XRAPI_ATTR XrResult XRAPI_CALL layer_xrAcquireSwapchainImage(XrSwapchain swapchain, const XrSwapchainImageAcquireInfo* info,
                                                              std::uint32_t* index) {
+  if (SwapchainRecord* held = find_swapchain(swapchain)) forward_release(*held);  // the runtime's order of calls
   const XrResult r = layer().next.AcquireSwapchainImage(swapchain, info, index);
   SwapchainRecord* s = XR_SUCCEEDED(r) && index ? find_swapchain(swapchain) : nullptr;
   if (s && s->acquired_count < 8) {
@@ -354,8 +411,12 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrAcquireSwapchainImage(XrSwapchain swapcha
 }
 
 XRAPI_ATTR XrResult XRAPI_CALL layer_xrReleaseSwapchainImage(XrSwapchain swapchain, const XrSwapchainImageReleaseInfo* info) {
-  const XrResult r = layer().next.ReleaseSwapchainImage(swapchain, info);
-  SwapchainRecord* s = XR_SUCCEEDED(r) ? find_swapchain(swapchain) : nullptr;
+  QuadSession* q = nullptr;
+  SwapchainRecord* held = find_swapchain(swapchain, &q);
+  const bool hold = holds_release(q, held);  // Vulkan: released at xrEndFrame, after the layer samples it
+  const XrResult r = hold ? XR_SUCCESS : layer().next.ReleaseSwapchainImage(swapchain, info);
+  if (hold) held->release_held.store(true, std::memory_order_release);
+  SwapchainRecord* s = XR_SUCCEEDED(r) ? held : nullptr;
   if (s && s->acquired_count > 0) {  // released in the order acquired
     s->released.store(s->acquired[s->acquired_head], std::memory_order_release);
     s->acquired_head = (s->acquired_head + 1) % 8;

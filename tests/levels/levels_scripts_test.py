@@ -29,11 +29,11 @@ FRAMES = ["scene", "log", "frame", "method", "gaze", "sigma_d", "jod_left", "jod
 GAZE = ["scene", "log", "display", "method", "gaze", "sigma_d", "cost", "frames", "fpsnr_mean", "jod_mean"]
 
 
-def run_dir(root, name, fx, efr, frames, gaze_rows=()):
+def run_dir(root, name, fx, efr, frames, gaze_rows=(), **extra):
     d = os.path.join(root, name)
     os.makedirs(d)
     with open(os.path.join(d, "gaze.json"), "w") as f:
-        json.dump({"display": "htc_vive_pro_eye", "fx": fx, "fy": fx, "efr_ratio": efr}, f)
+        json.dump({"display": "htc_vive_pro_eye", "fx": fx, "fy": fx, "efr_ratio": efr, **extra}, f)
     for file, header, rows in (("gaze_frames.csv", FRAMES, frames), ("gaze.csv", GAZE, gaze_rows)):
         with open(os.path.join(d, file), "w", newline="") as f:
             w = csv.writer(f)
@@ -70,6 +70,23 @@ with tempfile.TemporaryDirectory() as tmp:
         subprocess.run([foveal, "profile", *args], env=env, capture_output=True, check=True)
     shown = json.loads(subprocess.run([foveal, "profile", "show", "p", "--json"], env=env, capture_output=True, text=True).stdout)
     check(abs(shown["levels"]["sigma_d"] - 3.0) < 1e-9 and shown["levels"]["f_x"] == 0.4, f"foveal chooses from the table: {shown['levels']}")
+
+    # --method inset: one run per inner extent (gaze.json's inset_deg), inset rows only.
+    e1 = run_dir(tmp, "e1", 0.3, 1.0, [("s", "l", 1, "inset", "filtered", 2, 9.4, 9.6, 0, 15), ("s", "l", 1, "inset", "filtered", 4, 9.0, 9.0, 0, 15),
+                                       ("s", "l", 1, "rmfr", "filtered", 2, 1, 1, 0, 15), ("s", "l", 1, "inset-fixed", "none", 2, 9.3, 9.3, 0, 15)],
+                 inset_deg=10)
+    e2 = run_dir(tmp, "e2", 0.3, 1.0, [("s", "l", 1, "inset", "filtered", 2, 9.7, 9.9, 0, 15), ("s", "l", 1, "inset", "filtered", 4, 9.5, 9.5, 0, 15)],
+                 inset_deg=20)
+    inset = os.path.join(tmp, "m.inset-levels.json")
+    r = py("tools/levels/jod_levels_table.py", inset, e2, e1, "--method", "inset")
+    check(r.returncode == 0, "jod_levels_table.py --method inset runs: " + r.stderr.strip())
+    t = json.load(open(inset))
+    check(t["format"] == "foveal-jod-inset-levels v1" and t["extents_deg"] == [10, 20] and t["sigmas"] == [2.0, 4.0],
+          f"an inset table over the runs' extents: {t.get('extents_deg')} x {t.get('sigmas')}")
+    check(t["jod"] == [[9.5, 9.0], [9.8, 9.5]], f"inset rows only, both eyes' mean: {t['jod']}")
+    check(t["reference"]["fixed_jod"][0][0] == 9.3, "inset-fixed rows beside the table")
+    r = py("tools/levels/jod_levels_table.py", inset, a, "--method", "inset")
+    check(r.returncode != 0 and "--inset-deg" in r.stderr, "a run without --inset-deg is refused: " + r.stderr.strip())
 
     out = os.path.join(tmp, "pays.md")
     r = py("tools/levels/tracking_pays.py", out, a, "--scenes", "s")

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 #include "foveal/image/image.hpp"
+#include "foveal/runtime/inset_levels.hpp"
 #include "openxr_harness.hpp"
 
 namespace foveal {
@@ -187,6 +189,67 @@ TEST_F(QuadViews, WithFovealdEveryFrameObeysTheRulesAndTheInnerViewsFollowTheGaz
   EXPECT_LT(frames_at_the_fixed_place(fs), static_cast<int>(fs.size()) / 2) << "the inset did not follow the gaze";
 }
 
+TEST_F(QuadViews, InnerViewsArePlacedOnTheGazePredictedToTheDisplayTime) {
+  // Issue 37 item 1: in smooth pursuit each inner view's centre is closer to the eye's
+  // true gaze at the frame's displayTime than the sample it was predicted from is.
+  const test::RunResult synth = test::run(test::bin("foveal") + " synth --seed 5 --duration 40 --noise 0.1 --blink-rate 0.1 " +
+                                          "--pursuit 0.7 -o " + rig_.path("synth.csv") + " --truth " + rig_.path("truth.csv"));
+  ASSERT_EQ(synth.exit_code, 0) << synth.err;
+  auto fd = rig_.foveald({"--source", "replay:" + rig_.path("synth.csv"), "--no-render", "--out", rig_.path("fd")}, "foveald");
+  wait_for_block();
+  const auto lines = run_app({"--frames", "120", "--gaze"}, "quad");
+  fd->signal(SIGTERM);
+  ASSERT_EQ(fd->wait(30000), 0) << rig_.err("foveald");
+  const auto rows = test::read_trace(rig_.path("fd"), DisplayModel::vive_pro_eye());
+  const std::vector<test::TruthRow> truth = test::read_truth(rig_.path("truth.csv"), rig_.path("fd"));
+  // Eye e's true direction at t, between two rows of one pursuit; nullopt elsewhere.
+  auto pursuit_at = [&](TimeNs t, int e) -> std::optional<glm::vec3> {
+    auto after = std::upper_bound(truth.begin(), truth.end(), t, [](TimeNs x, const test::TruthRow& r) { return x < r.t; });
+    if (after == truth.begin() || after == truth.end()) return std::nullopt;
+    const test::TruthRow &a = *(after - 1), &b = *after;
+    if (a.event != "pursuit" || b.event != "pursuit" || a.index != b.index || b.t <= a.t) return std::nullopt;
+    const float u = static_cast<float>(t - a.t) / static_cast<float>(b.t - a.t);
+    return glm::normalize(a.dir[e] * (1.0f - u) + b.dir[e] * u);
+  };
+  std::vector<double> placed, sampled;
+  const auto fs = frames(lines);
+  for (std::size_t k = 0; k < fs.size(); ++k) {
+    const json& f = fs[k];
+    if (!f.contains("gaze") || !f["gaze"]["active"].get<bool>() || !f["gaze"]["tracked"].get<bool>()) continue;
+    const TimeNs sample = f["gaze"]["sample_ns"].get<TimeNs>(), display = f["display_ns"].get<TimeNs>();
+    // The inset eases over 150 ms after a loss: only frames with tracked gaze for 200 ms before.
+    bool steady = true;
+    for (std::size_t j = k; j-- > 0 && steady;) {
+      steady = fs[j].contains("gaze") && fs[j]["gaze"]["active"].get<bool>() && fs[j]["gaze"]["tracked"].get<bool>();
+      if (fs[j]["display_ns"].get<TimeNs>() < display - 200 * kNsPerMs) break;
+    }
+    const test::TraceRow* row = nullptr;
+    for (const auto& r : rows)
+      if (std::llabs(r.t_ns - sample) <= 2 * kNsPerMs) row = &r;
+    if (!steady || !row || display <= sample) continue;
+    for (int e = 0; e < 2; ++e) {
+      const auto at_display = pursuit_at(display, e), into = pursuit_at(sample - 50 * kNsPerMs, e);
+      if (!at_display || !into || !row->tracked[e]) continue;
+      const Tan o = tangents(f["views"][e]), i = tangents(f["views"][e + 2]);
+      if (i.l - o.l < 2e-3 * (o.r - o.l) || o.r - i.r < 2e-3 * (o.r - o.l) || i.d - o.d < 2e-3 * (o.u - o.d) ||
+          o.u - i.u < 2e-3 * (o.u - o.d))
+        continue;  // pushed in from an edge: centred beside the gaze, by design
+      const glm::vec3 centre(static_cast<float>(i.cx()), static_cast<float>(i.cy()), -1.0f);
+      placed.push_back(test::angle_deg(centre, *at_display));
+      sampled.push_back(test::angle_deg(row->dir[e], *at_display));
+    }
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  };
+  std::printf("quad views in pursuit: %zu eye-frames; against the truth at displayTime the inner view's centre is %.3f deg "
+              "off (median), the sample it came from %.3f deg\n",
+              placed.size(), median(placed), median(sampled));
+  ASSERT_GT(placed.size(), 20u) << "too few pursuit frames: " << rig_.err("quad");
+  EXPECT_LT(median(placed), 0.5 * median(sampled)) << "inner views not placed on the gaze predicted to displayTime";
+}
+
 TEST_F(QuadViews, WithoutFovealdTheAppRunsOnWithTheFixedInset) {
   const auto lines = run_app({"--frames", "8"}, "quad");
   const json sys = event(lines, "system");
@@ -326,6 +389,33 @@ TEST_F(QuadViews, AStereoAppsFramesAreTheSameByteForByteWithTheLayerOnAndOff) {
     const std::string a = test::read_file(rig_.path("on") + name), b = test::read_file(rig_.path("off") + name);
     ASSERT_FALSE(a.empty());
     EXPECT_TRUE(a == b) << name << " differs with the layer on";
+  }
+}
+
+// Issue 37 item 2: FOVEAL_OPENXR_QUALITY=jod:T sizes the views from the display model's
+// inset levels table (docs/openxr.md, "Sizes"), with the EFR ratio of foveald's pair
+// (without foveald the default profile's, 3/2, the right eye dominant).
+TEST_F(QuadViews, QualityJodSizesTheViewsFromTheInsetLevelsTable) {
+  const auto stereo = run_app({"--frames", "2", "--stereo"}, "stereo");
+  const json stereo_sizes = event(stereo, "views")["sizes"];
+  ASSERT_EQ(stereo_sizes.size(), 2u) << rig_.err("stereo");
+  const auto lines = run_app({"--frames", "2"}, "quality", {"FOVEAL_OPENXR_QUALITY=jod:9.5", "FOVEAL_OPENXR_DISPLAY=htc_vive_pro_eye"});
+  const json views = event(lines, "views");
+  ASSERT_EQ(views.value("configuration", ""), "quad") << rig_.err("quality");
+  ASSERT_TRUE(views["foveated"].get<bool>());
+  auto chosen = inset_quality("jod:9.5", test::source_path("data/display/htc_vive_pro_eye.json"), 1.5);
+  ASSERT_TRUE(chosen) << chosen.error().message;
+  ASSERT_TRUE(chosen->has_value());
+  const InsetLevels& l = **chosen;
+  const double sigma[2] = {l.sigma_nd, l.sigma_d};
+  auto scaled = [](double n, double k) { return std::max(16L, std::lround(n * static_cast<float>(k))); };
+  const json& sz = views["sizes"];
+  for (int e = 0; e < 2; ++e) {
+    const double w = stereo_sizes[e][0].get<double>(), h = stereo_sizes[e][1].get<double>();
+    EXPECT_EQ(sz[e][0].get<long>(), scaled(w, 1 / sigma[e])) << "outer width, eye " << e << ", sigma " << sigma[e];
+    EXPECT_EQ(sz[e][1].get<long>(), scaled(h, 1 / sigma[e])) << "outer height, eye " << e;
+    EXPECT_EQ(sz[e + 2][0].get<long>(), scaled(w, l.share_x)) << "inner width, eye " << e << ", extent " << l.extent_deg;
+    EXPECT_EQ(sz[e + 2][1].get<long>(), scaled(h, l.share_y)) << "inner height, eye " << e;
   }
 }
 

@@ -217,11 +217,11 @@ TEST(FovealClient, ALaterVersionWithMoreSectionsStillReads) {
   // Later versions append (fovea_shm_layout.h): this library reads what it knows.
   const auto name = unique_name();
   {
-    RawBlock raw(name, 256);
+    RawBlock raw(name, 320);
     ASSERT_NE(raw.p, nullptr);
     raw.put<std::uint32_t>(FOVEAL_SHM_MAGIC_OFFSET, FOVEAL_SHM_MAGIC);
-    raw.put<std::uint32_t>(FOVEAL_SHM_VERSION_OFFSET, 4);
-    raw.put<std::uint32_t>(FOVEAL_SHM_SIZE_OFFSET, 256);
+    raw.put<std::uint32_t>(FOVEAL_SHM_VERSION_OFFSET, 5);
+    raw.put<std::uint32_t>(FOVEAL_SHM_SIZE_OFFSET, 320);
     raw.put<std::int64_t>(FOVEAL_SHM_HEARTBEAT_OFFSET, monotonic_now_ns());
     raw.put<std::uint32_t>(FOVEAL_SHM_WRITER_STATE_OFFSET, FOVEAL_SHM_WRITER_LIVE);
     raw.put<std::int64_t>(FOVEAL_SHM_FOVEA_WORDS_OFFSET + offsetof(foveal_shm_fovea, t_ns), monotonic_now_ns());

@@ -42,6 +42,8 @@ void add_gaze_options(CLI::App& sub, bench::GazeBenchOptions& g) {
       ->capture_default_str()->check(CLI::Range(0, 100000))->needs(gaze);
   sub.add_option("--efr-ratio", g.efr_ratio, "Non-dominant (left) eye's level over the dominant's")
       ->capture_default_str()->check(CLI::Range(1.0, 4.0))->needs(gaze);
+  sub.add_option("--inset-deg", g.inset_deg, "inset/inset-fixed: the inner view's half-extent in degrees (0: 35% of the view per axis)")
+      ->capture_default_str()->check(CLI::Range(0.0, 88.9))->needs(gaze);
   sub.add_option("--patch-deg", g.patch_deg, "Side of the fovea patch around the true gaze (degrees)")
       ->capture_default_str()->check(CLI::Range(0.1, 60.0))->needs(gaze);
   sub.add_option("--patch-margin-db", g.patch_margin_db,

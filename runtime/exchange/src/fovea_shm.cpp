@@ -84,7 +84,7 @@ Result<FoveaShm> FoveaShm::create(const std::string& name) {
   auto* b = static_cast<FoveaShmBlock*>(p);
   std::atomic_ref<std::uint32_t>(b->magic).store(0, std::memory_order_relaxed);
   b = new (p) FoveaShmBlock{0, FoveaShmBlock::kVersion, static_cast<std::uint32_t>(sizeof(FoveaShmBlock)), 0, {}, {},
-                            monotonic_now_ns(), static_cast<std::uint32_t>(::getpid()), FOVEAL_SHM_WRITER_LIVE, {}};
+                            monotonic_now_ns(), static_cast<std::uint32_t>(::getpid()), FOVEAL_SHM_WRITER_LIVE, {}, {}};
   std::atomic_ref<std::uint32_t>(b->magic).store(FoveaShmBlock::kMagic, std::memory_order_release);
   s.block_ = b;
   return s;
@@ -172,6 +172,19 @@ void FoveaShm::publish(const FoveaFrame& f, int eye_width, int eye_height) {
     p.state[e] = static_cast<std::uint32_t>(f.eyes[e].state);
   }
   p.frame = ++frames_;
+  // The motion first: a reader that then reads this fovea finds its motion there already
+  // (or a later one, which it does not pair with this fovea).
+  FoveaShmMotion m{};
+  for (int e = 0; e < 2; ++e) {
+    const FoveaPoint& pt = f.eyes[e];
+    m.velocity_x[e] = pt.velocity_px_s.x;
+    m.velocity_y[e] = pt.velocity_px_s.y;
+    m.lag_x[e] = pt.lag_px.x;
+    m.lag_y[e] = pt.lag_px.y;
+    m.predictable[e] = pt.predictable ? 1u : 0u;
+  }
+  m.frame = p.frame;
+  block_->motion.store(m);
   block_->latest.store(p);
 }
 

@@ -33,7 +33,7 @@ enum { kOldestVersion = 2 };
 
 struct foveal_client {
   const unsigned char *block; /* `size` bytes, mapped read-only */
-  size_t size;                /* FOVEAL_SHM_V2_SIZE, or FOVEAL_SHM_V3_SIZE when the block has the view */
+  size_t size;                /* FOVEAL_SHM_V2_SIZE, or _V3_SIZE with the view, _V4_SIZE with the motion */
   int cut_short;              /* set (atomically) once a read found the block truncated under the mapping */
 };
 
@@ -255,7 +255,9 @@ static int check_block(int fd, const char *name, size_t *map_size, foveal_error 
     return set_error(err, FOVEAL_ERR_WRONG_VERSION, name,
                 "its header says %u bytes, but a version-%u block has at least %d and the object holds %lld",
                 (unsigned)header[2], (unsigned)header[1], (int)FOVEAL_SHM_V2_SIZE, (long long)st.st_size);
-  *map_size = header[1] >= 3 && header[2] >= FOVEAL_SHM_V3_SIZE ? FOVEAL_SHM_V3_SIZE : FOVEAL_SHM_V2_SIZE;
+  *map_size = header[1] >= 4 && header[2] >= FOVEAL_SHM_V4_SIZE   ? FOVEAL_SHM_V4_SIZE
+              : header[1] >= 3 && header[2] >= FOVEAL_SHM_V3_SIZE ? FOVEAL_SHM_V3_SIZE
+                                                                   : FOVEAL_SHM_V2_SIZE;
   return 0;
 }
 
@@ -439,6 +441,52 @@ int foveal_client_view(foveal_client *c, foveal_view *out) {
     out->tan_top[e] = v.tan_top[e];
   }
   out->ipd_m = v.ipd_m;
+  return FOVEAL_OK;
+}
+
+int foveal_client_motion(foveal_client *c, foveal_motion *out) {
+  if (!c || !out) return FOVEAL_ERR_INVALID_ARGUMENT;
+  if (c->size < FOVEAL_SHM_V4_SIZE) return FOVEAL_ERR_WRONG_VERSION;
+  uint64_t words[FOVEAL_SHM_MOTION_WORDS];
+  section_read r = {FOVEAL_SHM_MOTION_SEQ_OFFSET, FOVEAL_SHM_MOTION_WORDS_OFFSET, FOVEAL_SHM_MOTION_WORDS, words, 0, 0};
+  const int rc = guarded(c, section_op, &r);
+  if (rc) return rc;
+  foveal_shm_motion m;
+  memcpy(&m, words, sizeof m);
+  if (m.frame == 0) return FOVEAL_ERR_NO_DATA;
+  for (int e = 0; e < 2; ++e)
+    if (m.predictable[e] > 1) return FOVEAL_ERR_BAD_DATA;
+  for (int e = 0; e < 2; ++e) {
+    out->velocity_x[e] = m.velocity_x[e];
+    out->velocity_y[e] = m.velocity_y[e];
+    out->lag_x[e] = m.lag_x[e];
+    out->lag_y[e] = m.lag_y[e];
+    out->predictable[e] = (int)m.predictable[e];
+  }
+  out->frame = m.frame;
+  return FOVEAL_OK;
+}
+
+int foveal_client_predict(const foveal_fovea *f, const foveal_motion *m, int64_t t_ns, foveal_fovea *out) {
+  if (!f || !m || !out || f->eye_width == 0 || f->eye_height == 0) return FOVEAL_ERR_INVALID_ARGUMENT;
+  const foveal_fovea in = *f; /* out may be f */
+  *out = in;
+  if (m->frame != in.frame) return FOVEAL_ERR_NO_DATA;
+  /* The same rule as foveald's predict_fovea (runtime/fovea fovea_prediction.cpp): the
+   * difference in floating point, so a garbage time cannot overflow it. */
+  double h = ((double)t_ns - (double)in.t_ns) * 1e-9;
+  const double max_h = (double)FOVEAL_PREDICT_MAX_HORIZON_NS * 1e-9;
+  if (!(h > 0.0)) return FOVEAL_OK;
+  if (h > max_h) h = max_h;
+  const double w = (double)nextafterf((float)in.eye_width, 0.0f), hh = (double)nextafterf((float)in.eye_height, 0.0f);
+  for (int e = 0; e < 2; ++e) {
+    if (m->predictable[e] != 1) continue;
+    const double x = (double)in.x[e] + m->lag_x[e] + (double)m->velocity_x[e] * h;
+    const double y = (double)in.y[e] + m->lag_y[e] + (double)m->velocity_y[e] * h;
+    if (!isfinite(x) || !isfinite(y)) continue;
+    out->x[e] = (float)(x < 0.0 ? 0.0 : x > w ? w : x);
+    out->y[e] = (float)(y < 0.0 ? 0.0 : y > hh ? hh : y);
+  }
   return FOVEAL_OK;
 }
 

@@ -143,7 +143,7 @@ class GazeBench {
   render::FrameParams params(Method m, double sigma, const GazeFrame& f, bool oracle = false) const {
     render::FrameParams p = render::efr_frame(m, Eye::right, sigma, m == Method::full ? sigma : sigma * g_.efr_ratio, s_.fx, s_.fy);
     const auto& fovea = oracle ? f.truth : f.fovea;
-    for (std::size_t i = 0; i < 2; ++i) p.eyes[i].fovea_x = fovea[i].x, p.eyes[i].fovea_y = fovea[i].y;
+    for (std::size_t i = 0; i < 2; ++i) p.eyes[i].fovea_x = fovea[i].x, p.eyes[i].fovea_y = fovea[i].y, p.eyes[i].inset_deg = g_.inset_deg;
     if (f.head.valid) p.head = f.head.relative;
     return p;
   }
@@ -427,7 +427,7 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   nlohmann::json summary = {
       {"renderer", comp->renderer()}, {"display", model->name}, {"size", {co.width, co.height}},
       {"ppd", bench.ppd()}, {"fps", g.fps}, {"latency_ms", logs.front().timeline.latency_ms},
-      {"start_s", g.start_s}, {"efr_ratio", g.efr_ratio}, {"dominant", "right"}, {"fx", s.fx}, {"fy", s.fy},
+      {"start_s", g.start_s}, {"efr_ratio", g.efr_ratio}, {"dominant", "right"}, {"fx", s.fx}, {"fy", s.fy}, {"inset_deg", g.inset_deg},
       {"patch_deg", g.patch_deg}, {"patch_margin_db", g.patch_margin_db}, {"filter", "FilterConfig defaults (foveald without a profile)"},
       {"timed_frames", s.timed_frames}, {"logs", log_info}, {"video_frames", g.video_frames},
       {"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()},

@@ -84,6 +84,21 @@ typedef struct {
   float ipd_m;                     /* interpupillary distance, metres */
 } foveal_view;
 
+/* What foveald's prediction to display time needs beyond a fovea (block version 4,
+ * foveald 0.4 and later): per eye the gaze pipeline's velocity, the smoother's lag and
+ * whether the point may be extrapolated. It belongs to the fovea whose frame it names. */
+typedef struct {
+  float velocity_x[2], velocity_y[2]; /* viewport px/s, y down */
+  float lag_x[2], lag_y[2];           /* px the fovea trails the gaze in a steady movement (0 in a fixation) */
+  int predictable[2];                 /* 1: fixation or smooth pursuit on the eye's own sample; 0: held
+                                         (a saccade, a blink, a loss, an eye filled in from the other) */
+  uint64_t frame;                     /* the foveal_fovea.frame this motion belongs to */
+} foveal_motion;
+
+/* foveald's longest extrapolation (its --predict rule): a time further ahead of the
+ * sample is predicted this far only. */
+#define FOVEAL_PREDICT_MAX_HORIZON_NS 50000000LL
+
 /* An error as a value: the code and a message naming the block and what is wrong. */
 typedef struct {
   int code;
@@ -147,6 +162,33 @@ FOVEAL_CLIENT_API int foveal_client_settings(foveal_client *c, foveal_settings *
  *   published flag not 0 or 1).
  * Wait-free, no lock, allocation or system call. Thread safety as foveal_client_read. */
 FOVEAL_CLIENT_API int foveal_client_view(foveal_client *c, foveal_view *out);
+
+/* Copies the motion of the latest fovea into *out (block version 4).
+ *
+ * Read it right after foveal_client_read: foveald writes each fovea's motion just before
+ *   the fovea, so out->frame is then that fovea's frame, or a later one when foveald
+ *   published again in between (read both again, or predict nothing this time).
+ * Returns FOVEAL_OK, or INVALID_ARGUMENT, WRONG_VERSION (an older foveald's block,
+ *   without motion: predict nothing), NO_WRITER, DEAD_WRITER, NO_DATA (no fovea published
+ *   yet), BUSY, BAD_DATA (a predictable flag not 0 or 1). On an error *out is unchanged.
+ * Wait-free, no lock, allocation or system call. Thread safety as foveal_client_read. */
+FOVEAL_CLIENT_API int foveal_client_motion(foveal_client *c, foveal_motion *out);
+
+/* foveald's prediction to display time applied to a fovea read from the block: each eye
+ * moved from the sample's time f->t_ns to t_ns (CLOCK_MONOTONIC), as foveald moves the
+ * fovea it renders with (docs/filtering.md, "Prediction").
+ *
+ * Per eye: the horizon h = t_ns - f->t_ns is clamped to [0, FOVEAL_PREDICT_MAX_HORIZON_NS]
+ *   (a time not after the sample predicts nothing); a predictable eye moves to
+ *   x + lag_x + velocity_x * h (and y alike), clamped inside the viewport; any other eye,
+ *   and one whose result would not be finite, is copied unchanged. Everything else is
+ *   copied: out->t_ns still names the sample, not t_ns.
+ * out may be f. Returns FOVEAL_OK, or INVALID_ARGUMENT (a null pointer, a zero
+ *   viewport), NO_DATA (m->frame is not f->frame: the motion is another fovea's;
+ *   *out is then *f unchanged).
+ * Pure arithmetic: no lock, allocation or system call; any thread. */
+FOVEAL_CLIENT_API int foveal_client_predict(const foveal_fovea *f, const foveal_motion *m, int64_t t_ns,
+                                            foveal_fovea *out);
 
 /* Turns eye `eye`'s fovea pixel (0 left, 1 right) back into a unit gaze direction in
  * that eye's frame (x right, y up, -z forward: the OpenXR convention), through view v.

@@ -19,6 +19,7 @@ namespace foveal {
 using FoveaShmPayload = foveal_shm_fovea;
 using FoveaShmSettings = foveal_shm_settings;
 using FoveaShmView = foveal_shm_view;
+using FoveaShmMotion = foveal_shm_motion;
 
 /// The whole block: a header readers check, the fovea seqlock (the gaze thread writes
 /// it), the settings seqlock and the writer's liveness (the control thread writes them).
@@ -35,6 +36,7 @@ struct FoveaShmBlock {
   std::atomic<std::uint32_t> writer_pid;
   std::atomic<std::uint32_t> writer_state;  ///< FOVEAL_SHM_WRITER_LIVE, then _STOPPED
   SeqLock<FoveaShmView> view;  ///< version 3: the display model's frustums and IPD
+  SeqLock<FoveaShmMotion> motion;  ///< version 4: the latest fovea's velocity, lag, predictability
 };
 static_assert(offsetof(FoveaShmBlock, latest) == FOVEAL_SHM_FOVEA_SEQ_OFFSET);
 static_assert(offsetof(FoveaShmBlock, settings) == FOVEAL_SHM_SETTINGS_SEQ_OFFSET);
@@ -42,7 +44,8 @@ static_assert(offsetof(FoveaShmBlock, heartbeat_ns) == FOVEAL_SHM_HEARTBEAT_OFFS
 static_assert(offsetof(FoveaShmBlock, writer_pid) == FOVEAL_SHM_WRITER_PID_OFFSET);
 static_assert(offsetof(FoveaShmBlock, writer_state) == FOVEAL_SHM_WRITER_STATE_OFFSET);
 static_assert(offsetof(FoveaShmBlock, view) == FOVEAL_SHM_VIEW_SEQ_OFFSET);
-static_assert(sizeof(FoveaShmBlock) == FOVEAL_SHM_V3_SIZE);
+static_assert(offsetof(FoveaShmBlock, motion) == FOVEAL_SHM_MOTION_SEQ_OFFSET);
+static_assert(sizeof(FoveaShmBlock) == FOVEAL_SHM_V4_SIZE);
 
 /// Default name: $FOVEAL_SHM_NAME when set, else "/foveal-fovea-<uid>" (a file in /dev/shm).
 std::string default_fovea_shm_name();
@@ -61,7 +64,8 @@ class FoveaShm {
   FoveaShm& operator=(FoveaShm&&) = delete;
   ~FoveaShm();
 
-  /// Writer side. Wait-free. publish() from one thread (the gaze thread);
+  /// Writer side. Wait-free. publish() (the fovea and, just before it, its motion) from
+  /// one thread (the gaze thread);
   /// publish_settings() and heartbeat() from one thread (the control thread).
   void publish(const FoveaFrame& f, int eye_width, int eye_height);
   void publish_settings(const FoveaShmSettings& s) { block_->settings.store(s); }
@@ -74,6 +78,8 @@ class FoveaShm {
   bool read(FoveaShmPayload& out) const { return block_->latest.load(out); }
   bool read_settings(FoveaShmSettings& out) const { return block_->settings.load(out); }
   bool read_view(FoveaShmView& out) const { return block_->view.load(out); }
+  /// The motion of the fovea whose frame it names (out.frame); pair it with read()'s.
+  bool read_motion(FoveaShmMotion& out) const { return block_->motion.load(out); }
 
  private:
   FoveaShm() = default;

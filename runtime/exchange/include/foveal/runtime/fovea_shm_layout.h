@@ -11,7 +11,7 @@
 #include <stdint.h>
 
 #define FOVEAL_SHM_MAGIC 0x41564F46u /* "FOVA" little-endian */
-#define FOVEAL_SHM_VERSION 3u        /* 1: fovea only; 2: + settings, writer liveness; 3: + view */
+#define FOVEAL_SHM_VERSION 4u /* 1: fovea only; 2: + settings, writer liveness; 3: + view; 4: + motion */
 
 /* The fovea section's payload (unchanged since version 1). */
 typedef struct foveal_shm_fovea {
@@ -43,6 +43,18 @@ typedef struct foveal_shm_view {
   uint32_t published;              /* 1 once written; 0: not yet */
 } foveal_shm_view;
 
+/* The motion section's payload (version 4): what foveald's prediction to display time
+ * needs beyond the fovea (runtime/fovea fovea_prediction.hpp): per eye the gaze
+ * pipeline's velocity, the smoother's lag and whether the point may be extrapolated.
+ * `frame` names the fovea it belongs to: foveald writes it just before that fovea, so a
+ * reader that reads the fovea and then the motion pairs them only when the frames match. */
+typedef struct foveal_shm_motion {
+  float velocity_x[2], velocity_y[2]; /* viewport px/s, y down */
+  float lag_x[2], lag_y[2];           /* px the point trails the gaze in a steady movement */
+  uint32_t predictable[2];            /* 1: fixation or pursuit on the eye's own sample; 0: hold it */
+  uint64_t frame;                     /* the fovea's frame; 0: nothing published yet */
+} foveal_shm_motion;
+
 /* Writer states (the word at FOVEAL_SHM_WRITER_STATE_OFFSET). */
 #define FOVEAL_SHM_WRITER_LIVE 1u
 #define FOVEAL_SHM_WRITER_STOPPED 2u /* foveald stopped and removed the block's name */
@@ -71,11 +83,16 @@ enum {
   /* version 3 */
   FOVEAL_SHM_VIEW_SEQ_OFFSET = 152,   /* u32 */
   FOVEAL_SHM_VIEW_WORDS_OFFSET = 160, /* foveal_shm_view as 5 u64 */
-  FOVEAL_SHM_V3_SIZE = 200
+  FOVEAL_SHM_V3_SIZE = 200,
+  /* version 4 */
+  FOVEAL_SHM_MOTION_SEQ_OFFSET = 200,   /* u32 */
+  FOVEAL_SHM_MOTION_WORDS_OFFSET = 208, /* foveal_shm_motion as 6 u64 */
+  FOVEAL_SHM_V4_SIZE = 256
 };
 
 #define FOVEAL_SHM_FOVEA_WORDS ((sizeof(foveal_shm_fovea) + 7) / 8)
 #define FOVEAL_SHM_SETTINGS_WORDS ((sizeof(foveal_shm_settings) + 7) / 8)
 #define FOVEAL_SHM_VIEW_WORDS ((sizeof(foveal_shm_view) + 7) / 8)
+#define FOVEAL_SHM_MOTION_WORDS ((sizeof(foveal_shm_motion) + 7) / 8)
 
 #endif

@@ -23,6 +23,7 @@ struct GazeBenchOptions {
   double spread_max_deg = 30;
   double efr_ratio = 1.5;         ///< σ_nd / σ_d (dominant right eye)
   double patch_deg = 5.0, patch_margin_db = 3.0;
+  double inset_deg = 0.0;         ///< inset methods: the inner view's half-extent (degrees); 0: 35% of the view per axis
   bool size_given = false;        ///< --size given: it replaces the model's pixels (its field of view stays)
 };
 
