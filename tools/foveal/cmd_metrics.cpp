@@ -1,6 +1,7 @@
 // foveal metrics: PSNR, SSIM and FPSNR of a test image against a reference, on a single
 // image or a side-by-side stereo frame; with --jod, FovVideoVDP's JOD of images and frame
-// sequences (docs/metrics.md).
+// sequences (docs/metrics.md). Which of the two a frame is, and the one ppd of the call:
+// metrics_frame.hpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include "foveal/tools/args.hpp"
 #include "foveal/tools/cli.hpp"
 #include "memory_bound.hpp"
+#include "metrics_frame.hpp"
 
 namespace foveal::cmd {
 
@@ -24,7 +26,8 @@ namespace {
 struct Args {
   std::string ref, test, fovea, fovea_right, ssim_channels = "luma";
   double ppd = image::kDefaultPixelsPerDegree;
-  bool stereo = false, json = false;
+  bool ppd_given = false;
+  bool stereo = false, mono = false, json = false;
   // --jod (docs/metrics.md, "JOD")
   bool jod = false;
   std::string display, fovea_list, jod_release = "1.2";
@@ -92,6 +95,20 @@ Result<image::Image> load_named(const std::string& path, const char* what) {
   return img;
 }
 
+FrameChoice frame_choice(const Args& a) {
+  FrameChoice c;
+  c.display = a.display;
+  c.stereo = a.stereo;
+  c.mono = a.mono;
+  if (a.ppd_given) c.ppd = a.ppd;
+  return c;
+}
+
+Error fovea_right_refused(const MetricsFrame& f) {
+  return bad_input("--fovea-right: only for a stereo frame, and this " + std::to_string(f.width) + "x" + std::to_string(f.height) +
+                   " frame is " + f.summary());
+}
+
 nlohmann::json jod_json(const perception::JodScore& s) { return {{"jod", s.jod}, {"q", s.q}}; }
 
 // JOD per eye and combined; the fovea "none" scores without foveation.
@@ -99,7 +116,6 @@ int run_jod(const Args& a) {
   perception::JodRequest rq;
   rq.reference = a.ref;
   rq.test = a.test;
-  rq.stereo = a.stereo;
   rq.fps = a.fps;
   rq.fovea_list = a.fovea_list;
   if (Status s = check_range(a.peak, perception::kMinLuminanceCdM2, perception::kMaxLuminanceCdM2, true, "--peak", "cd/m²"); !s)
@@ -111,11 +127,13 @@ int run_jod(const Args& a) {
   rq.photometry = {a.peak, a.black};
   if (Status s = rq.photometry.validate(); !s) return cli::report(bad_input("--peak/--black: " + s.error().message));
   if (a.jod_release == "1.0") rq.parameters = perception::Parameters::release_1_0();
-  if (!a.display.empty()) {
-    auto m = DisplayModel::load(a.display);
-    if (!m) return cli::report(bad_input("--display " + m.error().message));
-    rq.display = *m;
-  }
+  // Stereo or not, and the ppd, from the first frame's size (headers only).
+  auto sized = perception::plan_jod(rq);
+  if (!sized) return cli::report(sized.error());
+  auto frame = metrics_frame(frame_choice(a), sized->width, sized->height);
+  if (!frame) return cli::report(frame.error());
+  rq.stereo = frame->stereo;
+  rq.display = frame->model;
   const auto fovea = [](const std::string& s, const char* what) -> Result<std::optional<perception::NormFovea>> {
     if (s.empty() || s == "none") return std::optional<perception::NormFovea>{};
     auto p = parse_fovea(s, what);
@@ -126,7 +144,7 @@ int run_jod(const Args& a) {
   if (!l) return cli::report(l.error());
   rq.fovea_left = rq.fovea_right = *l;
   if (!a.fovea_right.empty()) {
-    if (!a.stereo) return cli::report(bad_input("--fovea-right: only with --stereo"));
+    if (!frame->stereo) return cli::report(fovea_right_refused(*frame));
     auto r = fovea(a.fovea_right, "--fovea-right");
     if (!r) return cli::report(r.error());
     rq.fovea_right = *r;
@@ -143,12 +161,13 @@ int run_jod(const Args& a) {
       return cli::report(Error{ErrorKind::internal, "metrics --jod: the metric gave JOD " + std::to_string(sc->jod) + " (Q " +
                                                         std::to_string(sc->q) + "), not a number: an internal error, not a result"});
   if (a.json) {
-    nlohmann::json j = {{"ref", a.ref}, {"test", a.test}, {"size", {rep->width, rep->height}}, {"stereo", a.stereo},
-                        {"display", rq.display.name}, {"release", a.jod_release}, {"ppd", c.ppd}, {"peak_cd_m2", a.peak}, {"black_cd_m2", a.black},
+    nlohmann::json j = {{"ref", a.ref}, {"test", a.test}, {"size", {rep->width, rep->height}}, {"stereo", frame->stereo},
+                        {"stereo_from", frame->stereo_from}, {"display", frame->display_name}, {"release", a.jod_release},
+                        {"ppd", c.ppd}, {"ppd_from", frame->ppd_from}, {"peak_cd_m2", a.peak}, {"black_cd_m2", a.black},
                         {"frames", c.frames}, {"fps", a.fps}, {"bands", c.bands},
                         {"foveated", a.fovea_list.empty() ? nlohmann::json(rq.fovea_left.has_value()) : nlohmann::json("per frame")},
                         {"jod", c.jod}, {"q", c.q}};
-    if (a.stereo) {
+    if (frame->stereo) {
       j["left"] = jod_json(rep->eyes[0]);
       j["right"] = jod_json(rep->eyes[1]);
       if (a.fovea_list.empty()) {
@@ -158,33 +177,26 @@ int run_jod(const Args& a) {
     }
     cli::print_json(j);
   } else {
-    std::printf("%s vs %s (%dx%d%s, %d frame%s, %s, %.2f ppd)\n", a.test.c_str(), a.ref.c_str(), rep->width, rep->height,
-                a.stereo ? " per eye" : "", c.frames, c.frames == 1 ? "" : "s", rq.display.name.c_str(), c.ppd);
-    if (a.stereo) std::printf("left     JOD %.4f\nright    JOD %.4f\n", rep->eyes[0].jod, rep->eyes[1].jod);
-    std::printf("%-8s JOD %.4f\n", a.stereo ? "combined" : "image", c.jod);
+    std::printf("%s vs %s (%dx%d, %s, %d frame%s)\n", a.test.c_str(), a.ref.c_str(), frame->width, frame->height,
+                frame->summary().c_str(), c.frames, c.frames == 1 ? "" : "s");
+    if (frame->stereo) std::printf("left     JOD %.4f\nright    JOD %.4f\n", rep->eyes[0].jod, rep->eyes[1].jod);
+    std::printf("%-8s JOD %.4f\n", frame->stereo ? "combined" : "image", c.jod);
   }
   return cli::kExitOk;
 }
 
 int run(const Args& a) {
-  if (Status s = check_range(a.ppd, kMinPpd, kMaxPpd, false, "--ppd", "pixels per degree"); !s) return cli::report(s.error());
+  if (a.ppd_given)
+    if (Status s = check_range(a.ppd, kMinPpd, kMaxPpd, false, "--ppd", "pixels per degree"); !s) return cli::report(s.error());
   if (a.jod) return run_jod(a);
   if (a.fovea.empty()) return cli::report(bad_input("--fovea: required (except with --jod)"));
   image::MetricsOptions opt;
   auto fovea = parse_fovea(a.fovea, "--fovea");
   if (!fovea) return cli::report(fovea.error());
   opt.fovea = opt.fovea_right = *fovea;  // the same spot in each eye unless told
-  if (!a.fovea_right.empty()) {
-    if (!a.stereo) return cli::report(bad_input("--fovea-right: only with --stereo"));
-    auto r = parse_fovea(a.fovea_right, "--fovea-right");
-    if (!r) return cli::report(r.error());
-    opt.fovea_right = *r;
-  }
-  opt.ppd = a.ppd;
-  opt.ssim_channels = a.ssim_channels == "rgb" ? image::SsimChannels::rgb : image::SsimChannels::luma;
+  auto hr = image::probe(a.ref);
+  if (!hr) return cli::report(bad_input("--ref " + hr.error().message));
   {  // Both images decoded (4 B a pixel each) and one decode's transients (docs/metrics.md, "Memory").
-    auto hr = image::probe(a.ref);
-    if (!hr) return cli::report(bad_input("--ref " + hr.error().message));
     auto ht = image::probe(a.test);
     if (!ht) return cli::report(bad_input("--test " + ht.error().message));
     const std::uint64_t px = static_cast<std::uint64_t>(std::max(hr->width, ht->width)) * static_cast<std::uint64_t>(std::max(hr->height, ht->height));
@@ -192,6 +204,16 @@ int run(const Args& a) {
     if (Status s = check_memory(need, "two " + std::to_string(hr->width) + "x" + std::to_string(hr->height) + " images"); !s)
       return cli::report(bad_input("metrics: " + s.error().message));
   }
+  auto frame = metrics_frame(frame_choice(a), hr->width, hr->height);
+  if (!frame) return cli::report(frame.error());
+  if (!a.fovea_right.empty()) {
+    if (!frame->stereo) return cli::report(fovea_right_refused(*frame));
+    auto r = parse_fovea(a.fovea_right, "--fovea-right");
+    if (!r) return cli::report(r.error());
+    opt.fovea_right = *r;
+  }
+  opt.ppd = frame->ppd;
+  opt.ssim_channels = a.ssim_channels == "rgb" ? image::SsimChannels::rgb : image::SsimChannels::luma;
   auto ref = load_named(a.ref, "--ref");
   if (!ref) return cli::report(ref.error());
   auto test = load_named(a.test, "--test");
@@ -201,9 +223,10 @@ int run(const Args& a) {
                                  " differs from the reference " + a.ref + " (" + std::to_string(ref->width) + "x" +
                                  std::to_string(ref->height) + ")"));
 
-  nlohmann::json j = {{"ref", a.ref}, {"test", a.test}, {"size", {ref->width, ref->height}}, {"stereo", a.stereo},
-                      {"ppd", opt.ppd}, {"ssim_channels", a.ssim_channels}};
-  if (a.stereo) {
+  nlohmann::json j = {{"ref", a.ref}, {"test", a.test}, {"size", {ref->width, ref->height}}, {"stereo", frame->stereo},
+                      {"stereo_from", frame->stereo_from}, {"display", frame->display_name}, {"ppd", opt.ppd},
+                      {"ppd_from", frame->ppd_from}, {"ssim_channels", a.ssim_channels}};
+  if (frame->stereo) {
     auto m = image::compute_stereo_metrics(*ref, *test, opt);
     if (!m) return cli::report(m.error());
     for (const auto& [eye, label] : {std::pair{&m->left, "left"}, std::pair{&m->right, "right"}, std::pair{&m->combined, "combined"}})
@@ -216,8 +239,8 @@ int run(const Args& a) {
       j["right"] = to_json(m->right);
       cli::print_json(j);
     } else {
-      std::printf("%s vs %s (%dx%d stereo, %.2f ppd, fovea L %.3f,%.3f R %.3f,%.3f)\n", a.test.c_str(), a.ref.c_str(),
-                  ref->width, ref->height, opt.ppd, opt.fovea.x, opt.fovea.y, opt.fovea_right.x, opt.fovea_right.y);
+      std::printf("%s vs %s (%dx%d, %s, fovea L %.3f,%.3f R %.3f,%.3f)\n", a.test.c_str(), a.ref.c_str(), ref->width,
+                  ref->height, frame->summary().c_str(), opt.fovea.x, opt.fovea.y, opt.fovea_right.x, opt.fovea_right.y);
       print_line("left", m->left);
       print_line("right", m->right);
       print_line("combined", m->combined);
@@ -231,8 +254,8 @@ int run(const Args& a) {
       j.update(to_json(*m));
       cli::print_json(j);
     } else {
-      std::printf("%s vs %s (%dx%d, %.2f ppd, fovea %.3f,%.3f)\n", a.test.c_str(), a.ref.c_str(), ref->width,
-                  ref->height, opt.ppd, opt.fovea.x, opt.fovea.y);
+      std::printf("%s vs %s (%dx%d, %s, fovea %.3f,%.3f)\n", a.test.c_str(), a.ref.c_str(), ref->width, ref->height,
+                  frame->summary().c_str(), opt.fovea.x, opt.fovea.y);
       print_line("image", *m);
     }
   }
@@ -247,18 +270,25 @@ void add_metrics(CLI::App& app, int& exit_code) {
   sub->add_option("--ref,-r", args->ref, "Reference image (PNG, JPEG, BMP, TGA)")->required();
   sub->add_option("--test,-t", args->test, "Test image, same size")->required();
   sub->add_option("--fovea,--fovea-left", args->fovea,
-                  "Fovea X,Y in [0,1] of the image (of the left half with --stereo), origin top-left; "
+                  "Fovea X,Y in [0,1] of the image (of the left half of a stereo frame), origin top-left; "
                   "required except with --jod, where 'none' or leaving it out scores without foveation");
-  sub->add_option("--fovea-right", args->fovea_right, "With --stereo: the right half's fovea (default: --fovea)");
-  sub->add_flag("--stereo", args->stereo, "Side-by-side stereo frame: each half is an eye with its own fovea");
-  sub->add_option("--ppd", args->ppd, "Pixels per degree at the (eye) image centre, [0.1, 1000]")->capture_default_str();
+  sub->add_option("--fovea-right", args->fovea_right, "Stereo frames: the right half's fovea (default: --fovea)");
+  CLI::Option* stereo = sub->add_flag("--stereo", args->stereo,
+                                      "Side-by-side stereo frame: each half is an eye with its own fovea (default: detected, "
+                                      "stereo exactly when the size is the display's two eyes side by side or foveal render's default)");
+  sub->add_flag("--mono", args->mono, "One image, even at a stereo frame's size")->excludes(stereo);
+  CLI::Option* ppd = sub->add_option("--ppd", args->ppd,
+                                     "Pixels per degree at the (eye) image centre, [0.1, 1000], for every metric "
+                                     "(default: the display's eye at the image's size: 13.15 on a 1440-px Vive eye)");
   sub->add_option("--ssim-channels", args->ssim_channels, "SSIM on BT.601 luma, or the mean over R, G, B")
       ->check(CLI::IsMember({"luma", "rgb"}))
       ->capture_default_str();
   sub->add_flag("--json", args->json, "Print the metrics as JSON (infinite PSNR as \"inf\")");
   sub->add_flag("--jod", args->jod,
                 "FovVideoVDP's JOD instead (docs/metrics.md): --ref/--test may be folders or .txt lists of frames");
-  sub->add_option("--display", args->display, "--jod: display-model JSON (default: HTC Vive Pro Eye)");
+  sub->add_option("--display", args->display,
+                  "Display-model file or name under data/display (default: htc_vive_pro_eye): stereo detection, and the ppd "
+                  "of every metric");
   CLI::Option* fps = sub->add_option("--fps", args->fps, "--jod: frame rate of frame sequences, (0, 1000]");
   sub->add_option("--fovea-list", args->fovea_list, "--jod: a file with one fovea per frame (X,Y or XL,YL,XR,YR or none)");
   sub->add_option("--jod-release", args->jod_release,
@@ -267,8 +297,9 @@ void add_metrics(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   sub->add_option("--peak", args->peak, "--jod: the display's peak luminance, cd/m² (black < peak <= 10000)")->capture_default_str();
   sub->add_option("--black", args->black, "--jod: the display's black level, cd/m² (0.001 <= black < peak)")->capture_default_str();
-  sub->callback([args, fps, &exit_code] {
+  sub->callback([args, fps, ppd, &exit_code] {
     args->fps_given = fps->count() > 0;
+    args->ppd_given = ppd->count() > 0;
     exit_code = run(*args);
   });
 }
