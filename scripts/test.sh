@@ -54,7 +54,7 @@ ninja -C build-asan -j"$jobs" foveal_core_tests foveal_profile_tests foveal_cont
   foveal_image_tests foveal_gltf_tests foveal_probe_tests foveal_quality_tests foveal_quality_cli_tests \
   foveal_study_tests foveal_bench_sweep_tests foveal_fuzz_regressions foveal_client_tests foveal_rmfr_tests foveal foveald \
   foveal_head_tests foveal_vive_tests foveal_frame_timing_tests foveal_perception_tests foveal_levels_tests \
-  foveal_bench_merge_input_tests foveal_camera_path_tests foveal_gaze_video_tests
+  foveal_bench_merge_input_tests foveal_camera_path_tests foveal_gaze_video_tests foveal_openxr_quad_tests
 # foveald's integration tests render through Mesa, whose allocations outlive the process
 # by design: they run in the normal build; every other CPU test runs with leak checks.
 ctest --test-dir build-asan -L cpu -E 'Foveald' --output-on-failure -j"$jobs"
