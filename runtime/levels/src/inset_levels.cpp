@@ -7,44 +7,17 @@
 
 #include "foveal/core/json_file.hpp"
 #include "foveal/core/shown_text.hpp"
+#include "jod_table_rows.hpp"
 #include "foveal/runtime/profile.hpp"
 
 namespace foveal {
+
+using namespace levels_detail;
 
 namespace {
 
 constexpr const char* kFormat = "foveal-jod-inset-levels v1";
 constexpr double kPi = 3.14159265358979323846;
-
-// An increasing grid of 1 to 64 numbers in (above, most].
-Result<std::vector<double>> grid(const nlohmann::json& j, const std::string& where, const char* key, double above, double most) {
-  const std::string at = where + ": " + key;
-  if (!j.contains(key) || !j.at(key).is_array() || j.at(key).empty() || j.at(key).size() > 64)
-    return bad_input(at + ": expected an array of 1 to 64 numbers");
-  std::vector<double> v;
-  for (const auto& x : j.at(key)) {
-    const double d = x.is_number() ? x.get<double>() : std::numeric_limits<double>::quiet_NaN();
-    if (!std::isfinite(d) || d <= above || d > most)
-      return bad_input(at + ": expected numbers in (" + shown_number(above) + ", " + shown_number(most) + "]");
-    if (!v.empty() && d <= v.back()) return bad_input(at + ": expected increasing values");
-    v.push_back(d);
-  }
-  return v;
-}
-
-// The largest σ whose predicted JOD holds `target` at every grid level up to it: the
-// crossing, linear between levels (10 at σ 1), or the grid's largest if never crossed.
-double reach(const std::vector<double>& sigmas, const std::vector<double>& row, double target) {
-  double s0 = 1, j0 = 10;
-  for (std::size_t k = 0; k < sigmas.size(); ++k) {
-    if (row[k] >= target) {
-      s0 = sigmas[k], j0 = row[k];
-      continue;
-    }
-    return s0 + (sigmas[k] - s0) * (j0 - target) / (j0 - row[k]);
-  }
-  return s0;
-}
 
 }  // namespace
 
@@ -62,20 +35,9 @@ Result<InsetLevelTable> InsetLevelTable::from_json(const nlohmann::json& j, cons
   auto e = grid(j, where, "extents_deg", 0.0, 60.0);
   if (!e) return e.error();
   t.sigmas = std::move(*s), t.extents_deg = std::move(*e);
-  if (!j.contains("jod") || !j.at("jod").is_array() || j.at("jod").size() != t.extents_deg.size())
-    return bad_input(where + ": jod: expected one row per extent (" + std::to_string(t.extents_deg.size()) + ")");
-  for (std::size_t i = 0; i < t.extents_deg.size(); ++i) {
-    const auto& row = j.at("jod")[i];
-    const std::string at = where + ": jod[" + std::to_string(i) + "]";
-    if (!row.is_array() || row.size() != t.sigmas.size())
-      return bad_input(at + ": expected one value per sigma (" + std::to_string(t.sigmas.size()) + ")");
-    std::vector<double> r;
-    for (const auto& x : row) {
-      if (!x.is_number() || !(x.get<double>() >= 0 && x.get<double>() <= 10)) return bad_input(at + ": expected JOD values in [0, 10]");
-      r.push_back(x.get<double>());
-    }
-    t.jod.push_back(std::move(r));
-  }
+  auto rows = jod_rows(j, where, t.extents_deg.size(), "extent", t.sigmas.size());
+  if (!rows) return rows.error();
+  t.jod = std::move(*rows);
   t.reference = j.value("reference", nlohmann::json::object());
   return t;
 }
@@ -86,16 +48,7 @@ Result<InsetLevelTable> InsetLevelTable::load(const std::string& path) {
   return from_json(*j, path);
 }
 
-double InsetLevelTable::predict(std::size_t i, double sigma) const {
-  const std::vector<double>& row = jod.at(i);
-  if (!(sigma >= 1) || sigma > sigmas.back()) return std::numeric_limits<double>::quiet_NaN();
-  double s0 = 1, j0 = 10;
-  for (std::size_t k = 0; k < sigmas.size(); ++k) {
-    if (sigma <= sigmas[k]) return j0 + (row[k] - j0) * (sigma - s0) / (sigmas[k] - s0);
-    s0 = sigmas[k], j0 = row[k];
-  }
-  return row.back();
-}
+double InsetLevelTable::predict(std::size_t i, double sigma) const { return predict_on_row(sigmas, jod.at(i), sigma); }
 
 Result<InsetLevels> choose_inset_levels(const InsetLevelTable& t, double target, double efr_ratio, const EyeFrustum& eye) {
   if (!(target > 0 && target <= 10)) return bad_input("quality: the JOD target must be in (0, 10], got " + shown_number(target));
@@ -109,7 +62,7 @@ Result<InsetLevels> choose_inset_levels(const InsetLevelTable& t, double target,
   for (std::size_t i = 0; i < t.extents_deg.size(); ++i) {
     const double half = std::tan(t.extents_deg[i] * kPi / 180.0);
     const double sx = std::min(1.0, 2 * half / span_x), sy = std::min(1.0, 2 * half / span_y);
-    const double sd = reach(t.sigmas, t.jod[i], target), snd = std::min(16.0, efr_ratio * sd);
+    const double sd = reach_on_row(t.sigmas, t.jod[i], target), snd = std::min(16.0, efr_ratio * sd);
     // Both eyes' outer views and inner views; a tie keeps the smaller extent.
     const double cost = 1 / (sd * sd) + 1 / (snd * snd) + 2 * sx * sy;
     if (cost < best.cost - 1e-12) {

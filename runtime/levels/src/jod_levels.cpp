@@ -8,31 +8,15 @@
 #include "foveal/core/display_model.hpp"
 #include "foveal/core/json_file.hpp"
 #include "foveal/core/shown_text.hpp"
+#include "jod_table_rows.hpp"
 
 namespace foveal {
+
+using namespace levels_detail;
 
 namespace {
 
 constexpr const char* kFormat = "foveal-jod-levels v1";
-
-// An increasing grid of numbers in (above, most], or [above, most] when `closed`.
-Result<std::vector<double>> grid(const nlohmann::json& j, const std::string& where, const char* key, double above, double most,
-                                 bool closed = false) {
-  const std::string at = where + ": " + key;
-  if (!j.contains(key) || !j.at(key).is_array() || j.at(key).empty() || j.at(key).size() > 64)
-    return bad_input(at + ": expected an array of 1 to 64 numbers");
-  std::vector<double> v;
-  for (const auto& x : j.at(key)) {
-    const double d = x.is_number() ? x.get<double>() : std::numeric_limits<double>::quiet_NaN();
-    if (!std::isfinite(d) || (closed ? d < above : d <= above) || d > most)
-      return bad_input(at + ": expected numbers in " + (closed ? "[" : "(") + shown_number(above) + ", " + shown_number(most) + "]" +
-                       (closed ? " (RMFR's f where the compositor is tested)" : "") +
-                       (x.is_number() ? ", got " + shown_number(d) : std::string()));
-    if (!v.empty() && x.get<double>() <= v.back()) return bad_input(at + ": expected increasing values");
-    v.push_back(x.get<double>());
-  }
-  return v;
-}
 
 }  // namespace
 
@@ -50,20 +34,9 @@ Result<JodLevelTable> JodLevelTable::from_json(const nlohmann::json& j, const st
   auto f = grid(j, where, "f", kMinRmfrF, kMaxRmfrF, true);
   if (!f) return f.error();
   t.sigmas = std::move(*s), t.fs = std::move(*f);
-  if (!j.contains("jod") || !j.at("jod").is_array() || j.at("jod").size() != t.fs.size())
-    return bad_input(where + ": jod: expected one row per f (" + std::to_string(t.fs.size()) + ")");
-  for (std::size_t i = 0; i < t.fs.size(); ++i) {
-    const auto& row = j.at("jod")[i];
-    const std::string at = where + ": jod[" + std::to_string(i) + "]";
-    if (!row.is_array() || row.size() != t.sigmas.size())
-      return bad_input(at + ": expected one value per sigma (" + std::to_string(t.sigmas.size()) + ")");
-    std::vector<double> r;
-    for (const auto& x : row) {
-      if (!x.is_number() || !(x.get<double>() >= 0 && x.get<double>() <= 10)) return bad_input(at + ": expected JOD values in [0, 10]");
-      r.push_back(x.get<double>());
-    }
-    t.jod.push_back(std::move(r));
-  }
+  auto rows = jod_rows(j, where, t.fs.size(), "f", t.sigmas.size());
+  if (!rows) return rows.error();
+  t.jod = std::move(*rows);
   t.reference = j.value("reference", nlohmann::json::object());
   return t;
 }
@@ -74,16 +47,7 @@ Result<JodLevelTable> JodLevelTable::load(const std::string& path) {
   return from_json(*j, path);
 }
 
-double JodLevelTable::predict(std::size_t i, double sigma) const {
-  const std::vector<double>& row = jod.at(i);
-  if (!(sigma >= 1) || sigma > sigmas.back()) return std::numeric_limits<double>::quiet_NaN();
-  double s0 = 1, j0 = 10;  // σ = 1 renders every pixel: the reference itself
-  for (std::size_t k = 0; k < sigmas.size(); ++k) {
-    if (sigma <= sigmas[k]) return j0 + (row[k] - j0) * (sigma - s0) / (sigmas[k] - s0);
-    s0 = sigmas[k], j0 = row[k];
-  }
-  return row.back();
-}
+double JodLevelTable::predict(std::size_t i, double sigma) const { return predict_on_row(sigmas, jod.at(i), sigma); }
 
 Result<JodLevels> choose_jod_levels(const JodLevelTable& t, double target, double efr_ratio) {
   if (!(target > 0 && target <= 10)) return bad_input("quality: the JOD target must be in (0, 10], got " + shown_number(target));
@@ -91,17 +55,7 @@ Result<JodLevels> choose_jod_levels(const JodLevelTable& t, double target, doubl
   JodLevels best;
   best.target = target, best.f = t.fs.front();
   for (std::size_t i = 0; i < t.fs.size(); ++i) {
-    // Walk up the grid while the prediction holds; the crossing is where it stops.
-    double s0 = 1, j0 = 10, reach = 1;
-    for (std::size_t k = 0; k < t.sigmas.size(); ++k) {
-      const double s1 = t.sigmas[k], j1 = t.jod[i][k];
-      if (j1 >= target) {
-        s0 = reach = s1, j0 = j1;
-        continue;
-      }
-      reach = s0 + (s1 - s0) * (j0 - target) / (j0 - j1);
-      break;
-    }
+    const double reach = reach_on_row(t.sigmas, t.jod[i], target);
     if (reach > best.sigma_d) best.sigma_d = reach, best.f = t.fs[i];
   }
   const std::size_t fi = static_cast<std::size_t>(std::find(t.fs.begin(), t.fs.end(), best.f) - t.fs.begin());
