@@ -1,23 +1,27 @@
 #!/usr/bin/env bash
 # The whole test suite, after scripts/bootstrap.sh --tests has built ./build with its tests:
 #   1. every test of the normal build (CPU, GL on llvmpipe, VM device tests, the one-node
-#      Slurm cluster of label `cluster`): ctest
+#      Slurm cluster of label `cluster`), but the package test: ctest -LE package
 #   2. the CPU unit tests under ASan + UBSan (build-asan/)
 #   3. the threaded runtime tests under TSan (build-tsan/)
 #   4. every libFuzzer target for a short fixed time on its seed corpus (build-fuzz/)
-# Usage: scripts/test.sh [--quick]
-#   --quick: step 1 without the VM and cluster tests (ctest -LE 'vm|cluster'): the CPU, GL,
+# Usage: scripts/test.sh [--quick | --package]
+#   --quick: step 1 without the VM and cluster tests (ctest -LE 'vm|cluster|package'): the CPU, GL,
 #   OpenXR and SDK tests; the other steps do not run.
+#   --package: only the Debian package test (label `package`, in no other run: it builds
+#   the package in build-pkg/, about 20 min on 2 cores the first time, and needs root,
+#   mmdebstrap, lintian and Debian's mirror; docs/install.md).
 # FOVEAL_FUZZ_SECONDS (default 15) sets the time per fuzz target. docs/testing.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
-ctest_only=()
+ctest_only=(-LE package)
 case "${1:-}" in
   "") ;;
-  --quick) ctest_only=(-LE 'vm|cluster') ;;
-  -h|--help) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-  *) echo "scripts/test.sh: unknown argument '$1' (usage: scripts/test.sh [--quick])" >&2; exit 2 ;;
+  --quick) ctest_only=(-LE 'vm|cluster|package') ;;
+  --package) ctest_only=(-L package) ;;
+  -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  *) echo "scripts/test.sh: unknown argument '$1' (usage: scripts/test.sh [--quick | --package])" >&2; exit 2 ;;
 esac
 
 # ctest's own summary lists skipped tests among many lines; one closing line names them and
@@ -39,7 +43,7 @@ else
   echo "ctest: every test ran"
 fi
 (( ctest_rc == 0 )) || exit "$ctest_rc"
-[[ "${1:-}" == "--quick" ]] && exit 0
+[[ "${1:-}" == "--quick" || "${1:-}" == "--package" ]] && exit 0
 
 step() { printf '\n== %s (%s)\n' "$*" "$(date -u +%H:%M:%S)"; }
 source scripts/compiler_cache.sh

@@ -3,13 +3,19 @@
 // installed and foveald running, the gaze it prints is foveald's (docs/openxr.md).
 //
 //   openxr_gaze [--duration S] [--interval-ms MS] [--per-eye] [--frame-loop] [--bench N]
-//               [--second-set] [--ahead-ms MS] [--help]
+//               [--second-set] [--ahead-ms MS] [--api MAJOR.MINOR] [--locate-spaces] [--help]
 //
-// Line 1: {"event":"system", ...} what the runtime (and the layers) offer.
+// Line 1: {"event":"system", ...} what the runtime (and the layers) offer, with the
+// instance's "api_version" and the system's "view_configurations"; or, where the runtime
+// refuses the instance, {"event":"instance","result":N} (N the XrResult) and exit 1.
 // Then, every interval: {"event":"gaze", "t_ns":..., "state":..., "active":...,
 //   "flags":..., "view_flags":... (the gaze located in LOCAL and in VIEW), "head_direction":[x,y,z] (the gaze in the VIEW space: the head frame),
 //   "direction":[x,y,z] (in LOCAL), "sample_t_ns" (head_direction's sample), "local_sample_t_ns"}
 //   and with --per-eye "eyes":[...] with their own "eyes_t_ns".
+//   With --locate-spaces, the same reading also locates [gaze, VIEW] in LOCAL and
+//   [LOCAL] in the gaze space through xrLocateSpaces (OpenXR 1.1) or xrLocateSpacesKHR,
+//   beside xrLocateSpace's answers for the same pairs at the same time: "single" and
+//   "spaces", each {"gaze","view","local_in_gaze"} as {"flags","orientation","position"}.
 // --bench N: once the gaze is active, times N locates of the gaze space and N of the
 // VIEW space (the runtime's own work the layer's gaze locate includes), interleaved, and
 // prints {"event":"bench",...} with their percentiles.
@@ -32,6 +38,7 @@
 #include <vector>
 
 #include "foveal/openxr/fb_eye_tracking_social.h"
+#include "foveal/openxr/locate_spaces.h"
 
 namespace {
 
@@ -43,11 +50,24 @@ struct Options {
   int bench = 0;
   bool second_set = false;
   int ahead_ms = 0;
+  XrVersion api = XR_MAKE_VERSION(1, 0, 0);
+  bool locate_spaces = false;
 };
+
+/// "1.1" -> XR_MAKE_VERSION(1, 1, 0); false for anything else.
+bool parse_api(const char* text, XrVersion& out) {
+  unsigned major = 0, minor = 0;
+  char end = 0;
+  if (std::sscanf(text, "%u.%u%c", &major, &minor, &end) != 2 || major < 1 || major > 0xffff || minor > 0xffff)
+    return false;
+  out = XR_MAKE_VERSION(major, minor, 0);
+  return true;
+}
 
 int usage(int rc) {
   std::fprintf(rc ? stderr : stdout,
                "usage: openxr_gaze [--duration S] [--interval-ms MS] [--per-eye] [--frame-loop]\n"
+               "                   [--ahead-ms MS] [--bench N] [--second-set] [--api MAJOR.MINOR] [--locate-spaces]\n"
                "  Reads eye gaze through OpenXR (XR_EXT_eye_gaze_interaction; with --per-eye also\n"
                "  XR_FB_eye_tracking_social) in a headless session and prints JSON lines.\n"
                "  --frame-loop: run xrWaitFrame/xrBeginFrame/xrEndFrame and locate at the predicted\n"
@@ -56,7 +76,13 @@ int usage(int rc) {
                "  --ahead-ms MS: locate MS ahead of the current time, as at a frame's predicted display\n"
                "  time (0-1000; foveal's layer predicts the gaze there).\n"
                "  --bench N: time N gaze-space and N VIEW-space locates once the gaze is active.\n"
-               "  --second-set: after the session, bind the gaze to a new action set (a next session's).\n");
+               "  --second-set: after the session, bind the gaze to a new action set (a next session's).\n"
+               "  --api MAJOR.MINOR: the OpenXR version the instance asks for (default 1.0; 1.1 makes the\n"
+               "  inset view configuration and xrLocateSpaces core). A runtime without it refuses the\n"
+               "  instance: the program prints {\"event\":\"instance\",\"result\":N} and exits 1.\n"
+               "  --locate-spaces: in each reading, also locate the gaze and VIEW spaces through\n"
+               "  xrLocateSpaces (--api 1.1) or xrLocateSpacesKHR (XR_KHR_locate_spaces), beside\n"
+               "  xrLocateSpace at the same time.\n");
   return rc;
 }
 
@@ -103,6 +129,13 @@ std::int64_t mono_of(XrTime t) {
   timespec ts{};
   if (!from_xr || t <= 0 || XR_FAILED(from_xr(instance, t, &ts))) return 0;
   return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+/// "name":{"flags":F,"orientation":[x,y,z,w],"position":[x,y,z]}, exact to the float.
+void print_location(const char* name, XrSpaceLocationFlags flags, const XrPosef& p) {
+  std::printf("\"%s\":{\"flags\":%llu,\"orientation\":[%.9g,%.9g,%.9g,%.9g],\"position\":[%.9g,%.9g,%.9g]}", name,
+              (unsigned long long)flags, p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w,
+              p.position.x, p.position.y, p.position.z);
 }
 
 XrVector3f forward(const XrQuaternionf& q) {  // the pose's -z axis
@@ -176,6 +209,13 @@ int main(int argc, char** argv) {
     else if (a == "--bench") o.bench = std::atoi(value("--bench"));
     else if (a == "--second-set") o.second_set = true;
     else if (a == "--ahead-ms") o.ahead_ms = std::atoi(value("--ahead-ms"));
+    else if (a == "--api") {
+      const char* v = value("--api");
+      if (!parse_api(v, o.api)) {
+        std::fprintf(stderr, "openxr_gaze: --api takes MAJOR.MINOR (1.0, 1.1), not %s\n", v);
+        return 2;
+      }
+    } else if (a == "--locate-spaces") o.locate_spaces = true;
     else {
       std::fprintf(stderr, "openxr_gaze: unknown option %s\n", a.c_str());
       return usage(2);
@@ -202,6 +242,14 @@ int main(int argc, char** argv) {
     if (offered(e)) wanted.push_back(e);
   const bool has_fb = o.per_eye && offered(XR_FB_EYE_TRACKING_SOCIAL_EXTENSION_NAME);
   if (has_fb) wanted.push_back(XR_FB_EYE_TRACKING_SOCIAL_EXTENSION_NAME);
+  // xrLocateSpaces: core from 1.1, else XR_KHR_locate_spaces where the runtime offers it.
+  const bool core_1_1 = XR_VERSION_MAJOR(o.api) > 1 || XR_VERSION_MINOR(o.api) >= 1;
+  const bool use_khr = o.locate_spaces && !core_1_1 && offered(XR_KHR_LOCATE_SPACES_EXTENSION_NAME);
+  if (use_khr) wanted.push_back(XR_KHR_LOCATE_SPACES_EXTENSION_NAME);
+  if (o.locate_spaces && !core_1_1 && !use_khr) {
+    std::fprintf(stderr, "openxr_gaze: --locate-spaces needs --api 1.1 or a runtime with XR_KHR_locate_spaces\n");
+    return 1;
+  }
   const bool has_gaze_ext = offered(XR_EXT_EYE_GAZE_INTERACTION_EXTENSION_NAME);
   if (!offered(XR_MND_HEADLESS_EXTENSION_NAME)) {
     std::fprintf(stderr, "openxr_gaze: the runtime has no XR_MND_headless: this example runs headless only\n");
@@ -210,10 +258,20 @@ int main(int argc, char** argv) {
 
   XrInstanceCreateInfo ci{XR_TYPE_INSTANCE_CREATE_INFO};
   std::snprintf(ci.applicationInfo.applicationName, XR_MAX_APPLICATION_NAME_SIZE, "openxr_gaze");
-  ci.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
+  ci.applicationInfo.apiVersion = o.api;
   ci.enabledExtensionCount = static_cast<std::uint32_t>(wanted.size());
   ci.enabledExtensionNames = wanted.data();
-  CHECK(xrCreateInstance(&ci, &instance));
+  if (const XrResult r = xrCreateInstance(&ci, &instance); XR_FAILED(r)) {
+    // XR_ERROR_API_VERSION_UNSUPPORTED (-4): the runtime has no such version.
+    std::printf("{\"event\":\"instance\",\"result\":%d}\n", (int)r);
+    std::fprintf(stderr, "openxr_gaze: xrCreateInstance (apiVersion %u.%u) failed: %d\n", XR_VERSION_MAJOR(o.api),
+                 XR_VERSION_MINOR(o.api), (int)r);
+    return 1;
+  }
+  PFN_xrLocateSpaces locate_spaces = nullptr;
+  if (o.locate_spaces)
+    CHECK(xrGetInstanceProcAddr(instance, use_khr ? "xrLocateSpacesKHR" : "xrLocateSpaces",
+                                reinterpret_cast<PFN_xrVoidFunction*>(&locate_spaces)));
   xrGetInstanceProcAddr(instance, "xrConvertTimespecTimeToTimeKHR", reinterpret_cast<PFN_xrVoidFunction*>(&to_xr));
   xrGetInstanceProcAddr(instance, "xrConvertTimeToTimespecTimeKHR", reinterpret_cast<PFN_xrVoidFunction*>(&from_xr));
 
@@ -228,7 +286,15 @@ int main(int argc, char** argv) {
   CHECK(xrGetSystemProperties(instance, system, &sp));
   XrInstanceProperties ip{XR_TYPE_INSTANCE_PROPERTIES};
   CHECK(xrGetInstanceProperties(instance, &ip));
-  std::printf("{\"event\":\"system\",\"runtime\":\"%s\",\"system\":\"%s\",\"eye_gaze_interaction\":%s,"
+  std::uint32_t nv = 0;
+  CHECK(xrEnumerateViewConfigurations(instance, system, 0, &nv, nullptr));
+  std::vector<XrViewConfigurationType> configs(nv);
+  CHECK(xrEnumerateViewConfigurations(instance, system, nv, &nv, configs.data()));
+  std::printf("{\"event\":\"system\",\"api_version\":\"%u.%u\",\"locate_spaces\":\"%s\",\"view_configurations\":[",
+              XR_VERSION_MAJOR(o.api), XR_VERSION_MINOR(o.api),
+              !o.locate_spaces ? "" : use_khr ? "xrLocateSpacesKHR" : "xrLocateSpaces");
+  for (std::uint32_t i = 0; i < nv; ++i) std::printf("%s%d", i ? "," : "", (int)configs[i]);
+  std::printf("],\"runtime\":\"%s\",\"system\":\"%s\",\"eye_gaze_interaction\":%s,"
               "\"supportsEyeGazeInteraction\":%d,\"eye_tracking_social\":%s,\"supportsEyeTracking\":%d,\"extensions\":[",
               ip.runtimeName, sp.systemName, has_gaze_ext ? "true" : "false", (int)gaze_props.supportsEyeGazeInteraction,
               has_fb ? "true" : "false", (int)fb_props.supportsEyeTracking);
@@ -318,6 +384,38 @@ int main(int argc, char** argv) {
                 (unsigned long long)in_local.locationFlags, (unsigned long long)in_view.locationFlags, h.x, h.y, h.z, d.x, d.y, d.z, in_local.pose.position.x,
                 in_local.pose.position.y, in_local.pose.position.z, (long long)mono_of(sample_view.time),
                 (long long)mono_of(sample.time));
+    if (locate_spaces) {
+      // The same pairs at the same time, one xrLocateSpace each and through xrLocateSpaces:
+      // [gaze, VIEW] in LOCAL (velocities asked for too), and LOCAL in the gaze space.
+      XrSpaceLocation view_one{XR_TYPE_SPACE_LOCATION}, local_one{XR_TYPE_SPACE_LOCATION};
+      CHECK_R(xrLocateSpace(view, local, when, &view_one));
+      CHECK_R(xrLocateSpace(local, gaze_space, when, &local_one));
+      const XrSpace pair[2] = {gaze_space, view};
+      XrSpaceLocationData data[2] = {};
+      XrSpaceVelocityData vel[2] = {};
+      XrSpaceVelocities velocities{XR_TYPE_SPACE_VELOCITIES, nullptr, 2, vel};
+      XrSpaceLocations many{XR_TYPE_SPACE_LOCATIONS, &velocities, 2, data};
+      const XrSpacesLocateInfo in_local_info{XR_TYPE_SPACES_LOCATE_INFO, nullptr, local, when, 2, pair};
+      CHECK_R(locate_spaces(session, &in_local_info, &many));
+      XrSpaceLocationData local_data[1] = {};
+      XrSpaceLocations in_gaze{XR_TYPE_SPACE_LOCATIONS, nullptr, 1, local_data};
+      const XrSpacesLocateInfo in_gaze_info{XR_TYPE_SPACES_LOCATE_INFO, nullptr, gaze_space, when, 1, &local};
+      CHECK_R(locate_spaces(session, &in_gaze_info, &in_gaze));
+      std::printf(",\"single\":{");
+      print_location("gaze", in_local.locationFlags, in_local.pose);
+      std::printf(",");
+      print_location("view", view_one.locationFlags, view_one.pose);
+      std::printf(",");
+      print_location("local_in_gaze", local_one.locationFlags, local_one.pose);
+      std::printf("},\"spaces\":{");
+      print_location("gaze", data[0].locationFlags, data[0].pose);
+      std::printf(",");
+      print_location("view", data[1].locationFlags, data[1].pose);
+      std::printf(",");
+      print_location("local_in_gaze", local_data[0].locationFlags, local_data[0].pose);
+      std::printf(",\"velocity_flags\":[%llu,%llu]}", (unsigned long long)vel[0].velocityFlags,
+                  (unsigned long long)vel[1].velocityFlags);
+    }
     if (has_fb) {
       XrEyeGazesInfoFB gi_fb{XR_TYPE_EYE_GAZES_INFO_FB, nullptr, view, when};
       XrEyeGazesFB gazes{XR_TYPE_EYE_GAZES_FB};

@@ -5,7 +5,7 @@
 // views and their gaze-following inner fields are the layer's (docs/openxr.md).
 //
 //   openxr_quad_views [--scene GLTF] [--frames N] [--stereo] [--no-foveated]
-//                     [--still] [--gaze] [--save-dir DIR --save-frame K] [--help]
+//                     [--still] [--gaze] [--array] [--save-dir DIR --save-frame K] [--help]
 //
 // Lines: {"event":"system",...} (view configurations, supportsFoveatedRendering),
 // {"event":"views",...} (the configuration used and each view's recommended size), then
@@ -18,6 +18,9 @@
 // --save-dir: the app's own images of frame K, one PNG per view (view_<i>.png).
 // --still: each view drawn from a head that stands still at the scene's viewer (only
 // the eyes' offset and the fields of view from the runtime), so images repeat exactly.
+// --array: every view in one swapchain of arraySize = the view count (GL_TEXTURE_2D_ARRAY),
+// view i drawn into layer i at the layer's origin (imageArrayIndex i), as Unreal and
+// Godot's multiview do.
 #include <EGL/egl.h>
 #include <time.h>
 #define XR_USE_PLATFORM_EGL
@@ -26,6 +29,7 @@
 #include <openxr/openxr.h>
 #include <openxr/openxr_platform.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -50,6 +54,7 @@ struct Options {
   bool stereo = false, foveated = true;
   bool still = false;  ///< render as if the head stood still at the origin (reproducible images)
   bool gaze = false;   ///< read the eye gaze through the action system each frame
+  bool array = false;  ///< all views in layers of one array swapchain
   std::string save_dir;
   int save_frame = -1;
 };
@@ -57,14 +62,16 @@ struct Options {
 int usage(int rc) {
   std::fprintf(rc ? stderr : stdout,
                "usage: openxr_quad_views [--scene GLTF] [--frames N] [--stereo] [--no-foveated]\n"
-               "                         [--still] [--gaze] [--save-dir DIR --save-frame K]\n"
+               "                         [--still] [--gaze] [--array] [--save-dir DIR --save-frame K]\n"
                "  Renders a glTF scene (default: the bundled Dungeon) into OpenXR quad views (stereo with\n"
                "  --stereo) through EGL, headless, and prints JSON lines: what the runtime offered, the\n"
                "  views' sizes, each frame's views. --no-foveated: quad views without gaze.\n"
                "  --save-dir DIR --save-frame K: frame K's images as DIR/view_<i>.png.\n"
                "  --still: draw from a head that stands still (the runtime's fields of view, the eyes'\n"
                "  offsets), so the images of every run are the same.\n"
-               "  --gaze: also read the eye gaze (XR_EXT_eye_gaze_interaction) each frame and print it.\n");
+               "  --gaze: also read the eye gaze (XR_EXT_eye_gaze_interaction) each frame and print it.\n"
+               "  --array: all views in one array swapchain (arraySize = the view count, each layer the\n"
+               "  largest view's size), view i drawn into layer i (imageArrayIndex i) at its origin.\n");
   return rc;
 }
 
@@ -111,10 +118,12 @@ struct ViewTarget {
   int width = 0, height = 0;
 };
 
-bool save_view(unsigned texture, int w, int h, const std::string& path) {
+/// The view's w×h pixels at the origin of `texture` (of its layer `layer`, an array's).
+bool save_view(unsigned texture, int layer, int w, int h, const std::string& path) {
   foveal::image::Image img(w, h);
   std::vector<std::uint8_t> bottom_up(img.rgba.size());
-  glGetTextureImage(texture, 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(bottom_up.size()), bottom_up.data());
+  glGetTextureSubImage(texture, 0, 0, 0, layer, w, h, 1, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(bottom_up.size()),
+                       bottom_up.data());
   const std::size_t row = static_cast<std::size_t>(w) * 4;
   for (int y = 0; y < h; ++y)
     std::memcpy(img.rgba.data() + static_cast<std::size_t>(y) * row, bottom_up.data() + static_cast<std::size_t>(h - 1 - y) * row, row);
@@ -214,14 +223,20 @@ int run(const Options& o) {
   std::int64_t format = formats.empty() ? GL_SRGB8_ALPHA8 : formats[0];
   for (auto f : formats)
     if (f == GL_SRGB8_ALPHA8) format = f;
-  std::vector<ViewTarget> targets(nv);
-  for (std::uint32_t i = 0; i < nv; ++i) {
+  // One swapchain a view, or with --array one for all, its layers the largest view's size.
+  std::vector<ViewTarget> targets(o.array ? 1 : nv);
+  for (std::uint32_t i = 0; i < targets.size(); ++i) {
     ViewTarget& t = targets[i];
     t.width = static_cast<int>(cviews[i].recommendedImageRectWidth);
     t.height = static_cast<int>(cviews[i].recommendedImageRectHeight);
+    for (std::uint32_t j = 0; j < nv && o.array; ++j) {
+      t.width = std::max(t.width, static_cast<int>(cviews[j].recommendedImageRectWidth));
+      t.height = std::max(t.height, static_cast<int>(cviews[j].recommendedImageRectHeight));
+    }
     XrSwapchainCreateInfo sc{XR_TYPE_SWAPCHAIN_CREATE_INFO, nullptr, 0,
                              XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT | XR_SWAPCHAIN_USAGE_SAMPLED_BIT, format, 1,
-                             cviews[i].recommendedImageRectWidth, cviews[i].recommendedImageRectHeight, 1, 1, 1};
+                             static_cast<std::uint32_t>(t.width), static_cast<std::uint32_t>(t.height), 1,
+                             o.array ? nv : 1u, 1};
     CHECK(xrCreateSwapchain(session, &sc, &t.swapchain));
     std::uint32_t ni = 0;
     CHECK(xrEnumerateSwapchainImages(t.swapchain, 0, &ni, nullptr));
@@ -283,32 +298,42 @@ int run(const Options& o) {
               ",\"sample_ns\":" + std::to_string(r.sample_time ? mono_of(r.sample_time) : 0) + "}";
     }
     line += ",\"views\":[";
+    std::uint32_t index = 0;
     for (std::uint32_t i = 0; i < nv; ++i) {
-      ViewTarget& t = targets[i];
-      std::uint32_t index = 0;
-      XrSwapchainImageAcquireInfo ai{XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO};
-      CHECK(xrAcquireSwapchainImage(t.swapchain, &ai, &index));
-      XrSwapchainImageWaitInfo wi{XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO, nullptr, XR_INFINITE_DURATION};
-      CHECK(xrWaitSwapchainImage(t.swapchain, &wi));
+      ViewTarget& t = targets[o.array ? 0 : i];
+      const int w = static_cast<int>(cviews[i].recommendedImageRectWidth);
+      const int h = static_cast<int>(cviews[i].recommendedImageRectHeight);
+      const int layer = o.array ? static_cast<int>(i) : -1;
+      if (!o.array || i == 0) {  // an array swapchain's one image holds every view
+        XrSwapchainImageAcquireInfo ai{XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO};
+        CHECK(xrAcquireSwapchainImage(t.swapchain, &ai, &index));
+        XrSwapchainImageWaitInfo wi{XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO, nullptr, XR_INFINITE_DURATION};
+        CHECK(xrWaitSwapchainImage(t.swapchain, &wi));
+      }
       const XrPosef& p = views[i].pose;
       glm::mat4 eye = glm::mat4_cast(glm::quat(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z));
       eye[3] = glm::vec4(p.position.x, p.position.y, p.position.z, 1.0f);
       if (o.still) eye = glm::translate(glm::mat4(1.0f), glm::vec3(i % 2 == 0 ? -0.032f : 0.032f, 0.0f, 0.0f));
       const XrFovf& f = views[i].fov;
-      renderer->draw(t.images[index].image, t.width, t.height,
-                     {eye, std::tan(f.angleLeft), std::tan(f.angleRight), std::tan(f.angleDown), std::tan(f.angleUp)});
+      renderer->draw(t.images[index].image, w, h,
+                     {eye, std::tan(f.angleLeft), std::tan(f.angleRight), std::tan(f.angleDown), std::tan(f.angleUp)},
+                     layer);
       if (frame == o.save_frame && !o.save_dir.empty() &&
-          !save_view(t.images[index].image, t.width, t.height, o.save_dir + "/view_" + std::to_string(i) + ".png")) {
+          !save_view(t.images[index].image, std::max(layer, 0), w, h,
+                     o.save_dir + "/view_" + std::to_string(i) + ".png")) {
         std::fprintf(stderr, "openxr_quad_views: cannot write %s/view_%u.png\n", o.save_dir.c_str(), i);
         return 1;
       }
-      XrSwapchainImageReleaseInfo ri{XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO};
-      CHECK(xrReleaseSwapchainImage(t.swapchain, &ri));
-      pviews[i] = {XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW, nullptr, p, f, {t.swapchain, {{0, 0}, {t.width, t.height}}, 0}};
+      if (!o.array || i + 1 == nv) {
+        XrSwapchainImageReleaseInfo ri{XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO};
+        CHECK(xrReleaseSwapchainImage(t.swapchain, &ri));
+      }
+      pviews[i] = {XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW, nullptr, p, f,
+                   {t.swapchain, {{0, 0}, {w, h}}, static_cast<std::uint32_t>(std::max(layer, 0))}};
       char v[320];
       std::snprintf(v, sizeof v, "%s{\"fov\":[%.7f,%.7f,%.7f,%.7f],\"q\":[%.7f,%.7f,%.7f,%.7f],\"p\":[%.6f,%.6f,%.6f],\"size\":[%d,%d]}",
                     i ? "," : "", f.angleLeft, f.angleRight, f.angleUp, f.angleDown, p.orientation.x, p.orientation.y,
-                    p.orientation.z, p.orientation.w, p.position.x, p.position.y, p.position.z, t.width, t.height);
+                    p.orientation.z, p.orientation.w, p.position.x, p.position.y, p.position.z, w, h);
       line += v;
     }
     XrCompositionLayerProjection layer{XR_TYPE_COMPOSITION_LAYER_PROJECTION, nullptr, 0, local, nv, pviews.data()};
@@ -352,6 +377,7 @@ int main(int argc, char** argv) {
     else if (a == "--no-foveated") o.foveated = false;
     else if (a == "--still") o.still = true;
     else if (a == "--gaze") o.gaze = true;
+    else if (a == "--array") o.array = true;
     else if (a == "--save-dir") o.save_dir = value("--save-dir");
     else if (a == "--save-frame") o.save_frame = std::atoi(value("--save-frame"));
     else return usage(2);

@@ -74,14 +74,17 @@ SceneRenderer::~SceneRenderer() {
   if (depth_) glDeleteRenderbuffers(1, &depth_);
 }
 
-void SceneRenderer::draw(unsigned texture, int w, int h, const ViewParams& v) {
+void SceneRenderer::draw(unsigned texture, int w, int h, const ViewParams& v, int layer) {
   if (w != depth_w_ || h != depth_h_) {
     if (depth_) glDeleteRenderbuffers(1, &depth_);
     glCreateRenderbuffers(1, &depth_);
     glNamedRenderbufferStorage(depth_, GL_DEPTH_COMPONENT32F, w, h);
     depth_w_ = w, depth_h_ = h;
   }
-  glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, texture, 0);
+  if (layer >= 0)
+    glNamedFramebufferTextureLayer(fbo_, GL_COLOR_ATTACHMENT0, texture, 0, layer);
+  else
+    glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, texture, 0);
   glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   glViewport(0, 0, w, h);

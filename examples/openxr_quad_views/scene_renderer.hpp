@@ -24,8 +24,9 @@ class SceneRenderer {
         depth_(std::exchange(o.depth_, 0u)), depth_w_(o.depth_w_), depth_h_(o.depth_h_) {}
   SceneRenderer& operator=(SceneRenderer&&) = delete;
   ~SceneRenderer();
-  /// Draws into `texture` (w×h, the sub-image at its origin).
-  void draw(unsigned texture, int w, int h, const ViewParams& v);
+  /// Draws into `texture` (w×h, the sub-image at its origin), or into its layer `layer`
+  /// when it is a GL_TEXTURE_2D_ARRAY (layer ≥ 0).
+  void draw(unsigned texture, int w, int h, const ViewParams& v, int layer = -1);
 
  private:
   SceneRenderer() = default;

@@ -94,13 +94,14 @@ bool VkHeadless::submit_and_wait(VkCommandBuffer cb) {
   return ok;
 }
 
-VkImage VkHeadless::image(int w, int h, VkFormat format, const std::uint8_t* rgba) {
+VkImage VkHeadless::image(int w, int h, VkFormat format, const std::uint8_t* rgba, int layers) {
   VkImageCreateInfo ii{};
   ii.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
   ii.imageType = VK_IMAGE_TYPE_2D;
   ii.format = format;
   ii.extent = {static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h), 1};
-  ii.mipLevels = ii.arrayLayers = 1;
+  ii.mipLevels = 1;
+  ii.arrayLayers = static_cast<std::uint32_t>(layers);
   ii.samples = VK_SAMPLE_COUNT_1_BIT;
   ii.tiling = VK_IMAGE_TILING_OPTIMAL;
   ii.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
@@ -120,7 +121,7 @@ VkImage VkHeadless::image(int w, int h, VkFormat format, const std::uint8_t* rgb
   images_.push_back(o);
 
   // Staging buffer (when filled), then the copy and the layout OpenXR hands images over in.
-  const VkDeviceSize size = static_cast<VkDeviceSize>(w) * static_cast<VkDeviceSize>(h) * 4;
+  const VkDeviceSize size = static_cast<VkDeviceSize>(w) * static_cast<VkDeviceSize>(h) * 4 * static_cast<VkDeviceSize>(layers);
   VkBuffer buffer = VK_NULL_HANDLE;
   VkDeviceMemory staging = VK_NULL_HANDLE;
   if (rgba) {
@@ -150,7 +151,7 @@ VkImage VkHeadless::image(int w, int h, VkFormat format, const std::uint8_t* rgb
   b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = o.image;
-  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, ii.arrayLayers};
   b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   b.newLayout = rgba ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   b.dstAccessMask = rgba ? VK_ACCESS_TRANSFER_WRITE_BIT : VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
@@ -158,7 +159,7 @@ VkImage VkHeadless::image(int w, int h, VkFormat format, const std::uint8_t* rgb
                        nullptr, 1, &b);
   if (rgba) {
     VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, ii.arrayLayers};  // the layers follow each other
     region.imageExtent = ii.extent;
     vkCmdCopyBufferToImage(cb, buffer, o.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;

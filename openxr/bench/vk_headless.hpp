@@ -24,9 +24,10 @@ class VkHeadless {
 
   VkBinding binding() const;
   const std::string& device_name() const { return name_; }
-  /// A w×h image of `format` (4 bytes a pixel), `rgba` top row first (or left undefined
-  /// when null), usable as an attachment, sampled and copied; owned by this object.
-  VkImage image(int w, int h, VkFormat format, const std::uint8_t* rgba);
+  /// A w×h image of `format` (4 bytes a pixel) with `layers` array layers, `rgba` each
+  /// layer in turn, top row first (or left undefined when null), usable as an attachment,
+  /// sampled and copied; owned by this object.
+  VkImage image(int w, int h, VkFormat format, const std::uint8_t* rgba, int layers = 1);
 
  private:
   VkHeadless() = default;

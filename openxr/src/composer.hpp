@@ -11,7 +11,8 @@
 
 namespace foveal::openxr {
 
-/// One source image: the image, the rectangle the app drew into, and its view's field.
+/// One source image: the image (and its layer, in an array swapchain), the rectangle the
+/// app drew into, and its view's field.
 struct ComposeSource {
   std::uint64_t image = 0;          ///< OpenGL: a texture name; Vulkan: a VkImage
   std::int64_t format = 0;          ///< the swapchain's format (Vulkan: a VkFormat; GL: unused)
@@ -19,6 +20,8 @@ struct ComposeSource {
   int image_w = 0, image_h = 0;     ///< the image's size
   int x = 0, y = 0, w = 0, h = 0;   ///< the sub-image rectangle (OpenGL: from the lower left; Vulkan: the upper left)
   TanRect fov{};
+  std::uint32_t layer = 0;          ///< the sub-image's imageArrayIndex
+  bool array = false;               ///< the swapchain's arraySize > 1 (OpenGL: a GL_TEXTURE_2D_ARRAY)
 };
 
 /// The image one eye's output goes to, all of it.

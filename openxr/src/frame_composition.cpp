@@ -95,7 +95,7 @@ std::unique_ptr<Composer> make_composer(QuadSession& q, std::string& error) {
 /// The texture and rectangle a view's sub-image names, as the app last released it.
 bool source_of(const XrCompositionLayerProjectionView& v, ComposeSource& s, const SwapchainRecord** record) {
   const SwapchainRecord* r = find_swapchain(v.subImage.swapchain);
-  if (!r || r->array_size != 1 || v.subImage.imageArrayIndex != 0) return false;
+  if (!r || v.subImage.imageArrayIndex >= r->array_size) return false;
   const int index = r->released.load(std::memory_order_acquire);
   if (index < 0 || static_cast<std::uint32_t>(index) >= r->image_count) return false;
   s.image = r->images[index];
@@ -108,6 +108,8 @@ bool source_of(const XrCompositionLayerProjectionView& v, ComposeSource& s, cons
   s.w = v.subImage.imageRect.extent.width;
   s.h = v.subImage.imageRect.extent.height;
   s.fov = to_tangents(v.fov);
+  s.layer = v.subImage.imageArrayIndex;  // array swapchains: the layer the view was drawn into
+  s.array = r->array_size > 1;
   if (record) *record = r;
   return s.w > 0 && s.h > 0 && s.image_w > 0 && s.image_h > 0;
 }
@@ -188,8 +190,8 @@ XrResult end_quad_frame(QuadSession& q, const XrFrameEndInfo* info) {
                                                              static_cast<std::int32_t>(q.out[e].height)}}, 0};
       } else if (!q.said_degraded) {
         q.said_degraded = true;
-        log_line("quad views: a 4-view layer could not be composed (an array swapchain, an unknown image, or a "
-                 "second quad layer in one frame): its outer views are shown alone");
+        log_line("quad views: a 4-view layer could not be composed (an unknown image, an imageArrayIndex past "
+                 "the swapchain's arraySize, or a second quad layer in one frame): its outer views are shown alone");
       }
     }
     composed_one = true;

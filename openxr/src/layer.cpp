@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "loader_interface.h"
+#include "locate_spaces.hpp"
 
 namespace foveal::openxr {
 
@@ -141,9 +142,13 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateApiLayerInstance(const XrInstanceCr
   bool want_convert = has(below, XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME);
   const bool pass_all = l.mode == GazeMode::runtime;
   const bool quad_wanted = quad_views_wanted();
+  l.instance_1_1 = false;
+  l.api_version = 0;
+  bool app_locate_spaces_khr = false;  // answered for the layer's spaces, never served (locate_spaces.cpp)
   for (std::uint32_t i = 0; i < info->enabledExtensionCount; ++i) {
     const char* name = info->enabledExtensionNames[i];
     if (std::strcmp(name, XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME) == 0) want_convert = false;  // already there
+    if (std::strcmp(name, XR_KHR_LOCATE_SPACES_EXTENSION_NAME) == 0) app_locate_spaces_khr = true;
     const int e = served_index(name);
     if (e >= 0 && !pass_all) {
       const bool quad = e == static_cast<int>(Ext::varjo_quad_views) || e == static_cast<int>(Ext::varjo_foveated_rendering);
@@ -161,9 +166,6 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateApiLayerInstance(const XrInstanceCr
     const int needs = served(static_cast<Ext>(e)).requires_ext;
     if (l.app[e] && needs >= 0 && !l.app[needs] && !l.runtime[needs]) return XR_ERROR_EXTENSION_NOT_PRESENT;  // 1.0.20 has no DEPENDENCY_NOT_ENABLED
   }
-  // OpenXR 1.1 made the inset view configuration core; Debian's 1.0 headers lack the macro.
-  const XrVersion api = info->applicationInfo.apiVersion;
-  l.instance_1_1 = !pass_all && quad_wanted && XR_VERSION_MAJOR(api) == 1 && XR_VERSION_MINOR(api) >= 1;
   if (want_convert) enabled.push_back(XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME);
 
   XrInstanceCreateInfo down = *info;
@@ -171,14 +173,23 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrCreateApiLayerInstance(const XrInstanceCr
   down.enabledExtensionNames = enabled.data();
   XrApiLayerCreateInfo down_layer = *api_layer_info;
   down_layer.nextInfo = next_info->next;
+  // The app's apiVersion goes down as it asked: a runtime without that version refuses it
+  // (XR_ERROR_API_VERSION_UNSUPPORTED), and the app gets that answer, as without the layer.
   const XrResult r = next_info->nextCreateApiLayerInstance(&down, &down_layer, instance);
   if (XR_FAILED(r)) return r;
+  // The runtime accepted the version: for 1.1, the inset view configuration and
+  // xrLocateSpaces are core in this instance. (Debian's 1.0 headers lack XR_API_VERSION_1_1.)
+  const XrVersion api = info->applicationInfo.apiVersion;
+  const bool accepted_1_1 = XR_VERSION_MAJOR(api) == 1 && XR_VERSION_MINOR(api) >= 1;
+  l.api_version = api;
+  l.instance_1_1 = !pass_all && quad_wanted && accepted_1_1;
 
   l.instance = *instance;
   l.next = Next{};
   l.next.GetInstanceProcAddr = next_info->nextGetInstanceProcAddr;
   Next& n = l.next;
   load_next(*instance, n, want_convert || has(below, XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME));
+  load_locate_spaces(*instance, n.GetInstanceProcAddr, !pass_all && accepted_1_1, !pass_all && app_locate_spaces_khr);
   n.StringToPath(*instance, "/interaction_profiles/ext/eye_gaze_interaction", &l.profile_path);
   n.StringToPath(*instance, "/user/eyes_ext", &l.eyes_path);
   n.StringToPath(*instance, "/user/eyes_ext/input/gaze_ext/pose", &l.gaze_pose_path);
@@ -338,15 +349,7 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrDestroySpace(XrSpace space) {
 
 XRAPI_ATTR XrResult XRAPI_CALL layer_xrLocateSpace(XrSpace space, XrSpace base, XrTime time,
                                                    XrSpaceLocation* location) {
-  Layer& l = layer();
-  if (!location) return l.next.LocateSpace(space, base, time, location);
-  const SpaceSlot* sp = find_space(space);
-  const SpaceSlot* bp = find_space(base);
-  if ((sp && sp->action < 0) || (bp && bp->action < 0))
-    return locate_combined_eye_space(space, base, time, location, sp, bp);
-  if (is_gaze_action_space(sp) || is_gaze_action_space(bp))
-    return locate_gaze_action_space(space, base, time, location, sp, bp);
-  return l.next.LocateSpace(space, base, time, location);
+  return locate_space(space, base, time, location);
 }
 
 /// The calls the layer always answers for an instance that enabled any served extension.
@@ -376,6 +379,7 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrGetInstanceProcAddr(XrInstance instance, 
   if (active && any) {
     for (const Intercept& i : kCore)
       if (std::strcmp(name, i.name) == 0) return *function = i.fn, XR_SUCCESS;
+    if (PFN_xrVoidFunction f = locate_spaces_function(name)) return *function = f, XR_SUCCESS;
     for (int e = 0; e < kExtCount; ++e) {
       const ServedExtension& x = served(static_cast<Ext>(e));
       // The 1.1 inset configuration needs quad views' calls without the extension.
@@ -393,6 +397,24 @@ XRAPI_ATTR XrResult XRAPI_CALL layer_xrGetInstanceProcAddr(XrInstance instance, 
 }
 
 }  // namespace
+
+// A COMBINED_EYE_VARJO space (action < 0) or an eye-gaze action space, on either side.
+XrResult locate_space(XrSpace space, XrSpace base, XrTime time, XrSpaceLocation* location) {
+  Layer& l = layer();
+  if (!location) return l.next.LocateSpace(space, base, time, location);
+  const SpaceSlot* sp = find_space(space);
+  const SpaceSlot* bp = find_space(base);
+  if ((sp && sp->action < 0) || (bp && bp->action < 0))
+    return locate_combined_eye_space(space, base, time, location, sp, bp);
+  if (is_gaze_action_space(sp) || is_gaze_action_space(bp))
+    return locate_gaze_action_space(space, base, time, location, sp, bp);
+  return l.next.LocateSpace(space, base, time, location);
+}
+
+bool layer_locates(XrSpace space) {
+  const SpaceSlot* s = find_space(space);
+  return (s && s->action < 0) || is_gaze_action_space(s);
+}
 
 void decide_serving(XrSystemId system) {
   Layer& l = layer();

@@ -139,7 +139,8 @@ struct Layer {
   bool runtime[kExtCount] = {};  ///< ... and the runtime has it too: enabled there as well
   std::atomic<bool> serve_ext{false}, serve_fb{false};
   bool decided = false;
-  bool instance_1_1 = false;  ///< the app's instance is OpenXR 1.1: the inset configuration is core
+  XrVersion api_version = 0;  ///< the apiVersion the runtime accepted for this instance
+  bool instance_1_1 = false;  ///< ... is 1.1 (and quad views are wanted): the inset configuration is core
   XrPath profile_path = XR_NULL_PATH, eyes_path = XR_NULL_PATH, gaze_pose_path = XR_NULL_PATH, gaze_path = XR_NULL_PATH;
   std::unique_ptr<GazeFeed> feed;
   std::array<ActionSlot, 64> actions;

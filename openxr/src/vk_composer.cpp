@@ -55,7 +55,7 @@ void set_uv(float uv[4], const ComposeSource& s) {
 void set_rect(float v[4], const TanRect& t) { v[0] = t.left, v[1] = t.right, v[2] = t.down, v[3] = t.up; }
 
 VkImageMemoryBarrier layout_barrier(VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src,
-                                    VkAccessFlags dst) {
+                                    VkAccessFlags dst, std::uint32_t layer = 0) {
   VkImageMemoryBarrier b{};
   b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
   b.srcAccessMask = src;
@@ -64,7 +64,7 @@ VkImageMemoryBarrier layout_barrier(VkImage image, VkImageLayout from, VkImageLa
   b.newLayout = to;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image;
-  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};
   return b;
 }
 
@@ -197,10 +197,11 @@ void VkComposer::destroy_pipeline() {
   pipeline_format_ = 0;
 }
 
-VkComposer::CachedView* VkComposer::view_of(std::uint64_t image, std::uint64_t serial, std::int64_t format) {
+VkComposer::CachedView* VkComposer::view_of(std::uint64_t image, std::uint64_t serial, std::int64_t format,
+                                             std::uint32_t layer) {
   CachedView* oldest = &views_[0];
   for (CachedView& v : views_) {
-    if (v.view && v.image == image && v.serial == serial && v.format == format) {
+    if (v.view && v.image == image && v.serial == serial && v.format == format && v.layer == layer) {
       v.used = ++uses_;
       return &v;
     }
@@ -220,9 +221,10 @@ VkComposer::CachedView* VkComposer::view_of(std::uint64_t image, std::uint64_t s
   vi.image = reinterpret_cast<VkImage>(image);
   vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
   vi.format = static_cast<VkFormat>(format);
-  vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};  // a 2D view of one layer
   if (vk.CreateImageView(device_, &vi, nullptr, &oldest->view) != VK_SUCCESS) return nullptr;
   oldest->image = image;
+  oldest->layer = layer;
   oldest->serial = serial;
   oldest->format = format;
   oldest->used = ++uses_;
@@ -329,8 +331,8 @@ bool VkComposer::compose(const ComposeSource& outer, const ComposeSource& inner,
   Slot& slot = slots_[static_cast<std::size_t>(next_slot_)];
   if (!wait_slot(slot, kSecond)) return false;  // the GPU is a second behind: show the outer view, never hang
   if (!ensure_pipeline(target.format)) return false;
-  CachedView* ov = view_of(outer.image, outer.serial, outer.format);
-  CachedView* iv = ov ? view_of(inner.image, inner.serial, inner.format) : nullptr;
+  CachedView* ov = view_of(outer.image, outer.serial, outer.format, outer.layer);
+  CachedView* iv = ov ? view_of(inner.image, inner.serial, inner.format, inner.layer) : nullptr;
   CachedView* tv = iv ? view_of(target.image, target.serial, target.format) : nullptr;
   if (!tv || !framebuffer_of(*tv, target.w, target.h)) return false;
   next_slot_ = (next_slot_ + 1) % kSlots;
@@ -363,17 +365,20 @@ bool VkComposer::compose(const ComposeSource& outer, const ComposeSource& inner,
   const VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
                                        VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
   if (vk.BeginCommandBuffer(cb, &begin) != VK_SUCCESS) return false;
-  // The app's images: from attachments (the app's draws, earlier on this queue) to sampled, and back.
+  // The app's images (the layers sampled): from attachments (the app's draws, earlier on
+  // this queue) to sampled, and back. One barrier when both views are in one layer.
   const VkImage sources[2] = {reinterpret_cast<VkImage>(outer.image), reinterpret_cast<VkImage>(inner.image)};
-  const std::uint32_t n_sources = sources[0] == sources[1] ? 1 : 2;
+  const std::uint32_t layers[2] = {outer.layer, inner.layer};
+  const std::uint32_t n_sources = sources[0] == sources[1] && layers[0] == layers[1] ? 1 : 2;
   VkImageMemoryBarrier to_read[2], to_attachment[2];
   for (std::uint32_t i = 0; i < n_sources; ++i) {
     to_read[i] = layout_barrier(sources[i], VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-                                VK_ACCESS_SHADER_READ_BIT);
+                                VK_ACCESS_SHADER_READ_BIT, layers[i]);
     to_attachment[i] = layout_barrier(sources[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                       VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, 0,
-                                      VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+                                      VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                                      layers[i]);
   }
   vk.CmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0,
                         nullptr, 0, nullptr, n_sources, to_read);

@@ -5,7 +5,8 @@
 // VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL (where OpenXR leaves them) and are left so.
 // The pipeline, descriptor sets and command buffers are made at the first frame; a frame
 // records into one of a ring of command buffers, each with a fence, and allocates nothing
-// (an image's view is made the first time it is seen, and kept).
+// (a view of an image, or of one layer of an array image, is made the first time it is
+// seen, and kept).
 #include <vulkan/vulkan.h>
 
 #include <array>
@@ -50,6 +51,7 @@ class VkComposer final : public Composer {
   struct CachedView {
     std::uint64_t image = 0, serial = 0, used = 0;
     std::int64_t format = 0;
+    std::uint32_t layer = 0;  ///< the array layer the view shows (an array swapchain's imageArrayIndex)
     VkImageView view = VK_NULL_HANDLE;
     VkFramebuffer framebuffer = VK_NULL_HANDLE;
     int w = 0, h = 0;
@@ -61,7 +63,7 @@ class VkComposer final : public Composer {
   };
   static constexpr int kSlots = 4;  // two eyes a frame, two frames in flight
 
-  CachedView* view_of(std::uint64_t image, std::uint64_t serial, std::int64_t format);
+  CachedView* view_of(std::uint64_t image, std::uint64_t serial, std::int64_t format, std::uint32_t layer = 0);
   bool framebuffer_of(CachedView& v, int w, int h);
   bool ensure_pipeline(std::int64_t format);
   bool wait_slot(const Slot& s, std::uint64_t timeout_ns);

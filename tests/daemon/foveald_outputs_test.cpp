@@ -288,6 +288,9 @@ TEST_F(FovealdOutputs, TheServiceWaitsForTheTrackerWithoutRenderingAndStopsOnSig
   const auto summary = nlohmann::json::parse(test::read_file(dir_.path("state/foveal/summary.json")));
   EXPECT_EQ(summary["state"], "stopped");
   EXPECT_EQ(summary["samples"].get<int>(), 0);
+  // No trace: a service runs for days, and trace.csv is held until exit.
+  EXPECT_TRUE(summary["trace"].is_null()) << summary.dump();
+  EXPECT_FALSE(std::filesystem::exists(dir_.path("state/foveal/trace.csv")));
 }
 
 TEST_F(FovealdOutputs, TheServiceTakesItsOptionsFileAndTheCommandLineWins) {
@@ -296,8 +299,8 @@ TEST_F(FovealdOutputs, TheServiceTakesItsOptionsFileAndTheCommandLineWins) {
                    "# the user's service\nquality = jod:9.5\n\nlatch = early\npredict = off\n");
   const auto r = test::run(env() + test::bin("foveald") + " --service --latch late --print-config");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* line : {"source = auto\n", "head = auto\n", "render = off\n", "quality = jod:9.5\n", "latch = late\n",
-                           "predict = off\n"})
+  for (const char* line : {"source = auto\n", "head = auto\n", "render = off\n", "trace = off\n", "quality = jod:9.5\n",
+                           "latch = late\n", "predict = off\n"})
     EXPECT_NE(r.out.find(line), std::string::npos) << line << " missing from:\n" << r.out;
   EXPECT_NE(r.out.find("out = " + dir_.path("state") + "/foveal\n"), std::string::npos) << r.out;
   // Without --service the file is read only when named, and nothing else changes.
@@ -309,6 +312,12 @@ TEST_F(FovealdOutputs, TheServiceTakesItsOptionsFileAndTheCommandLineWins) {
   ASSERT_EQ(named.exit_code, 0) << named.err;
   EXPECT_NE(named.out.find("latch = early\n"), std::string::npos) << named.out;
   EXPECT_NE(named.out.find("render = on\n"), std::string::npos) << named.out;
+  EXPECT_NE(named.out.find("trace = on\n"), std::string::npos) << named.out;
+  // The service traces when its file says so.
+  test::write_file(dir_.path("config/foveal/foveald.conf"), "trace = on\n");
+  const auto traced = test::run(env() + test::bin("foveald") + " --service --print-config");
+  ASSERT_EQ(traced.exit_code, 0) << traced.err;
+  EXPECT_NE(traced.out.find("trace = on\n"), std::string::npos) << traced.out;
 }
 
 TEST_F(FovealdOutputs, ABrokenOptionsFileIsRefusedNamingTheFileTheLineAndTheKey) {

@@ -19,8 +19,8 @@
 #include "foveal/drivers/hid/report_decoder.hpp"
 #endif
 #ifdef FOVEAL_HAVE_USB
-#include "foveal/drivers/usb/psvr2_gaze_packet.hpp"
-#include "foveal/drivers/usb/psvr2_pose_records.hpp"
+#include "foveal/drivers/psvr2/psvr2_gaze_packet.hpp"
+#include "foveal/drivers/psvr2/psvr2_pose_records.hpp"
 #endif
 #ifdef FOVEAL_HAVE_VIVE
 #include "foveal/drivers/vive/vive_config.hpp"

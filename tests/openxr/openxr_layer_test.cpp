@@ -489,3 +489,126 @@ TEST_F(OpenXRLayer, GazeIsPredictedToTheLocatesTimeAndOffLocatesTheSample) {
 
 }  // namespace
 }  // namespace foveal
+
+namespace foveal {
+namespace {
+
+/// One location as openxr_gaze prints it, against another: the same flags, the same pose
+/// within `tol` per component.
+void expect_same_location(const json& a, const json& b, double tol, const std::string& what) {
+  EXPECT_EQ(a["flags"], b["flags"]) << what << ": " << a.dump() << " against " << b.dump();
+  for (const char* k : {"orientation", "position"})
+    for (std::size_t i = 0; i < a[k].size(); ++i)
+      EXPECT_NEAR(a[k][i].get<double>(), b[k][i].get<double>(), tol) << what << " " << k << "[" << i << "]";
+}
+
+TEST_F(OpenXRLayer, LocateSpacesAnswersTheGazeSpaceAsLocateSpaceDoes) {
+  // Issue 37 item 1: an app that locates the gaze space through xrLocateSpaces (here
+  // xrLocateSpacesKHR: Debian's loader takes no 1.1 instance, see the next test) gets,
+  // in the same reading at the same time, what xrLocateSpace gives: the same pose and
+  // flags for the gaze space in LOCAL and for LOCAL in the gaze space (a base of the
+  // layer's), the runtime's own answer for VIEW in the same call, and no velocity for the
+  // gaze. Without the layer's interception the runtime answers the gaze space as an action
+  // space bound to nothing it knows: flags 0.
+  auto fd = rig_.foveald({"--no-render", "--duration", "8", "--out", rig_.path("fd")}, "foveald");
+  wait_for_block();
+  auto app = rig_.app({"--duration", "3", "--locate-spaces"}, rig_.app_env(kLayerShare));
+  ASSERT_EQ(app->wait(30000), 0) << rig_.err();
+  fd->signal(SIGTERM);
+  ASSERT_EQ(fd->wait(20000), 0) << rig_.err("foveald");
+  ASSERT_EQ(system_line().value("locate_spaces", ""), "xrLocateSpacesKHR") << system_line().dump();
+  int active = 0, inactive = 0;
+  for (const json& l : gaze_lines()) {
+    ASSERT_TRUE(l.contains("spaces")) << l.dump();
+    const json& one = l["single"];
+    const json& many = l["spaces"];
+    // The gaze: the latched sample predicted to the same time, so the same bits.
+    expect_same_location(many["gaze"], one["gaze"], 1e-7, "gaze in LOCAL");
+    expect_same_location(many["local_in_gaze"], one["local_in_gaze"], 1e-7, "LOCAL in the gaze space");
+    expect_same_location(many["view"], one["view"], 1e-6, "VIEW in LOCAL (the runtime's)");
+    EXPECT_EQ(many["velocity_flags"][0].get<int>(), 0) << "no velocity for the gaze";
+    const bool tracked = one["gaze"]["flags"].get<int>() != 0;
+    EXPECT_EQ(tracked, l["active"].get<bool>()) << l.dump();
+    (tracked ? active : inactive)++;
+  }
+  std::printf("xrLocateSpaces against xrLocateSpace: %d active readings, %d inactive, all equal\n", active, inactive);
+  EXPECT_GT(active, 20) << rig_.err();
+}
+
+TEST_F(OpenXRLayer, AnOpenXR11InstanceGetsTheInsetConfigurationOnlyWhereTheRuntimeTakesIt) {
+  // Issue 37 item 1: apiVersion goes down as the app asked. Where the chain below refuses
+  // it (XR_ERROR_API_VERSION_UNSUPPORTED, -4), the app gets that, as without the layer;
+  // where the runtime takes 1.1, the app sees PRIMARY_STEREO_WITH_FOVEATED_INSET
+  // (1000037000) without XR_VARJO_quad_views, and xrLocateSpaces (core) answers the gaze
+  // space as xrLocateSpace. Debian's loader (1.0.20) refuses 1.1 itself, before any layer
+  // ("Max supported version is 1.0"), so the 1.1 instances go through a stand-in loader
+  // (direct_loader.cpp: the layer chained over Monado, nothing else). Monado 8f85280
+  // takes 1.0 and 1.1 and refuses 1.2.
+  auto fd = rig_.foveald({"--no-render", "--duration", "10", "--out", rig_.path("fd")}, "foveald");
+  wait_for_block();
+  auto first_line = [&](const std::string& name) {
+    const auto lines = rig_.lines(name);
+    return lines.empty() || !lines[0].is_object() ? json::object() : lines[0];
+  };
+  auto has_inset = [](const json& sys) {
+    const json v = sys.value("view_configurations", json::array());
+    return std::find(v.begin(), v.end(), 1000037000) != v.end();
+  };
+
+  // Debian's loader: refused before any layer, the same answer with the layer as without.
+  auto sys_off = rig_.app({"--api", "1.1", "--duration", "0.5"}, rig_.app_env(kLayerShare, {"FOVEAL_OPENXR_DISABLE=1"}), "sys_off");
+  auto sys_on = rig_.app({"--api", "1.1", "--duration", "0.5"}, rig_.app_env(kLayerShare), "sys_on");
+  const int rc_sys_off = sys_off->wait(30000), rc_sys_on = sys_on->wait(30000);
+  if (first_line("sys_off").value("event", "") == "instance") {
+    EXPECT_EQ(rc_sys_off, 1);
+    EXPECT_EQ(rc_sys_on, 1) << rig_.err("sys_on");
+    EXPECT_EQ(first_line("sys_on"), first_line("sys_off")) << rig_.err("sys_on");
+    EXPECT_EQ(first_line("sys_off").value("result", 0), -4) << "XR_ERROR_API_VERSION_UNSUPPORTED";
+  }
+
+  // The stand-in loader: Monado answers the version itself.
+  auto direct = [&](const std::string& api, bool with_layer, const std::string& name, std::vector<std::string> args) {
+    args.insert(args.begin(), {"--api", api});
+    return rig_.app(args, rig_.app_env(kLayerShare, {"LD_LIBRARY_PATH=" FOVEAL_TEST_DIRECT_LOADER_DIR,
+                                                     std::string("FOVEAL_TEST_LAYER_LIBRARY=") +
+                                                         (with_layer ? FOVEAL_TEST_LAYER_LIBRARY : "")},
+                                     /*validation=*/false),
+                    name);
+  };
+  // 1.2: Monado refuses; the layer hands the app Monado's answer.
+  auto v12_off = direct("1.2", false, "v12_off", {"--duration", "0.5"});
+  auto v12_on = direct("1.2", true, "v12_on", {"--duration", "0.5"});
+  EXPECT_EQ(v12_off->wait(30000), 1) << rig_.err("v12_off");
+  EXPECT_EQ(v12_on->wait(30000), 1) << rig_.err("v12_on");
+  EXPECT_EQ(first_line("v12_off").value("result", 0), -4) << rig_.err("v12_off");
+  EXPECT_EQ(first_line("v12_on"), first_line("v12_off")) << rig_.err("v12_on");
+  // 1.0 with the layer and without XR_VARJO_quad_views: no inset configuration.
+  auto v10 = direct("1.0", true, "v10", {"--duration", "0.5"});
+  ASSERT_EQ(v10->wait(30000), 0) << rig_.err("v10");
+  EXPECT_FALSE(has_inset(first_line("v10"))) << first_line("v10").dump();
+  // 1.1: taken; the inset configuration with the layer only, and xrLocateSpaces (core).
+  auto v11_off = direct("1.1", false, "v11_off", {"--duration", "0.5"});
+  ASSERT_EQ(v11_off->wait(30000), 0) << rig_.err("v11_off");
+  EXPECT_EQ(first_line("v11_off").value("api_version", ""), "1.1") << rig_.err("v11_off");
+  EXPECT_FALSE(has_inset(first_line("v11_off"))) << first_line("v11_off").dump();
+  auto v11 = direct("1.1", true, "v11", {"--duration", "3", "--locate-spaces"});
+  ASSERT_EQ(v11->wait(30000), 0) << rig_.err("v11");
+  const json sys = first_line("v11");
+  EXPECT_TRUE(has_inset(sys)) << sys.dump();
+  EXPECT_EQ(sys.value("locate_spaces", ""), "xrLocateSpaces") << sys.dump();
+  int active = 0, readings = 0;
+  for (const json& l : gaze_lines("v11")) {
+    ++readings;
+    expect_same_location(l["spaces"]["gaze"], l["single"]["gaze"], 1e-7, "gaze in LOCAL (xrLocateSpaces)");
+    expect_same_location(l["spaces"]["local_in_gaze"], l["single"]["local_in_gaze"], 1e-7, "LOCAL in the gaze space");
+    active += l["active"].get<bool>();
+  }
+  std::printf("OpenXR 1.1 through the stand-in loader: inset configuration listed, %d of %d readings active, "
+              "xrLocateSpaces equal to xrLocateSpace\n", active, readings);
+  EXPECT_GT(active, 20) << rig_.err("v11");
+  fd->signal(SIGTERM);
+  EXPECT_EQ(fd->wait(20000), 0) << rig_.err("foveald");
+}
+
+}  // namespace
+}  // namespace foveal

@@ -10,65 +10,18 @@
 
 #include "foveal/image/image.hpp"
 #include "foveal/runtime/inset_levels.hpp"
-#include "openxr_harness.hpp"
+#include "quad_views_fixture.hpp"
 
 namespace foveal {
 namespace {
 
 using nlohmann::json;
 using test::OpenXRRig;
-
-constexpr const char* kLayerShare = FOVEAL_TEST_LAYER_SHARE;
-constexpr int kQuad = 1000037000;  // XR_VIEW_CONFIGURATION_TYPE_PRIMARY_QUAD_VARJO
-
-/// A view's field as tangents: left, right, down, up.
-struct Tan {
-  double l, r, d, u;
-  double cx() const { return 0.5 * (l + r); }
-  double cy() const { return 0.5 * (d + u); }
-};
-Tan tangents(const json& view) {
-  const json& f = view["fov"];  // angles left, right, up, down
-  return {std::tan(f[0].get<double>()), std::tan(f[1].get<double>()), std::tan(f[3].get<double>()),
-          std::tan(f[2].get<double>())};
-}
-
-class QuadViews : public test::OpenXRTest {
- protected:
-  /// Runs the example to its end; its lines.
-  std::vector<json> run_app(const std::vector<std::string>& args, const std::string& name,
-                            const std::vector<std::string>& env = {}) {
-    auto app = rig_.quad_app(args, env, name, kLayerShare);
-    EXPECT_EQ(app->wait(240000), 0) << rig_.err(name);
-    return rig_.lines(name);
-  }
-  static json event(const std::vector<json>& lines, const std::string& name) {
-    for (const json& l : lines)
-      if (l.is_object() && l.value("event", "") == name) return l;
-    return json::object();
-  }
-  static std::vector<json> frames(const std::vector<json>& lines) {
-    std::vector<json> f;
-    for (const json& l : lines)
-      if (l.is_object() && l.value("event", "") == "frame") f.push_back(l);
-    return f;
-  }
-  /// The fixed inset's centre is the outer view's: true when every frame's inner views sit there.
-  static int frames_at_the_fixed_place(const std::vector<json>& fs) {
-    int n = 0;
-    for (const json& f : fs) {
-      bool fixed = true;
-      for (int e = 0; e < 2; ++e) {
-        const Tan o = tangents(f["views"][e]), i = tangents(f["views"][e + 2]);
-        fixed &= std::abs(i.cx() - o.cx()) < 1e-4 && std::abs(i.cy() - o.cy()) < 1e-4 &&
-                 std::abs((i.r - i.l) / (o.r - o.l) - 0.5) < 1e-3;
-      }
-      n += fixed;
-    }
-    return n;
-  }
-
-};
+using test::kLayerShare;
+using test::kQuad;
+using test::QuadViews;
+using test::Tan;
+using test::tangents;
 
 TEST_F(QuadViews, TheLayerOffersQuadViewsOnAStereoRuntimeAndNotWhenItIsOff) {
   const auto on = run_app({"--frames", "2", "--stereo"}, "on");

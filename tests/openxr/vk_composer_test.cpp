@@ -49,16 +49,17 @@ View noise_view(int image_w, int image_h, int x, int y, int w, int h, const TanR
 double to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 double to_srgb(double l) { return l <= 0.0031308 ? l * 12.92 : 1.055 * std::pow(l, 1 / 2.4) - 0.055; }
 
-/// Bilinear lookup, clamped to the image's edge, in linear light (an sRGB texture), of
-/// the point u, v in [0,1] of the view's rectangle, v up.
+/// Bilinear lookup, clamped to the edge of the view's rectangle (compose.glsl's inside()),
+/// in linear light (an sRGB texture), of the point u, v in [0,1] of that rectangle, v up.
 void sample(const View& view, double u, double v, double out[4]) {
-  const double px = view.x + u * view.w - 0.5, py = view.y + (1 - v) * view.h - 0.5;
+  const double px = std::clamp(view.x + u * view.w - 0.5, double(view.x), double(view.x + view.w - 1));
+  const double py = std::clamp(view.y + (1 - v) * view.h - 0.5, double(view.y), double(view.y + view.h - 1));
   const int x0 = static_cast<int>(std::floor(px)), y0 = static_cast<int>(std::floor(py));
   const double fx = px - x0, fy = py - y0;
   for (int c = 0; c < 4; ++c) out[c] = 0;
   for (int dy = 0; dy < 2; ++dy)
     for (int dx = 0; dx < 2; ++dx) {
-      const int xx = std::clamp(x0 + dx, 0, view.image_w - 1), yy = std::clamp(y0 + dy, 0, view.image_h - 1);
+      const int xx = std::min(x0 + dx, view.x + view.w - 1), yy = std::min(y0 + dy, view.y + view.h - 1);
       const double wgt = (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy);
       const std::uint8_t* p = &view.rgba[static_cast<std::size_t>((yy * view.image_w + xx) * 4)];
       for (int c = 0; c < 3; ++c) out[c] += wgt * to_linear(p[c] / 255.0);
@@ -138,6 +139,48 @@ ComposeSource vk_source(const View& v, VkImage image, std::uint64_t serial) {
           v.fov};
 }
 
+/// An array image (a swapchain with arraySize > 1): `layers` noise layers of w×h, one
+/// after another, top row first, into which views are copied.
+struct ArrayImage {
+  int w, h, layers;
+  std::vector<std::uint8_t> rgba;
+};
+
+ArrayImage noise_array(int w, int h, int layers, std::uint32_t seed) {
+  const View v = noise_view(w, h * layers, 0, 0, w, h * layers, kOut, seed);
+  return {w, h, layers, v.rgba};
+}
+
+/// Copies the view's whole image into `layer` of `a` at (x, y); the view, as the layer's.
+View put_in_layer(ArrayImage& a, int layer, int x, int y, const View& v) {
+  for (int row = 0; row < v.image_h; ++row)
+    std::copy_n(&v.rgba[static_cast<std::size_t>(row * v.image_w * 4)], v.image_w * 4,
+                &a.rgba[static_cast<std::size_t>(((layer * a.h + y + row) * a.w + x) * 4)]);
+  View in = v;
+  in.image_w = a.w, in.image_h = a.h, in.x += x, in.y += y, in.rgba.clear();
+  return in;
+}
+
+GLuint gl_array_texture(const ArrayImage& a) {
+  std::vector<std::uint8_t> flipped(a.rgba.size());  // each layer bottom row first
+  const std::size_t row = static_cast<std::size_t>(a.w) * 4;
+  for (int l = 0; l < a.layers; ++l)
+    for (int y = 0; y < a.h; ++y)
+      std::copy_n(a.rgba.data() + static_cast<std::size_t>(l * a.h + a.h - 1 - y) * row, row,
+                  flipped.data() + static_cast<std::size_t>(l * a.h + y) * row);
+  GLuint t = 0;
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t);
+  glTextureStorage3D(t, 1, GL_SRGB8_ALPHA8, a.w, a.h, a.layers);
+  glTextureSubImage3D(t, 0, 0, 0, 0, a.w, a.h, a.layers, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
+  return t;
+}
+
+ComposeSource in_layer(ComposeSource s, std::uint32_t layer) {
+  s.layer = layer;
+  s.array = true;
+  return s;
+}
+
 class VkComposerTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -163,15 +206,20 @@ class VkComposerTest : public ::testing::Test {
 
   std::vector<std::uint8_t> compose_gl() {
     const GLuint outer = gl_texture(outer_), inner = gl_texture(inner_);
+    std::vector<std::uint8_t> rgba = compose_gl(gl_source(outer_, outer), gl_source(inner_, inner));
+    const GLuint all[2] = {outer, inner};
+    glDeleteTextures(2, all);
+    return rgba;
+  }
+  std::vector<std::uint8_t> compose_gl(const ComposeSource& outer, const ComposeSource& inner) {
     GLuint target = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &target);
     glTextureStorage2D(target, 1, GL_SRGB8_ALPHA8, kW, kH);
     const ComposeTarget t{target, GL_SRGB8_ALPHA8, 0, kW, kH};
-    EXPECT_TRUE(gl_composer_->compose(gl_source(outer_, outer), gl_source(inner_, inner), t, kOut, kBandDeg));
+    EXPECT_TRUE(gl_composer_->compose(outer, inner, t, kOut, kBandDeg));
     std::vector<std::uint8_t> rgba;
     EXPECT_TRUE(gl_composer_->read(t, rgba));
-    const GLuint all[3] = {outer, inner, target};
-    glDeleteTextures(3, all);
+    glDeleteTextures(1, &target);
     return rgba;
   }
 
@@ -185,16 +233,18 @@ class VkComposerTest : public ::testing::Test {
     const VkImage inner = shared ? outer
                                  : vulkan_->image(inner_view.image_w, inner_view.image_h, VK_FORMAT_R8G8B8A8_SRGB,
                                                   inner_view.rgba.data());
+    EXPECT_TRUE(outer && inner);
+    return compose_vk(frames, vk_source(outer_view, outer, 1), vk_source(inner_view, inner, shared ? 1 : 2));
+  }
+  std::vector<std::uint8_t> compose_vk(int frames, const ComposeSource& outer, const ComposeSource& inner) {
     const VkImage targets[2] = {vulkan_->image(kW, kH, VK_FORMAT_R8G8B8A8_SRGB, nullptr),
                                 vulkan_->image(kW, kH, VK_FORMAT_R8G8B8A8_SRGB, nullptr)};
-    EXPECT_TRUE(outer && inner && targets[0] && targets[1]);
+    EXPECT_TRUE(targets[0] && targets[1]);
     ComposeTarget t{};
     for (int f = 0; f < frames; ++f) {
       t = {reinterpret_cast<std::uint64_t>(targets[f % 2]), VK_FORMAT_R8G8B8A8_SRGB, 10u + static_cast<unsigned>(f % 2),
            kW, kH};
-      EXPECT_TRUE(vk_composer_->compose(vk_source(outer_view, outer, 1), vk_source(inner_view, inner, shared ? 1 : 2), t,
-                                        kOut, kBandDeg))
-          << "frame " << f;
+      EXPECT_TRUE(vk_composer_->compose(outer, inner, t, kOut, kBandDeg)) << "frame " << f;
     }
     std::vector<std::uint8_t> rgba;
     EXPECT_TRUE(vk_composer_->read(t, rgba));
@@ -281,6 +331,51 @@ TEST_F(VkComposerTest, OuterAndInnerViewsInOneImageComposeAsWell) {
   std::printf("one image for both views, against the CPU reference: PSNR %.1f dB (max %d)\n", d.psnr, d.max_abs);
   EXPECT_GE(d.psnr, kMinPsnrReference);
   EXPECT_LE(d.max_abs, kMaxAbsReference);
+}
+
+TEST_F(VkComposerTest, ViewsInLayersOfOneArrayImageComposeOnBothApis) {
+  // One 200×150 image of four layers, as an app with one swapchain of arraySize 4 for all
+  // views: the outer view in layer 1, the inner view in layer 3, each at its own place;
+  // layers 0 and 2 (the other eye's views) and the rest are other noise, so that a wrong
+  // layer or a wrong rectangle shows.
+  ArrayImage a = noise_array(200, 150, 4, 7);
+  const View outer = put_in_layer(a, 1, 12, 5, outer_), inner = put_in_layer(a, 3, 40, 30, inner_);
+  const std::vector<std::uint8_t> ref = reference(outer_, inner_);
+
+  const GLuint array = gl_array_texture(a), plain_outer = gl_texture(outer_), plain_inner = gl_texture(inner_);
+  const std::vector<std::uint8_t> gl =
+      compose_gl(in_layer(gl_source(outer, array), 1), in_layer(gl_source(inner, array), 3));
+  // One view in an array and the other in a plain image (each sampler type alone).
+  const std::vector<std::uint8_t> gl_inner_array =
+      compose_gl(gl_source(outer_, plain_outer), in_layer(gl_source(inner, array), 3));
+  const std::vector<std::uint8_t> gl_outer_array =
+      compose_gl(in_layer(gl_source(outer, array), 1), gl_source(inner_, plain_inner));
+  const GLuint all[3] = {array, plain_outer, plain_inner};
+  glDeleteTextures(3, all);
+
+  const VkImage image = vulkan_->image(a.w, a.h, VK_FORMAT_R8G8B8A8_SRGB, a.rgba.data(), a.layers);
+  ASSERT_TRUE(image);
+  const std::vector<std::uint8_t> vk =
+      compose_vk(6, in_layer(vk_source(outer, image, 5), 1), in_layer(vk_source(inner, image, 5), 3));
+
+  const struct {
+    const char* what;
+    const std::vector<std::uint8_t>& rgba;
+  } cases[] = {{"GL, both views in layers", gl},
+               {"GL, the inner view in a layer", gl_inner_array},
+               {"GL, the outer view in a layer", gl_outer_array},
+               {"Vulkan, both views in layers", vk}};
+  for (const auto& c : cases) {
+    ASSERT_EQ(c.rgba.size(), ref.size()) << c.what;
+    const Diff d = compare(c.rgba, ref);
+    std::printf("array image, %s, against the CPU reference: PSNR %.1f dB (max %d)\n", c.what, d.psnr, d.max_abs);
+    EXPECT_GE(d.psnr, kMinPsnrReference) << c.what;
+    EXPECT_LE(d.max_abs, kMaxAbsReference) << c.what;
+  }
+  const Diff gl_vk = compare(gl, vk);
+  std::printf("array image: Vulkan against GL: max |diff| %d, PSNR %.1f dB\n", gl_vk.max_abs, gl_vk.psnr);
+  EXPECT_LE(gl_vk.max_abs, kMaxAbsGlVk);
+  EXPECT_GE(gl_vk.psnr, kMinPsnrGlVk);
 }
 
 }  // namespace

@@ -30,6 +30,21 @@ TEST(RenderCli, WritesAPngAndReportsPassesAsJson) {
   EXPECT_EQ(img->width, 160);
 }
 
+// --display takes a bundled model's name as well as a file, as bench and metrics do.
+TEST(RenderCli, DisplayTakesABundledModelsNameOrAFileAndNamesAnUnknownOne) {
+  test::TempDir d;
+  const std::string base = test::bin("foveal") + " render --scene pattern:checker --size 160x90 --frames 1 --warmup 0 --json --out ";
+  auto by_name = test::run(base + d.path("n.png") + " --display hires_3800_35ppd");
+  ASSERT_EQ(by_name.exit_code, 0) << by_name.err;
+  auto by_file = test::run(base + d.path("f.png") + " --display " + test::source_path("data/display/hires_3800_35ppd.json"));
+  ASSERT_EQ(by_file.exit_code, 0) << by_file.err;
+  EXPECT_EQ(test::read_file(d.path("n.png")), test::read_file(d.path("f.png"))) << "the name and the file are one model";
+  auto unknown = test::run(base + d.path("u.png") + " --display no_such_headset");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("no_such_headset"), std::string::npos) << unknown.err;
+  EXPECT_FALSE(std::filesystem::exists(d.path("u.png")));
+}
+
 // --fill-view moves the viewer in until an object fills the view (the benchmarks' framing
 // of the object scenes); --compare-pipelines adds both pipelines' full and foveated frames.
 TEST(RenderCli, FillViewMovesTheViewerInAndComparePipelinesReportsBoth) {

@@ -1,6 +1,7 @@
 """The Python module `foveal` from the build tree, on the system python3 with NumPy:
 the live fovea and settings from a real foveald, and gaze logs and traces as arrays.
 Usage: python_test.py BUILD_DIR SOURCE_DIR  (ctest: FovealPython)."""
+import dataclasses
 import math
 import os
 import signal
@@ -101,6 +102,64 @@ class Live(unittest.TestCase):
             bob = c.settings()
             self.assertEqual((bob.sigma_d, bob.sigma_nd, bob.dominant_eye), (2.4, 3.2, "left"))
             self.assertGreater(bob.generation, after.generation)
+
+    def test_2b_motion_and_prediction_as_foveald_predicts(self):
+        # (runs before test_3, which stops foveald) A fovea and its motion from the live
+        # block, and predict() moving each predictable eye by foveald's rule.
+        f32 = lambda v: struct.unpack("f", struct.pack("f", v))[0]  # noqa: E731 (the C side's float)
+        with self.client() as c:
+            self.first_fovea(c)
+            deadline, pair, moving = time.monotonic() + 20, None, None
+            while time.monotonic() < deadline and moving is None:
+                f = c.read()
+                m = c.motion()
+                self.assertGreaterEqual(m.frame, f.frame, "the motion is written before its fovea")
+                if m.frame == f.frame:  # else foveald published in between: read both again
+                    pair = (f, m)
+                    if any(m.predictable[e] and (m.velocity_x[e] or m.velocity_y[e]) for e in (0, 1)):
+                        moving = pair
+                time.sleep(0.005)
+            self.assertIsNotNone(moving, "no predictable, moving eye in 20 s of the replay")
+        f, m = moving
+        self.assertIsInstance(m, foveal.Motion)
+        self.assertTrue(all(isinstance(p, bool) for p in m.predictable), m)
+        self.assertTrue(all(math.isfinite(v) for v in m.velocity_x + m.velocity_y + m.lag_x + m.lag_y), m)
+        # At the sample's time (or before it) nothing moves.
+        self.assertEqual(foveal.predict(f, m, f.t_ns), f)
+        self.assertEqual(foveal.predict(f, m, f.t_ns - 5_000_000), f)
+        # 21 ms on (a display's wait): x + lag + velocity * h, clamped inside the viewport.
+        h_ns = 21_000_000
+        p = foveal.predict(f, m, f.t_ns + h_ns)
+        self.assertEqual((p.t_ns, p.frame, p.state), (f.t_ns, f.frame, f.state), "the sample's time and frame stay")
+        for e in (0, 1):
+            if not m.predictable[e]:
+                self.assertEqual((p.x[e], p.y[e]), (f.x[e], f.y[e]), f"eye {e} is held")
+                continue
+            want_x = min(max(f.x[e] + m.lag_x[e] + m.velocity_x[e] * h_ns * 1e-9, 0.0), f.eye_width)
+            want_y = min(max(f.y[e] + m.lag_y[e] + m.velocity_y[e] * h_ns * 1e-9, 0.0), f.eye_height)
+            self.assertAlmostEqual(p.x[e], f32(want_x), delta=1e-3, msg=f"eye {e}: {f} {m}")
+            self.assertAlmostEqual(p.y[e], f32(want_y), delta=1e-3, msg=f"eye {e}: {f} {m}")
+        # Past the 50 ms horizon: as far as the horizon, no further.
+        self.assertEqual(foveal.predict(f, m, f.t_ns + 80_000_000),
+                         foveal.predict(f, m, f.t_ns + foveal.PREDICT_MAX_HORIZON_NS))
+        # Another fovea's motion, a zero viewport and wrong types are errors that say so.
+        other = dataclasses.replace(m, frame=m.frame + 1)
+        with self.assertRaises(foveal.ClientError) as caught:
+            foveal.predict(f, other, f.t_ns + h_ns)
+        self.assertEqual(caught.exception.code, foveal.NO_DATA)
+        self.assertIn(f"frame {f.frame}", str(caught.exception))
+        with self.assertRaises(foveal.ClientError) as caught:
+            foveal.predict(dataclasses.replace(f, eye_width=0), m, f.t_ns + h_ns)
+        self.assertEqual(caught.exception.code, foveal.INVALID_ARGUMENT)
+        for bad in ((f, m, 1.5), (f, m, 2**63), (m, f, 0), (f, None, 0)):
+            with self.assertRaises(foveal.ClientError) as caught:
+                foveal.predict(*bad)
+            self.assertEqual(caught.exception.code, foveal.INVALID_ARGUMENT, bad)
+        closed = self.client()
+        closed.close()
+        with self.assertRaises(foveal.ClientError) as caught:
+            closed.motion()
+        self.assertEqual(caught.exception.code, foveal.INVALID_ARGUMENT)
 
     def test_3_a_stopped_foveald_is_no_writer(self):
         c = self.client()

@@ -1,7 +1,7 @@
 #pragma once
 // Builds the PS VR2's motion records byte by byte at the offsets docs/headset.md lists
 // (status/IMU and SLAM): for the parsers' unit tests and the emulated headset of the VM test.
-#include "foveal/drivers/usb/psvr2_pose_records.hpp"
+#include "foveal/drivers/psvr2/psvr2_pose_records.hpp"
 #include "report_bytes.hpp"
 
 namespace foveal::test {

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <vector>
 
-#include "foveal/drivers/usb/psvr2_gaze_packet.hpp"
+#include "foveal/drivers/psvr2/psvr2_gaze_packet.hpp"
 
 namespace foveal::test {
 

@@ -5,7 +5,7 @@
 #include <limits>
 #include <vector>
 
-#include "foveal/drivers/usb/psvr2_gaze_packet.hpp"
+#include "foveal/drivers/psvr2/psvr2_gaze_packet.hpp"
 #include "psvr2_records.hpp"
 
 namespace foveal::usb {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "foveal/drivers/usb/psvr2_pose_records.hpp"
+#include "foveal/drivers/psvr2/psvr2_pose_records.hpp"
 #include "psvr2_pose_builders.hpp"
 
 namespace foveal::usb {

@@ -18,7 +18,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "foveal/drivers/usb/psvr2_pose_records.hpp"
+#include "foveal/drivers/psvr2/psvr2_pose_records.hpp"
 #include "foveal/drivers/vive/vive_config.hpp"
 #include "foveal/drivers/vive/vive_reports.hpp"
 #include "psvr2_pattern.hpp"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "foveal/drivers/usb/psvr2_pose_records.hpp"
+#include "foveal/drivers/psvr2/psvr2_pose_records.hpp"
 #include "foveal/drivers/vive/vive_config.hpp"
 #include "foveal/drivers/vive/vive_display_model.hpp"
 #include "foveal/drivers/vive/vive_reports.hpp"

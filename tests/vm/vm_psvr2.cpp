@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "foveal/drivers/usb/psvr2_source.hpp"
+#include "foveal/drivers/psvr2/psvr2_source.hpp"
 #include "psvr2_pattern.hpp"
 #include "psvr2_pose_pattern.hpp"
 #include "vm_ffs.hpp"

@@ -13,6 +13,8 @@ import os
 import sys
 
 import chart_files
+import chart_labels
+import run_settings
 
 plt = chart_files.pyplot()
 
@@ -52,33 +54,87 @@ def series(rows, scene, y_key):
     return out
 
 
-# What a chart's y axis shows: the column, its label, the value ∞ is drawn at, the
-# reference's label, and a threshold line (JOD 9.5: issue 28's "a viewer cannot tell").
-FPSNR = ("fpsnr_db", "FPSNR (dB)", 60.0, "full (reference, ∞ dB shown at 60)", None)
-JOD = ("jod", "JOD (FovVideoVDP, both eyes; 10 = no visible difference)", 10.0, "full (reference, 10)", 9.5)
+# What a chart's y axis shows: the column, its label, the reference's label, and a
+# threshold line (JOD 9.5: issue 28's "a viewer cannot tell"). A value that is not finite
+# (the full reference's FPSNR, ∞ dB) is not on the scale: a marker on the top edge says
+# so, and the y range is the methods' points.
+FPSNR = ("fpsnr_db", "FPSNR (dB)", "full (reference, ∞ dB: ★ on the top edge)", None)
+JOD = ("jod", "JOD (FovVideoVDP, both eyes; 10 = no visible difference)", "full (reference, 10)", 9.5)
 
 
-def pareto(rows, out, x_key="gpu_ms", x_label="GPU frame time (ms, median)", title="quality against frame time", y=FPSNR):
-    y_key, y_label, ceiling, full_label, threshold = y
+def sigma_text(r):
+    """A point's level: σ, or σ_d/σ_nd where the row has a different non-dominant level (EFR)."""
+    nd = r.get("sigma_nd")
+    if nd not in (None, "") and num(nd) != num(r["sigma"]):
+        return f"{num(r['sigma']):g}/{num(nd):g}"
+    return f"{num(r['sigma']):g}"
+
+
+def y_range(values, threshold):
+    """The methods' finite values (and the threshold line), with room above for labels."""
+    v = [y for y in values if math.isfinite(y)] + ([threshold] if threshold is not None else [])
+    if not v:
+        return None
+    lo, hi = min(v), max(v)
+    span = (hi - lo) or max(abs(hi) * 0.05, 0.5)
+    return lo - 0.08 * span, hi + 0.15 * span
+
+
+def pareto(rows, out, x_key="gpu_ms", x_label="GPU frame time (ms, median)", title="quality against frame time", y=FPSNR,
+           settings=None):
+    y_key, y_label, full_label, threshold = y
     scenes = sorted({r["scene"] for r in rows})
-    fig, flat = scene_axes(len(scenes), 5.5, 4.5)
+    fig, flat = scene_axes(len(scenes), 6.5, 5.2)
+    share = run_settings.add_footer(fig, settings) if settings else 0.0
+    panels = []
     for ax, scene in zip(flat, scenes):
+        labelled, off_scale, xs, ys = [], [], [], []
         for method, m in series(rows, scene, y_key):
-            xs = [num(r[x_key]) for r in m]
-            ys = [min(num(r[y_key]), ceiling) for r in m]
+            pts = [(num(r[x_key]), num(r[y_key]), r) for r in m]
+            xs += [p[0] for p in pts]
+            ys += [p[1] for p in pts]
+            on = [p for p in pts if math.isfinite(p[1])]
+            off_scale += [(p[0], method) for p in pts if not math.isfinite(p[1])]
             if method == "full":
-                ax.scatter(xs, ys, marker="*", s=120, color=COLORS[method], label=full_label)
-            else:
-                ax.plot(xs, ys, "o-", color=COLORS[method], label=method, markersize=4)
+                if on:
+                    ax.scatter([p[0] for p in on], [p[1] for p in on], marker="*", s=120, color=COLORS[method], label=full_label)
+                continue
+            ax.plot([p[0] for p in on], [p[1] for p in on], "o-", color=COLORS[method], label=method, markersize=4)
+            labelled += [(p[0], p[1], sigma_text(p[2])) for p in on]
+        for x, method in off_scale:  # on the top edge, outside the data range
+            ax.scatter([x], [1.0], marker="^" if method != "full" else "*", s=90 if method == "full" else 40, color=COLORS[method],
+                       transform=ax.get_xaxis_transform(), clip_on=False, zorder=5,
+                       label=full_label if method == "full" else None)
+            ax.annotate(f"{method}: ∞", (x, 1.0), xycoords=ax.get_xaxis_transform(),
+                        xytext=(-7, -3), textcoords="offset points", ha="right", va="top", fontsize=7)
         if threshold is not None:
             ax.axhline(threshold, color="black", linestyle=":", linewidth=1, label=f"JOD {threshold:g}")
+        finite_x = [x for x in xs if math.isfinite(x)]
+        if finite_x:  # the off-scale markers are drawn in axes coordinates: the x range must hold them
+            lo, hi = min(finite_x), max(finite_x)
+            pad = 0.05 * ((hi - lo) or abs(hi) or 1.0)
+            ax.set_xlim(lo - pad, hi + pad)
+        limits = y_range(ys, threshold)
+        if limits:
+            ax.set_ylim(*limits)
+            for x, _ in off_scale:  # an unseen line under each top-edge marker and its text: the legend keeps off them
+                y_text = limits[0] + 0.95 * (limits[1] - limits[0])
+                ax.plot([x - 0.15 * (ax.get_xlim()[1] - ax.get_xlim()[0]), x], [y_text] * 2, color="none", label="_off_scale")
         ax.set_title(f"{scene}: {title}")
         ax.set_xlabel(x_label)
         ax.set_ylabel(y_label)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.tight_layout()
+        ax.legend(fontsize=7, title="labels: σ (σ_d/σ_nd)", title_fontsize=7, loc="best")
+        panels.append((ax, labelled))
+    fig.tight_layout(rect=(0, share, 1, 1))
+    # Labels go on after the layout, which moves the axes; the legend's box is kept clear.
+    for ax, labelled in panels:
+        ax.foveal_sigma_labels = chart_labels.place_labels(ax, labelled, fontsize=6.5, avoid_boxes=[legend_box(ax)])
     chart_files.save_figure(fig, out, dpi=110)
+
+
+def legend_box(ax):
+    return ax.get_legend().get_window_extent(ax.figure.canvas.get_renderer())
 
 
 def fgrid(rows, autos, out):
@@ -234,10 +290,12 @@ def table(rows, out):
 def main():
     d = sys.argv[1]
     rows = read(os.path.join(d, "bench.csv"))
-    pareto(rows, os.path.join(d, "pareto.png"))
-    pareto(rows, os.path.join(d, "quality_cost.png"), "cost", "shaded samples / full (theoretical cost)", "quality against shading cost")
+    settings = run_settings.settings_text(run_settings.read_summary(d), sorted({r["scene"] for r in rows}))
+    pareto(rows, os.path.join(d, "pareto.png"), settings=settings)
+    cost = "shaded samples / full (theoretical cost)"
+    pareto(rows, os.path.join(d, "quality_cost.png"), "cost", cost, "quality against shading cost", settings=settings)
     if rows and "jod" in rows[0]:  # left out by bench --no-jod (and in runs before it)
-        pareto(rows, os.path.join(d, "jod_cost.png"), "cost", "shaded samples / full (theoretical cost)", "JOD against shading cost", JOD)
+        pareto(rows, os.path.join(d, "jod_cost.png"), "cost", cost, "JOD against shading cost", JOD, settings=settings)
     table(rows, os.path.join(d, "table.md"))
     autos = []
     if os.path.exists(os.path.join(d, "bench.json")):

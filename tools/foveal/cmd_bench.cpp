@@ -8,7 +8,7 @@
 #include "commands.hpp"
 #include "foveal/bench/bench_merge.hpp"
 #include "foveal/bench/bench_run.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 #include "render_args.hpp"
 
 namespace foveal::cmd {

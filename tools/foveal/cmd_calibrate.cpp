@@ -18,7 +18,7 @@
 #include "foveal/quality/quality_targets.hpp"
 #include "foveal/runtime/calibration.hpp"
 #include "foveal/runtime/profile.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 
 namespace foveal::cmd {
 

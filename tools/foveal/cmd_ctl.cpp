@@ -8,8 +8,8 @@
 #include "commands.hpp"
 #include "ctl_summary.hpp"
 #include "foveal/core/json_text.hpp"
+#include "foveal/runtime/cli.hpp"
 #include "foveal/runtime/control_server.hpp"
-#include "foveal/tools/cli.hpp"
 
 namespace foveal::cmd {
 

@@ -11,7 +11,7 @@
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/read_file.hpp"
 #include "foveal/drivers/probe.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 
 namespace foveal::cmd {
 

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
@@ -12,7 +14,7 @@
 #include "foveal/core/json_text.hpp"
 #include "foveal/import/importers.hpp"
 #include "foveal/tools/filter_score.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 #include "foveal/tools/run_program.hpp"
 #include "foveal/tools/staged_outputs.hpp"
 
@@ -48,8 +50,9 @@ std::vector<Variant> variants() {
 }
 
 // Real data has no truth: jitter is the RMS distance of the output from its own
-// 100 ms centred mean over runs the pipeline calls fixation.
-double real_jitter_deg(const std::vector<GazeSample>& samples, const FilterConfig& cfg, bool raw) {
+// 100 ms centred mean (±`half` samples at the log's rate) over runs the pipeline calls
+// fixation. None when no such run exists (a chart shows no bar, not a jitter of 0).
+std::optional<double> real_jitter_deg(const std::vector<GazeSample>& samples, const FilterConfig& cfg, bool raw, std::size_t half) {
   GazePipeline pipe(DisplayModel::vive_pro_eye(), cfg);
   std::vector<std::pair<glm::vec3, bool>> out;
   for (const GazeSample& s : samples) {
@@ -59,21 +62,28 @@ double real_jitter_deg(const std::vector<GazeSample>& samples, const FilterConfi
   }
   double sum = 0;
   std::size_t n = 0;
-  for (std::size_t i = 6; i + 6 < out.size(); ++i) {
+  for (std::size_t i = half; i + half < out.size(); ++i) {
     bool all = true;
     glm::vec3 mean{0.0f};
-    for (std::size_t k = i - 6; k <= i + 6; ++k) {
+    for (std::size_t k = i - half; k <= i + half; ++k) {
       all &= out[k].second;
       mean += out[k].first;
     }
     if (!all) continue;
-    mean /= 13.0f;
+    mean /= static_cast<float>(2 * half + 1);
     const glm::vec3 d = out[i].first - mean;
     sum += static_cast<double>(d.x * d.x + d.y * d.y + d.z * d.z);
     ++n;
   }
-  return n ? std::sqrt(sum / static_cast<double>(n)) * 180.0 / 3.14159265358979 : 0.0;
+  if (n == 0) return std::nullopt;
+  return std::sqrt(sum / static_cast<double>(n)) * 180.0 / 3.14159265358979;
 }
+
+// A recording to chart jitter on: a SRanipal export (imported on the fly) or a native log.
+struct Recording {
+  std::filesystem::path path;
+  const char* source;  ///< "SRanipal" or "log": the chart's legend says which
+};
 
 }  // namespace
 
@@ -82,27 +92,42 @@ void add_filter_chart(CLI::App& app, int& exit_code) {
     std::string out = "filter-chart";
     // The three recordings foveal ships (data/gaze/vive_pro_eye/SOURCE.md).
     std::string vive_dir = data_path("data/gaze/vive_pro_eye");
+    std::vector<std::string> logs;
     double seconds = 120;
     bool json = false, no_png = false;
   };
   auto a = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand("filter-chart", "Chart jitter against lag for no filter, 1€ presets and the saccade-aware pipeline");
   sub->add_option("--out,-o", a->out, "Output directory (CSV, JSON, PNG)")->capture_default_str();
-  sub->add_option("--vive-dir", a->vive_dir, "Folder of SRanipal recordings to chart jitter on (imported on the fly)")->capture_default_str();
+  CLI::Option* vive = sub->add_option("--vive-dir", a->vive_dir, "Folder of SRanipal recordings to chart jitter on (imported on the fly)")
+                          ->capture_default_str();
+  sub->add_option("--log", a->logs, "Native gaze log to chart jitter on (repeatable; `foveal import`, `record`); "
+                                    "with --log the SRanipal folder is charted only when --vive-dir is given");
   sub->add_option("--seconds", a->seconds, "Synthetic scanpath length per seed")->capture_default_str();
   sub->add_flag("--no-png", a->no_png, "Write the data only (no matplotlib)");
   sub->add_flag("--json", a->json, "Print the results as JSON");
-  sub->callback([a, &exit_code] {
+  sub->callback([a, vive, &exit_code] {
     auto fail = [&exit_code](const Error& e) { exit_code = cli::report(e); };
     // A missing or empty folder is refused up front: a chart without its real-data half
     // would look complete.
-    std::vector<std::filesystem::path> recordings;
-    std::error_code dir_ec;
-    for (std::filesystem::directory_iterator it(a->vive_dir, dir_ec), end; !dir_ec && it != end; it.increment(dir_ec))
-      if (it->path().extension() == ".csv") recordings.push_back(it->path());
-    if (dir_ec) return fail(bad_input("--vive-dir " + a->vive_dir + ": " + dir_ec.message()));
-    if (recordings.empty()) return fail(bad_input("--vive-dir " + a->vive_dir + ": no .csv recordings in it"));
-    std::sort(recordings.begin(), recordings.end());
+    std::vector<Recording> recordings;
+    if (a->logs.empty() || vive->count() > 0) {
+      std::error_code dir_ec;
+      for (std::filesystem::directory_iterator it(a->vive_dir, dir_ec), end; !dir_ec && it != end; it.increment(dir_ec))
+        if (it->path().extension() == ".csv") recordings.push_back({it->path(), "SRanipal"});
+      if (dir_ec) return fail(bad_input("--vive-dir " + a->vive_dir + ": " + dir_ec.message()));
+      if (recordings.empty()) return fail(bad_input("--vive-dir " + a->vive_dir + ": no .csv recordings in it"));
+      std::sort(recordings.begin(), recordings.end(), [](const Recording& x, const Recording& y) { return x.path < y.path; });
+    }
+    // The logs are read now, before any work: a bad row fails the run at once, naming file and line.
+    std::vector<std::pair<std::vector<GazeSample>, GazeLogHeader>> log_samples;
+    for (const std::string& log : a->logs) {
+      GazeLogHeader header;
+      auto samples = read_gaze_log(log, &header);
+      if (!samples) return fail(samples.error());
+      recordings.push_back({log, "log"});
+      log_samples.emplace_back(std::move(*samples), header);
+    }
     // Every output is staged and moved into --out together at the end (or not at all).
     auto staged = cli::StagedOutputs::create(a->out);
     if (!staged) return fail(staged.error());
@@ -136,16 +161,32 @@ void add_filter_chart(CLI::App& app, int& exit_code) {
     }
     progress.finish();
     // Real recordings: jitter only.
-    std::string real_csv = "recording,method,label,jitter_deg\n";
-    for (const std::filesystem::path& rec : recordings) {
-      const std::string tmp = staged->staging() + "/.import.csv";
-      if (auto imp = import_sranipal(rec.string(), tmp); !imp) return fail(imp.error());
-      auto samples = read_gaze_log(tmp);
-      std::filesystem::remove(tmp, ec);
-      if (!samples) return fail(samples.error());
-      for (const Variant& v : vs)
-        real_csv += rec.stem().string() + "," + v.method + "," + v.label + "," +
-                    std::to_string(real_jitter_deg(*samples, v.cfg, v.raw)) + "\n";
+    // jitter_deg is empty where the recording has no fixation run long enough.
+    std::string real_csv = "recording,method,label,jitter_deg,source\n";
+    std::size_t next_log = 0;
+    for (const Recording& rec : recordings) {
+      std::vector<GazeSample> samples;
+      GazeLogHeader header;
+      if (rec.source == std::string("log")) {
+        samples = std::move(log_samples[next_log].first);
+        header = log_samples[next_log++].second;
+      } else {
+        const std::string tmp = staged->staging() + "/.import.csv";
+        if (auto imp = import_sranipal(rec.path.string(), tmp); !imp) return fail(imp.error());
+        auto read = read_gaze_log(tmp, &header);
+        std::filesystem::remove(tmp, ec);
+        if (!read) return fail(read.error());
+        samples = std::move(*read);
+      }
+      // ±50 ms: 6 samples at the Vive Pro Eye's 120 Hz, at least one at any rate.
+      const auto half = static_cast<std::size_t>(std::max(1.0, std::round(0.05 * header.rate_hz)));
+      // A name with a comma or quote would split the row: such characters become '_'.
+      std::string name = rec.path.stem().string();
+      std::replace_if(name.begin(), name.end(), [](char c) { return c == ',' || c == '"' || c == '\n' || c == '\r'; }, '_');
+      for (const Variant& v : vs) {
+        const std::optional<double> j = real_jitter_deg(samples, v.cfg, v.raw, half);
+        real_csv += name + "," + v.method + "," + v.label + "," + (j ? std::to_string(*j) : "") + "," + rec.source + "\n";
+      }
     }
     if (Status s = staged->write("filter_chart.csv", csv); !s) return fail(s.error());
     if (Status s = staged->write("filter_chart_real.csv", real_csv); !s) return fail(s.error());

@@ -8,8 +8,8 @@
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/image/foveate.hpp"
-#include "foveal/tools/args.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/args.hpp"
+#include "foveal/runtime/cli.hpp"
 
 namespace foveal::cmd {
 

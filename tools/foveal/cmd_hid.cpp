@@ -7,7 +7,7 @@
 #include "commands.hpp"
 #include "foveal/core/read_file.hpp"
 #include "foveal/drivers/hid/report_decoder.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 
 namespace foveal::cmd {
 

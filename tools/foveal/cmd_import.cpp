@@ -6,7 +6,7 @@
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/import/importers.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 
 namespace foveal::cmd {
 

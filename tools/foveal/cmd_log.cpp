@@ -5,7 +5,7 @@
 
 #include "commands.hpp"
 #include "foveal/core/gaze_log_stats.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 
 namespace foveal::cmd {
 
@@ -60,7 +60,7 @@ void print_text(const std::string& path, const GazeLogStats& s) {
 }  // namespace
 
 void add_log(CLI::App& app, int& exit_code) {
-  CLI::App* log = app.add_subcommand("log", "Inspect native gaze logs");
+  CLI::App* log = app.add_subcommand("log", "Inspect native gaze logs (and plot them or a fovea trace)");
   log->require_subcommand(1);
   struct Args {
     std::string file;
@@ -80,6 +80,7 @@ void add_log(CLI::App& app, int& exit_code) {
     else print_text(args->file, *s);
   });
   add_log_quality(*log, exit_code);
+  add_log_plot(*log, exit_code);
 }
 
 }  // namespace foveal::cmd

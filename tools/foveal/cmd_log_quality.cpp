@@ -10,7 +10,7 @@
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/quality/gaze_quality.hpp"
 #include "foveal/quality/quality_targets.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 #include "quality_report.hpp"
 
 namespace foveal::cmd {

@@ -14,8 +14,8 @@
 #include "commands.hpp"
 #include "foveal/image/metrics.hpp"
 #include "foveal/perception/jod_files.hpp"
-#include "foveal/tools/args.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/args.hpp"
+#include "foveal/runtime/cli.hpp"
 #include "memory_bound.hpp"
 #include "metrics_frame.hpp"
 

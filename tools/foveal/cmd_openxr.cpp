@@ -10,7 +10,7 @@
 
 #include "commands.hpp"
 #include "foveal/openxr/status.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 
 namespace foveal::cmd {
 

@@ -10,7 +10,7 @@
 #include "foveal/core/display_model.hpp"
 #include "foveal/render/drm_output.hpp"
 #include "foveal/render/window.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 
 namespace foveal::cmd {
 
@@ -21,12 +21,12 @@ void add_outputs(CLI::App& app, int& exit_code) {
   };
   auto a = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand("outputs", "List DRM/KMS connectors (direct mode) and window-system monitors");
-  sub->add_option("--display", a->display, "Display-model JSON whose output to look for (default: HTC Vive Pro Eye)");
+  sub->add_option("--display", a->display, "Display model whose output to look for: a name under data/display or a JSON file (default: htc_vive_pro_eye)");
   sub->add_flag("--json", a->json, "Print the list as JSON");
   sub->callback([a, &exit_code] {
     DisplayModel model = DisplayModel::vive_pro_eye();
     if (!a->display.empty()) {
-      auto m = DisplayModel::load(a->display);
+      auto m = DisplayModel::load(display_model_path(a->display));
       if (!m) {
         exit_code = cli::report(m.error());
         return;

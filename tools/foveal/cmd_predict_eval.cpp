@@ -11,8 +11,8 @@
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/core/json_file.hpp"
 #include "foveal/core/shown_text.hpp"
+#include "foveal/runtime/cli.hpp"
 #include "foveal/runtime/profile.hpp"
-#include "foveal/tools/cli.hpp"
 #include "prediction_eval.hpp"
 
 namespace foveal::cmd {
@@ -97,7 +97,7 @@ void add_predict_eval(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   sub->add_option("--config", a->config, "Filter settings JSON (keys of docs/filtering.md)");
   sub->add_option("--profile", a->profile, "Take the filter settings from this profile");
-  sub->add_option("--display", a->display, "Display-model JSON (default: HTC Vive Pro Eye)");
+  sub->add_option("--display", a->display, "Display model: a name under data/display (htc_vive_pro_eye, hires_3800_35ppd) or a JSON file (default: htc_vive_pro_eye)");
   sub->add_option("--max-horizon-ms", a->max_horizon_ms, "predict_fovea's horizon clamp (default: FoveaPrediction's)");
   sub->add_flag("--json", a->json, "Print the figures as JSON (per log and pooled)");
   sub->callback([a, &exit_code] {

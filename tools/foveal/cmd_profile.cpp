@@ -10,9 +10,9 @@
 #include "foveal/core/display_model.hpp"
 #include "foveal/core/json_text.hpp"
 #include "foveal/core/shown_text.hpp"
+#include "foveal/runtime/cli.hpp"
 #include "foveal/runtime/jod_levels.hpp"
 #include "foveal/runtime/profile.hpp"
-#include "foveal/tools/cli.hpp"
 
 namespace foveal::cmd {
 

@@ -18,10 +18,10 @@
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/drivers/probe.hpp"
 #include "foveal/quality/quality_targets.hpp"
+#include "foveal/runtime/cli.hpp"
 #include "foveal/runtime/control_server.hpp"
 #include "foveal/runtime/head_tracker.hpp"
-#include "foveal/tools/cli.hpp"
-#include "foveal/tools/trace_markers.hpp"
+#include "foveal/runtime/trace_markers.hpp"
 #include "quality_report.hpp"
 
 namespace foveal::cmd {

@@ -19,7 +19,7 @@
 #include "foveal/image/auto_f.hpp"
 #include "foveal/render/egl_context.hpp"
 #include "foveal/render/scene.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 #include "memory_bound.hpp"
 #include "render_args.hpp"
 

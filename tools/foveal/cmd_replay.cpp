@@ -10,11 +10,11 @@
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/core/json_file.hpp"
+#include "foveal/runtime/cli.hpp"
+#include "foveal/runtime/fovea_trace.hpp"
 #include "foveal/runtime/gaze_pipeline.hpp"
 #include "foveal/runtime/latency_histogram.hpp"
 #include "foveal/runtime/profile.hpp"
-#include "foveal/tools/cli.hpp"
-#include "foveal/tools/fovea_trace.hpp"
 
 namespace foveal::cmd {
 
@@ -29,7 +29,7 @@ void add_replay(CLI::App& app, int& exit_code) {
   sub->add_option("--trace", a->trace, "Per-sample trace CSV (time, state, fovea per eye, confidence)");
   sub->add_option("--config", a->config, "Filter settings JSON (keys of docs/filtering.md)");
   sub->add_option("--profile", a->profile, "Take the filter settings from this profile");
-  sub->add_option("--display", a->display, "Display-model JSON (default: HTC Vive Pro Eye)");
+  sub->add_option("--display", a->display, "Display model: a name under data/display (htc_vive_pro_eye, hires_3800_35ppd) or a JSON file (default: htc_vive_pro_eye)");
   sub->add_flag("--json", a->json, "Print the summary as JSON");
   sub->callback([a, &exit_code] {
     auto fail = [&exit_code](const Error& e) { exit_code = cli::report(e); };

@@ -8,9 +8,9 @@
 
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
+#include "foveal/runtime/cli.hpp"
 #include "foveal/runtime/daemon_config.hpp"
 #include "foveal/runtime/profile.hpp"
-#include "foveal/tools/cli.hpp"
 
 namespace foveal::cmd {
 

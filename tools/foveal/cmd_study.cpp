@@ -9,9 +9,9 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "foveal/runtime/cli.hpp"
 #include "foveal/study/study_conditions.hpp"
 #include "foveal/study/study_stats.hpp"
-#include "foveal/tools/cli.hpp"
 
 namespace foveal::cmd {
 

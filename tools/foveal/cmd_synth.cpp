@@ -8,7 +8,7 @@
 #include "foveal/core/atomic_file.hpp"
 #include "foveal/core/gaze_log.hpp"
 #include "foveal/drivers/synthetic_source.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 
 namespace foveal::cmd {
 

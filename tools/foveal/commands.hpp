@@ -10,6 +10,7 @@ namespace foveal::cmd {
 void add_import(CLI::App& app, int& exit_code);
 void add_log(CLI::App& app, int& exit_code);
 void add_log_quality(CLI::App& log, int& exit_code);  // `log quality`, called by add_log
+void add_log_plot(CLI::App& log, int& exit_code);     // `log plot`, called by add_log
 void add_synth(CLI::App& app, int& exit_code);
 void add_hid(CLI::App& app, int& exit_code);  // with FOVEAL_HAVE_HID
 void add_profile(CLI::App& app, int& exit_code);

@@ -23,7 +23,7 @@ Result<FilterConfig> filter_config_from(const std::string& config, const std::st
 
 Result<DisplayModel> display_model_from(const std::string& path) {
   if (path.empty()) return DisplayModel::vive_pro_eye();
-  return DisplayModel::load(path);
+  return DisplayModel::load(display_model_path(path));
 }
 
 }  // namespace foveal::cmd

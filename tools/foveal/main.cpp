@@ -7,12 +7,13 @@
 
 #include "commands.hpp"
 #include "foveal/core/atomic_file.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
+#include "foveal/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"foveal: eye-tracked foveated rendering toolkit (gaze logs, rendering, metrics)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "foveal 0.1.0");
+  app.set_version_flag("--version", "foveal " FOVEAL_VERSION);
   int exit_code = foveal::cli::kExitOk;
   foveal::remove_temporary_files_on_signals();  // a killed write leaves no OUT.tmp.* behind
   foveal::cmd::add_import(app, exit_code);

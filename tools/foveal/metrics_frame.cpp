@@ -9,7 +9,7 @@
 
 #include "foveal/core/data_paths.hpp"
 #include "foveal/perception/jod.hpp"
-#include "foveal/tools/args.hpp"
+#include "foveal/runtime/args.hpp"
 #include "render_args.hpp"
 
 namespace foveal::cmd {

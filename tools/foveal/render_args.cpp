@@ -7,7 +7,7 @@
 
 #include "foveal/core/data_paths.hpp"
 #include "foveal/image/foveation_plan.hpp"
-#include "foveal/tools/args.hpp"
+#include "foveal/runtime/args.hpp"
 #include "render_head.hpp"
 
 namespace foveal::cmd {
@@ -49,7 +49,7 @@ void add_render_options(CLI::App& sub, RenderArgs& a) {
   sub.add_option("--inset-band-deg", a.inset_band_deg, "inset/inset-fixed: the inner view's blend band in degrees")
       ->capture_default_str();
   sub.add_option("--size", a.size, "Side-by-side output size WxH (even width)")->capture_default_str();
-  sub.add_option("--display", a.display, "Display-model JSON (default: HTC Vive Pro Eye)");
+  sub.add_option("--display", a.display, "Display model: a name under data/display (htc_vive_pro_eye, hires_3800_35ppd) or a JSON file (default: htc_vive_pro_eye)");
   sub.add_flag("--no-distortion", a.no_distortion, "Ignore the display model's lens distortion (frames comparable with metrics)");
   sub.add_option("--light-lists", a.light_lists,
                  "The glTF file's own lights: tiles (each 16x16-pixel tile loops over the lights that reach it) or all "
@@ -129,7 +129,7 @@ Result<RenderSetup> resolve(const RenderArgs& a) {
   s.compositor.distortion = !a.no_distortion;
   s.compositor.light_tiles = a.light_lists == "tiles";
   if (!a.display.empty()) {
-    auto m = DisplayModel::load(a.display);
+    auto m = DisplayModel::load(display_model_path(a.display));
     if (!m) return m.error();
     s.compositor.model = *m;
   }

@@ -1,5 +1,5 @@
 // Head-pose specs to pose devices, and the headsets present (docs/headset.md).
-#include "auto_pose_device.hpp"
+#include "auto_device.hpp"
 #include "driver_entry.hpp"
 
 namespace foveal::probe {
@@ -47,7 +47,12 @@ Result<OpenedPoseDevice> make_pose_device(const PoseSpec& spec, const SourceOpti
   if (spec.driver == "auto") {
     auto dev = std::make_unique<AutoPoseDevice>(options);
     const AutoPoseDevice* raw = dev.get();
-    return OpenedPoseDevice{std::move(dev), spec, [raw] { return raw->counters(); }, [raw] { return raw->display(); }};
+    auto display = [raw]() -> std::optional<HeadsetDisplay> {  // the chosen headset's, if its driver reads one
+      const auto& chosen = raw->current();
+      if (!chosen || !chosen->display) return std::nullopt;
+      return chosen->display();
+    };
+    return OpenedPoseDevice{std::move(dev), spec, [raw] { return raw->counters(); }, std::move(display)};
   }
   const PoseDriverEntry* e = find_pose_driver(spec.driver);
   if (!e) return parse_pose_spec(spec.text()).error();

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "auto_source.hpp"
+#include "auto_device.hpp"
 #include "driver_entry.hpp"
 
 namespace foveal::probe {

@@ -1,8 +1,8 @@
 // psvr2: the PlayStation VR2's gaze stream through libusb.
 #include "driver_entry.hpp"
-#include "foveal/drivers/usb/psvr2_discovery.hpp"
-#include "foveal/drivers/usb/psvr2_pose_source.hpp"
-#include "foveal/drivers/usb/psvr2_source.hpp"
+#include "foveal/drivers/psvr2/psvr2_discovery.hpp"
+#include "foveal/drivers/psvr2/psvr2_pose_source.hpp"
+#include "foveal/drivers/psvr2/psvr2_source.hpp"
 
 namespace foveal::probe {
 

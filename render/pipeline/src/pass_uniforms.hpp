@@ -1,5 +1,5 @@
 #pragma once
-// Uniform setters shared by the compositor's passes (compositor.cpp) and the visibility
+// Uniform setters shared by the compositor's passes (compositor_*.cpp) and the visibility
 // pipeline (visibility_pipeline.cpp).
 #include <cstddef>
 

@@ -1,4 +1,5 @@
-"""The live fovea and settings: ctypes over libfoveal-client (include/foveal/client.h)."""
+"""The live fovea, its motion and settings, and foveald's prediction: ctypes over
+libfoveal-client (include/foveal/client.h)."""
 import ctypes
 import os
 import warnings
@@ -10,6 +11,8 @@ from typing import Optional, Tuple
  TIMEOUT, BAD_DATA) = range(1, 12)
 # enum foveal_fovea_state
 FIXATION, SACCADE, PURSUIT, BLINK, LOST = range(5)
+# FOVEAL_PREDICT_MAX_HORIZON_NS: foveald predicts at most this far past the sample.
+PREDICT_MAX_HORIZON_NS = 50_000_000
 
 
 class _Fovea(ctypes.Structure):
@@ -21,6 +24,12 @@ class _Fovea(ctypes.Structure):
 class _Settings(ctypes.Structure):
     _fields_ = [("sigma_d", ctypes.c_double), ("sigma_nd", ctypes.c_double), ("f_x", ctypes.c_double),
                 ("f_y", ctypes.c_double), ("dominant_eye", ctypes.c_int), ("generation", ctypes.c_uint64)]
+
+
+class _Motion(ctypes.Structure):
+    _fields_ = [("velocity_x", ctypes.c_float * 2), ("velocity_y", ctypes.c_float * 2),
+                ("lag_x", ctypes.c_float * 2), ("lag_y", ctypes.c_float * 2),
+                ("predictable", ctypes.c_int * 2), ("frame", ctypes.c_uint64)]
 
 
 class _Error(ctypes.Structure):
@@ -38,6 +47,19 @@ class Fovea:
     confidence: Tuple[float, float]
     state: Tuple[int, int]          # FIXATION, SACCADE, PURSUIT, BLINK, LOST
     frame: int                      # increments with every published sample
+
+
+@dataclass(frozen=True)
+class Motion:
+    """What foveald's prediction needs beyond a fovea (block version 4, foveald 0.4 and
+    later), per eye (index 0 left): the gaze pipeline's velocity, the smoother's lag and
+    whether the point may be extrapolated. It belongs to the fovea whose frame it names."""
+    velocity_x: Tuple[float, float]     # viewport px/s, y down
+    velocity_y: Tuple[float, float]
+    lag_x: Tuple[float, float]          # px the fovea trails the gaze in a steady movement (0 in a fixation)
+    lag_y: Tuple[float, float]
+    predictable: Tuple[bool, bool]      # fixation or smooth pursuit on the eye's own sample; False: held
+    frame: int                          # the Fovea.frame this motion belongs to
 
 
 class Eye(str):
@@ -141,6 +163,11 @@ def _library():
         lib.foveal_client_read.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Fovea)]
         lib.foveal_client_settings.restype = ctypes.c_int
         lib.foveal_client_settings.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Settings)]
+        lib.foveal_client_motion.restype = ctypes.c_int
+        lib.foveal_client_motion.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Motion)]
+        lib.foveal_client_predict.restype = ctypes.c_int
+        lib.foveal_client_predict.argtypes = [ctypes.POINTER(_Fovea), ctypes.POINTER(_Motion), ctypes.c_int64,
+                                              ctypes.POINTER(_Fovea)]
         lib.foveal_client_close.restype = None
         lib.foveal_client_close.argtypes = [ctypes.c_void_p]
         lib.foveal_client_mark.restype = ctypes.c_int
@@ -208,10 +235,56 @@ def mark(text: str, socket: Optional[str] = None, timeout_ms: int = 1000) -> int
     return t_ns.value
 
 
+def _fovea_of(f: _Fovea) -> Fovea:
+    return Fovea(f.t_ns, f.eye_width, f.eye_height, tuple(f.x), tuple(f.y), tuple(f.confidence), tuple(f.state),
+                 f.frame)
+
+
+def _c_fovea(f: Fovea) -> _Fovea:
+    try:
+        return _Fovea(f.t_ns, f.eye_width, f.eye_height, (ctypes.c_float * 2)(*f.x), (ctypes.c_float * 2)(*f.y),
+                      (ctypes.c_float * 2)(*f.confidence), (ctypes.c_uint32 * 2)(*f.state), f.frame)
+    except (TypeError, ValueError) as e:
+        raise ClientError(INVALID_ARGUMENT, f"predict: the fovea's fields do not fit foveal_fovea ({e})") from None
+
+
+def predict(fovea: Fovea, motion: Motion, t_ns: int) -> Fovea:
+    """foveald's prediction to display time (foveal_client_predict): the fovea moved from
+    its sample's time to t_ns (CLOCK_MONOTONIC ns), as foveald moves the fovea it renders
+    with (docs/filtering.md, "Prediction"). Per eye, the horizon t_ns - fovea.t_ns is
+    clamped to [0, PREDICT_MAX_HORIZON_NS] (a time not after the sample predicts nothing);
+    a predictable eye moves to x + lag_x + velocity_x * horizon (y alike), clamped inside
+    the viewport; any other eye is unchanged. The result's t_ns still names the sample.
+    Pure arithmetic: no lock, no system call. Raises ClientError: NO_DATA when the
+    motion is another fovea's (motion.frame != fovea.frame: read both again),
+    INVALID_ARGUMENT for a zero viewport or arguments of the wrong type."""
+    if not isinstance(fovea, Fovea) or not isinstance(motion, Motion):
+        raise ClientError(INVALID_ARGUMENT, f"predict: takes a Fovea and a Motion, not {type(fovea).__name__} and "
+                                            f"{type(motion).__name__}")
+    if not isinstance(t_ns, int) or isinstance(t_ns, bool) or not -2**63 <= t_ns < 2**63:
+        raise ClientError(INVALID_ARGUMENT, f"predict: t_ns must be an int64 of CLOCK_MONOTONIC ns, not {t_ns!r}")
+    lib = _library()
+    f = _c_fovea(fovea)
+    try:
+        m = _Motion((ctypes.c_float * 2)(*motion.velocity_x), (ctypes.c_float * 2)(*motion.velocity_y),
+                    (ctypes.c_float * 2)(*motion.lag_x), (ctypes.c_float * 2)(*motion.lag_y),
+                    (ctypes.c_int * 2)(*(1 if p else 0 for p in motion.predictable)), motion.frame)
+    except (TypeError, ValueError) as e:
+        raise ClientError(INVALID_ARGUMENT, f"predict: the motion's fields do not fit foveal_motion ({e})") from None
+    out = _Fovea()
+    code = lib.foveal_client_predict(ctypes.byref(f), ctypes.byref(m), t_ns, ctypes.byref(out))
+    if code == NO_DATA:
+        raise ClientError(code, f"predict: the motion belongs to frame {motion.frame}, the fovea is frame "
+                                f"{fovea.frame}: read both again")
+    if code != 0:
+        raise ClientError(code, "predict: " + lib.foveal_error_message(code).decode())
+    return _fovea_of(out)
+
+
 class Client:
     """One mapping of foveald's block. name: a shared-memory name ("/name"), or None for
     $FOVEAL_SHM_NAME, else foveald's default. Raises ClientError (NO_WRITER when foveald
-    is not running). read() and settings() take no lock and never block foveald."""
+    is not running). read(), motion() and settings() take no lock and never block foveald."""
 
     def __init__(self, name: Optional[str] = None):
         self._lib = _library()
@@ -232,8 +305,19 @@ class Client:
             raise ClientError(INVALID_ARGUMENT, "the client is closed")
         f = _Fovea()  # one per call: threads may share a client
         self._check(self._lib.foveal_client_read(self._handle, ctypes.byref(f)))
-        return Fovea(f.t_ns, f.eye_width, f.eye_height, tuple(f.x), tuple(f.y), tuple(f.confidence),
-                     tuple(f.state), f.frame)
+        return _fovea_of(f)
+
+    def motion(self) -> Motion:
+        """The motion of the latest fovea, for predict(). Read it right after read(): its
+        frame is then that fovea's, or a later one when foveald published in between (read
+        both again, or predict nothing this time). Raises ClientError as read(), and
+        WRONG_VERSION for a foveald before 0.4 (a block without motion: predict nothing)."""
+        if self._handle is None:
+            raise ClientError(INVALID_ARGUMENT, "the client is closed")
+        m = _Motion()
+        self._check(self._lib.foveal_client_motion(self._handle, ctypes.byref(m)))
+        return Motion(tuple(m.velocity_x), tuple(m.velocity_y), tuple(m.lag_x), tuple(m.lag_y),
+                      tuple(p == 1 for p in m.predictable), m.frame)
 
     def settings(self) -> Settings:
         """The active settings (raises ClientError as read())."""

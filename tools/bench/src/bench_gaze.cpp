@@ -25,7 +25,7 @@
 #include "foveal/render/compositor.hpp"
 #include "foveal/render/egl_context.hpp"
 #include "foveal/render/scene.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 
 namespace foveal::bench {
 

@@ -5,7 +5,7 @@
 
 #include "foveal/bench/bench_outputs.hpp"
 #include "foveal/core/json_text.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 
 namespace foveal::bench {
 

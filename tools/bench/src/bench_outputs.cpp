@@ -6,7 +6,7 @@
 
 #include "foveal/core/data_paths.hpp"
 #include "foveal/core/json_text.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/cli.hpp"
 #include "foveal/tools/run_program.hpp"
 #include "foveal/tools/staged_outputs.hpp"
 

@@ -21,8 +21,8 @@
 #include "foveal/image/metrics.hpp"
 #include "foveal/render/egl_context.hpp"
 #include "foveal/render/scene.hpp"
-#include "foveal/tools/args.hpp"
-#include "foveal/tools/cli.hpp"
+#include "foveal/runtime/args.hpp"
+#include "foveal/runtime/cli.hpp"
 
 namespace foveal::bench {
 
@@ -376,7 +376,9 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
 
   rusage ru{};
   ::getrusage(RUSAGE_SELF, &ru);
+  // What the charts' footer prints (tools/charts/run_settings.py): how each point was rendered and timed.
   nlohmann::json summary = {{"renderer", comp->renderer()}, {"size", {co.width, co.height}}, {"frames", a.frames},
+                            {"warmup", a.warmup}, {"pipeline", render::pipeline_name(a.pipeline)}, {"display", co.model.name},
                             {"fovea", {fovea->first, fovea->second}}, {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
   if (jod) summary["jod"] = jod_settings(*jod);
   // --shard given (1/1 too): a part for `bench merge`.

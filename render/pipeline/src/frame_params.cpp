@@ -1,0 +1,40 @@
+// What a frame is asked for: the EFR helper (efr_frame: each eye its own level) and the
+// pipelines by name (parse_pipeline and the lists the CLI and bench show).
+#include <string>
+#include <vector>
+
+#include "foveal/render/compositor.hpp"
+
+namespace foveal::render {
+
+FrameParams efr_frame(Method method, Eye dominant, double sigma_d, double sigma_nd, double fx, double fy) {
+  FrameParams p;
+  p.method = method;
+  for (Eye e : kEyes) {
+    EyeFoveation& f = p.eyes[static_cast<std::size_t>(e)];
+    f.sigma = e == dominant ? sigma_d : sigma_nd;
+    f.fx = fx;
+    f.fy = fy;
+  }
+  return p;
+}
+
+const std::vector<Pipeline>& all_pipelines() {
+  static const std::vector<Pipeline> p = {Pipeline::gbuffer, Pipeline::visibility};
+  return p;
+}
+
+const char* pipeline_name(Pipeline p) { return p == Pipeline::visibility ? "visibility" : "gbuffer"; }
+
+const std::vector<std::string>& pipeline_names() {
+  static const std::vector<std::string> n = {"gbuffer", "visibility"};
+  return n;
+}
+
+Result<Pipeline> parse_pipeline(const std::string& s) {
+  for (Pipeline p : all_pipelines())
+    if (s == pipeline_name(p)) return p;
+  return bad_input("unknown pipeline '" + s + "' (gbuffer, visibility)");
+}
+
+}  // namespace foveal::render
