@@ -14,9 +14,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "foveal/core/display_model.hpp"
+#include "foveal/core/gaze_log.hpp"
 #include "foveal/image/image.hpp"
 #include "foveal/perception/jod.hpp"
 #include "foveal/runtime/inset_levels.hpp"
@@ -39,20 +39,19 @@ constexpr double kTanX = 0.17632698, kTanY = 0.08748866;  // tan(10°), tan(5°)
 
 /// A native gaze log that looks at (kTanX, kTanY) for `seconds` at 120 Hz, both eyes open.
 void write_fixation_log(const std::string& path, double seconds) {
-  const double n = std::sqrt(kTanX * kTanX + kTanY * kTanY + 1);
-  const double x = kTanX / n, y = kTanY / n, z = -1 / n;
-  std::ofstream out(path);
-  out << "# foveal-gaze-log v1\n# rate_hz=120\n# source=test:fixation\n"
-         "t_ns,left_valid,left_dir_x,left_dir_y,left_dir_z,left_origin_x_mm,left_origin_y_mm,left_origin_z_mm,left_pupil_mm,"
-         "left_openness,right_valid,right_dir_x,right_dir_y,right_dir_z,right_origin_x_mm,right_origin_y_mm,right_origin_z_mm,"
-         "right_pupil_mm,right_openness,combined_valid,combined_dir_x,combined_dir_y,combined_dir_z,combined_origin_x_mm,"
-         "combined_origin_y_mm,combined_origin_z_mm\n";
-  char row[512];
+  GazeLogHeader header;
+  header.rate_hz = 120;
+  auto w = GazeLogWriter::create(path, header);
+  ASSERT_TRUE(w) << w.error().message;
+  const glm::vec3 look = glm::normalize(glm::vec3(static_cast<float>(kTanX), static_cast<float>(kTanY), -1.0f));
   for (long i = 0; i < std::lround(seconds * 120); ++i) {
-    std::snprintf(row, sizeof row, "%ld,15,%.8f,%.8f,%.8f,-31.5,0,0,3.5,1,15,%.8f,%.8f,%.8f,31.5,0,0,3.5,1,1,%.8f,%.8f,%.8f,,,\n",
-                  i * 8333333L, x, y, z, x, y, z, x, y, z);
-    out << row;
+    GazeSample s;
+    s.t_ns = i * 1'000'000'000 / 120;
+    for (EyeSample* e : {&s.eyes[0], &s.eyes[1]}) *e = {kValidDirection | kValidOpenness, look, {}, 0.0f, 1.0f};
+    s.combined = {kValidDirection, look};
+    ASSERT_TRUE(w->write(s));
   }
+  ASSERT_TRUE(w->commit());
 }
 
 TEST_F(QuadViews, TheComposedImageHoldsTheJodTheInsetTableDisplayPredictsAtTheTrueGaze) {
@@ -66,7 +65,7 @@ TEST_F(QuadViews, TheComposedImageHoldsTheJodTheInsetTableDisplayPredictsAtTheTr
   const InsetLevels& levels = **chosen;
   ASSERT_GT(levels.sigma_d, 1.1) << "the table foveates at this target";
 
-  write_fixation_log(rig_.path("fixation.csv"), 6);
+  ASSERT_NO_FATAL_FAILURE(write_fixation_log(rig_.path("fixation.csv"), 6));
   auto fd = rig_.foveald({"--source", "replay:" + rig_.path("fixation.csv"), "--end", "5", "--loop", "--no-render", "--out",
                           rig_.path("fd")},
                          "foveald");
