@@ -198,6 +198,7 @@ Status DaemonApp::setup_renderer() {
   ro.scene = o_.scene;
   ro.method = o_.method;
   ro.pipeline = o_.pipeline;
+  if (!o_.temporal.empty()) ro.temporal = o_.temporal == "on";
   ro.save_every = o_.save_every;
   ro.output.title = "foveald";
   ro.output.monitor = o_.monitor;

@@ -89,6 +89,7 @@ Status FrameRenderer::render(const std::function<FoveaFrame()>& latest, const Re
   render::FrameParams p = render::efr_frame(method_, dominant, s.sigma_d, s.sigma_nd, s.f_x, s.f_y);
   p.pipeline = pipeline_;
   p.ipd_mm = s.ipd_mm;
+  p.temporal = o_.temporal.value_or(s.temporal);
   if (head.valid) p.head = head.relative;
   // What the frame shows: the newest fovea, predicted to when the frame is shown.
   const auto shown_fovea = [&](const FoveaFrame& f) {

@@ -31,6 +31,7 @@ struct RenderOptions {
   std::string scene;              ///< glTF path or pattern:NAME
   std::string method = "rmfr";
   std::string pipeline = render::kDefaultPipelineName;  ///< gbuffer or visibility (docs/rmfr.md)
+  std::optional<bool> temporal;   ///< temporal accumulation (--temporal); unset: the profile's
   int width = 0, height = 0;      ///< 0: the display model's side-by-side size
   int save_every = 0;             ///< also save every Nth frame (0: first and last only)
   render::OutputOptions output;   ///< headless, window or direct mode

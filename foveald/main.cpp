@@ -67,6 +67,10 @@ void define_options(CLI::App& app, foveal::daemon::Options& o, Flags& f) {
   app.add_option("--scene", o.scene, "glTF file or pattern:NAME (default: the bundled Dungeon)");
   app.add_option("--pipeline", o.pipeline, "gbuffer or visibility (docs/rmfr.md, \"Pipelines\")")
       ->check(CLI::IsMember(foveal::render::pipeline_names()))->capture_default_str();
+  app.add_option("--temporal", o.temporal,
+                 "on or off: foveated temporal accumulation, RMFR in the visibility pipeline (docs/rmfr.md, \"Temporal "
+                 "accumulation\"; default: the profile's temporal key, off)")
+      ->check(CLI::IsMember({"on", "off"}));
   app.add_option("--method", o.method, "One of " + foveal::render::method_names_joined(", "))
       ->check(CLI::IsMember(foveal::render::method_names()))->capture_default_str();
   app.add_option("--pacing", o.pacing, "When frames start: jit (just in time before each refresh) or asap (default: jit on a display, asap headless; docs/latency.md)")

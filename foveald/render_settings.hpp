@@ -12,6 +12,7 @@ struct RenderSettings {
   double sigma_d = 2.0, sigma_nd = 3.0;
   double f_x = 0.3, f_y = 0.3;    ///< < 0: automatic
   double ipd_mm = 63.0;           ///< the user's, for the eye cameras
+  bool temporal = false;          ///< the profile's temporal accumulation (docs/rmfr.md)
   std::uint32_t generation = 0;   ///< increments with every change
 
   static RenderSettings from(const Profile& p, std::uint32_t generation) {
@@ -22,6 +23,7 @@ struct RenderSettings {
     s.f_x = p.f_x.value_or(-1.0);
     s.f_y = p.f_y.value_or(-1.0);
     s.ipd_mm = p.ipd_mm;
+    s.temporal = p.temporal;
     s.generation = generation;
     return s;
   }

@@ -146,7 +146,7 @@ PartitionName=test Nodes={NODE} Default=YES MaxTime=INFINITE State=UP
             self._start("munged", ["munged", "-F", "--force", "--socket", self.path("munge.socket"),
                                    "--key-file", self.path("munge.key"), "--pid-file", self.path("munged.pid"),
                                    "--log-file", self.path("munged.log"), "--seed-file", self.path("munged.seed")])
-            self._wait("munged's socket", lambda: os.path.exists(self.path("munge.socket")), 30)
+            self._wait("munged's socket", lambda: os.path.exists(self.path("munge.socket")), 60)
             self._start("slurmctld", ["slurmctld", "-D", "-i"])
             self._wait("slurmctld", lambda: self.run(["scontrol", "ping"], check=False).returncode == 0 and
                        "UP" in self.run(["scontrol", "ping"], check=False).stdout, 60)

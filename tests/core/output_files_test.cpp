@@ -215,13 +215,11 @@ pid_t start_long_write(const std::string& out, std::string& tmp) {
     ::_exit(127);
   }
   const std::string dir = fs::path(out).parent_path().string();
-  for (int i = 0; i < 1000; ++i) {
-    if (auto t = temporaries_of(dir); !t.empty()) {
-      tmp = t.front();
-      return pid;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  test::eventually([&] {
+    const auto t = temporaries_of(dir);
+    if (!t.empty()) tmp = t.front();
+    return !t.empty();
+  });
   return pid;
 }
 

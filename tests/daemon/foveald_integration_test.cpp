@@ -100,20 +100,18 @@ TEST_F(Foveald, StatusProfilesSettingsAndCleanSigterm) {
   // A small compositor at 60 Hz on a pattern: the frame stats show every settings change.
   start({"--loop", "--end", "5", "--speed", "1", "-q", "--no-shm", "--out", dir_.path("out"), "--scene",
          "pattern:checker", "--size", "64x36", "--fps", "60"});
-  // Samples are waited for (up to 10 s), not counted against the clock.
-  auto st = ctl({{"cmd", "status"}});
-  for (int i = 0; i < 1000 && st.value("samples", 0) <= 10; ++i) {
-    sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
-    st = ctl({{"cmd", "status"}});
-  }
+  // Samples are waited for, not counted against the clock.
+  nlohmann::json st;
+  test::eventually([&] { return (st = ctl({{"cmd", "status"}})).value("samples", 0) > 10; }, test::kEventWithinMs, 10);
   EXPECT_EQ(st["ok"], true);
   EXPECT_EQ(st["state"], "running");
   EXPECT_GT(st["samples"].get<int>(), 10);
   EXPECT_EQ(st["profile"], "default");
   // Sample to publish in the gaze thread: well under a millisecond on a quiet machine
-  // (printed); the bound only catches a thread that waits for something else.
+  // (printed, a figure); the bound is a hang guard, as a preempted thread may take a
+  // scheduler's slice or more on a loaded machine.
   std::printf("gaze thread latency p99 %.3f ms\n", st["latency_ms"]["p99"].get<double>());
-  EXPECT_LT(st["latency_ms"]["p99"].get<double>(), 100.0);
+  EXPECT_LT(st["latency_ms"]["p99"].get<double>(), static_cast<double>(test::kReturnsWithinNs) / 1e6);
 
   auto used = ctl({{"cmd", "use"}, {"profile", "bob"}});
   EXPECT_EQ(used["profile"], "bob");
@@ -125,11 +123,8 @@ TEST_F(Foveald, StatusProfilesSettingsAndCleanSigterm) {
   // applied a generation (the first frame with f auto also estimates f).
   const auto rendered_generation = [this](int g) {
     nlohmann::json r;
-    for (int i = 0; i < 500; ++i) {
-      r = ctl({{"cmd", "status"}})["render"];
-      if (r["settings_generation"].get<int>() >= g) break;
-      sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
-    }
+    test::eventually([&] { return (r = ctl({{"cmd", "status"}})["render"])["settings_generation"].get<int>() >= g; },
+                     test::kEventWithinMs, 10);
     return r;
   };
   const nlohmann::json rendered = rendered_generation(gen);
@@ -148,10 +143,8 @@ TEST_F(Foveald, StatusProfilesSettingsAndCleanSigterm) {
   // The next frames render with the new pair: bob is left-dominant, so left 2.8, right 3.2.
   // Frames are waited for, not counted against the clock: a loaded machine renders fewer.
   auto frames = rendered_generation(gen + 1);
-  for (int i = 0; i < 1000 && frames["frames"].get<int>() <= 10; ++i) {
-    sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
-    frames = ctl({{"cmd", "status"}})["render"];
-  }
+  test::eventually([&] { return (frames = ctl({{"cmd", "status"}})["render"])["frames"].get<int>() > 10; },
+                   test::kEventWithinMs, 10);
   EXPECT_GT(frames["frames"].get<int>(), 10);
   EXPECT_EQ(frames["settings_generation"].get<int>(), gen + 1);
   EXPECT_DOUBLE_EQ(frames["last_frame"]["left"]["sigma"].get<double>(), 2.8);
@@ -187,10 +180,16 @@ TEST_F(Foveald, StatusProfilesSettingsAndCleanSigterm) {
 }
 
 TEST_F(Foveald, ABrokenProfileOnSighupKeepsTheLastGoodOne) {
-  start({"--profile", "bob", "--loop", "--end", "5", "-q", "--no-shm", "--no-render", "--out", dir_.path("out")});
+  const int err = ::open(dir_.path("err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  ASSERT_GE(err, 0);
+  start({"--profile", "bob", "--loop", "--end", "5", "-q", "--no-shm", "--no-render", "--out", dir_.path("out")}, err);
+  ::close(err);
   test::write_file(dir_.path("config/foveal/profiles/bob.json"), "{ \"sigma_d\": ");  // broken by hand
   ASSERT_EQ(::kill(pid_, SIGHUP), 0);
-  sleep_until_ns(monotonic_now_ns() + 200 * kNsPerMs);
+  // The reload's refusal is waited for (the line it logs), not a time.
+  EXPECT_TRUE(test::eventually(
+      [&] { return test::read_file(dir_.path("err.txt")).find("keeping the last good profile") != std::string::npos; }))
+      << test::read_file(dir_.path("err.txt"));
   auto st = ctl({{"cmd", "status"}});
   EXPECT_EQ(st["state"], "running");
   EXPECT_DOUBLE_EQ(st["settings"]["sigma_d"].get<double>(), 2.4);
@@ -225,11 +224,14 @@ TEST_F(Foveald, AQualityTargetSetsTheLevelsItsTableChoosesUntilALevelIsSetByHand
 
 TEST_F(Foveald, MarkersReachTheTraceInTimeOrder) {
   start({"--loop", "--end", "5", "--speed", "1", "-q", "--no-shm", "--no-render", "--out", dir_.path("out")});
-  sleep_until_ns(monotonic_now_ns() + 200 * kNsPerMs);
+  const auto samples_over = [this](int n) {
+    return test::eventually([&] { return ctl({{"cmd", "status"}}).value("samples", 0) > n; }, test::kEventWithinMs, 10);
+  };
+  ASSERT_TRUE(samples_over(0));
   auto first = ctl({{"cmd", "mark"}, {"text", "trial 1, start"}});
   ASSERT_EQ(first["ok"], true) << first.dump();
   EXPECT_EQ(first["markers"], 1);
-  sleep_until_ns(monotonic_now_ns() + 200 * kNsPerMs);
+  ASSERT_TRUE(samples_over(20));  // samples between the marks, waited for
   // Through the command line, words joined by spaces.
   const auto cli = test::run("XDG_RUNTIME_DIR=" + dir_.path("run") + " " + test::bin("foveal") + " ctl mark trial 1 end");
   EXPECT_EQ(cli.exit_code, 0) << cli.err;
@@ -295,9 +297,19 @@ TEST_F(Foveald, SyntheticSourceForTwoSeconds) {
   const auto r = run_foveald(dir_.path(""), "--source synthetic --duration 2 --no-render --json --no-shm --out " + dir_.path("out"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  // 120 Hz in real time for 2 s.
-  EXPECT_GE(j["samples"].get<int>(), 220);
-  EXPECT_LE(j["samples"].get<int>(), 250);
+  // 120 Hz in real time: the samples' stamps are 1/120 s apart on the runtime clock, and
+  // none came before its time. (Not a count in 2 s of wall clock: a loaded machine
+  // starts the source late and notices the end late.)
+  std::istringstream trace(test::read_file(dir_.path("out/trace.csv")));
+  std::string line;
+  std::getline(trace, line);  // the column row
+  std::vector<long long> t;
+  while (std::getline(trace, line)) t.push_back(std::stoll(line.substr(0, line.find(','))));
+  ASSERT_GT(t.size(), 10u);
+  EXPECT_EQ(j["samples"].get<std::size_t>(), t.size());
+  const double span_s = static_cast<double>(t.back() - t.front()) / 1e9;
+  EXPECT_NEAR(static_cast<double>(t.size() - 1) / span_s, 120.0, 0.5);
+  EXPECT_LE(static_cast<double>(t.size()), 120.0 * j["uptime_s"].get<double>() + 2) << "samples ahead of their time";
   EXPECT_EQ(j["source"]["driver"], "synthetic");
   EXPECT_EQ(j["source"]["device"]["driver"], "synthetic");
   EXPECT_GE(j["uptime_s"].get<double>(), 2.0);
@@ -358,8 +370,8 @@ TEST_F(Foveald, HeadsetPoseSourceWaitsForItsHeadsetAndBadHeadSpecsAreNamed) {
 TEST_F(Foveald, ALiveSourceWaitsForItsDevice) {
   // No such tracker: foveald keeps running, answers, and says what it waits for.
   start({"--source", "hid:/dev/hidraw-foveal-test", "--no-render", "--no-shm", "-q", "--out", dir_.path("out")});
-  sleep_until_ns(monotonic_now_ns() + 200 * kNsPerMs);
-  auto st = ctl({{"cmd", "status"}});
+  nlohmann::json st;
+  test::eventually([&] { return (st = ctl({{"cmd", "status"}}))["source"].value("waiting_for", "") != ""; }, test::kEventWithinMs, 10);
   EXPECT_EQ(st["state"], "waiting");
   EXPECT_EQ(st["source"]["state"], "waiting");
   EXPECT_EQ(st["source"]["live"], true);
@@ -378,8 +390,8 @@ TEST_F(Foveald, ALiveSourceWaitsForItsDevice) {
 TEST_F(Foveald, SlowFramesNeverMakeItDeaf) {
   start({"--method", "full", "--loop", "--end", "20", "--no-shm", "-q", "--out", dir_.path("out")});
   // Wait for the first frame to be under way.
-  for (int i = 0; i < 100 && ctl({{"cmd", "status"}})["render"]["frames"].get<int>() < 1; ++i)
-    sleep_until_ns(monotonic_now_ns() + 100 * kNsPerMs);
+  ASSERT_TRUE(test::eventually([&] { return ctl({{"cmd", "status"}})["render"]["frames"].get<int>() >= 1; },
+                               test::kEventWithinMs, 100));
   // 20 requests back to back: a control thread that waited for frames would answer each
   // after another frame, so every reply would show a new frame count. However slow a
   // loaded machine makes both threads, most replies come within one frame.
@@ -508,11 +520,11 @@ TEST_F(Foveald, AFullStderrPipeSilencesNeitherSocketNorHeartbeatNorSigterm) {
   // Each change logs an info line: changes are sent until the queue (256 KiB) has
   // dropped some, whatever the lines' length (at most 30000).
   for (int i = 0; i < 30000; ++i) {
-    auto r = control_request(socket_, {{"cmd", "set"}, {"sigma_d", i % 2 ? 2.1 : 2.0}}, 2000);
+    auto r = control_request(socket_, {{"cmd", "set"}, {"sigma_d", i % 2 ? 2.1 : 2.0}}, 10000);
     ASSERT_TRUE(r) << "set " << i + 1 << ": " << r.error().message;
     ASSERT_EQ((*r)["ok"], true) << r->dump();
     if (i % 500 == 499) {
-      auto st = control_request(socket_, {{"cmd", "status"}}, 2000);
+      auto st = control_request(socket_, {{"cmd", "status"}}, 10000);
       ASSERT_TRUE(st) << st.error().message;
       if ((*st)["log"].value("dropped_lines", 0) > 0) break;
     }
@@ -533,16 +545,12 @@ TEST_F(Foveald, AFullStderrPipeSilencesNeitherSocketNorHeartbeatNorSigterm) {
   // The heartbeat goes on (every 10 ms): it is seen advancing.
   const std::int64_t h0 = heartbeat_of(shm);
   ASSERT_GT(h0, 0) << "cannot map " << shm;
-  bool beating = false;
-  for (int i = 0; i < 100 && !beating; ++i) {
-    sleep_until_ns(monotonic_now_ns() + 5 * kNsPerMs);
-    beating = heartbeat_of(shm) > h0;
-  }
+  const bool beating = test::eventually([&] { return heartbeat_of(shm) > h0; });
   EXPECT_TRUE(beating) << "the shared block's heartbeat stopped";
 
   // The reader dies: the next lines are EPIPE, not SIGPIPE.
   ::close(fds[0]);
-  for (int i = 0; i < 20; ++i) EXPECT_TRUE(control_request(socket_, {{"cmd", "set"}, {"sigma_d", 2.2}}, 2000));
+  for (int i = 0; i < 20; ++i) EXPECT_TRUE(control_request(socket_, {{"cmd", "set"}, {"sigma_d", 2.2}}, 10000));
   const TimeNs t0 = monotonic_now_ns();
   ASSERT_EQ(::kill(pid_, SIGTERM), 0);
   const int rc = wait_exit(test::kExitsWithinMs);
@@ -564,7 +572,7 @@ TEST_F(Foveald, AStoppedFovealdWithAFullBacklogTimesClientsOut) {
   start({"--loop", "--end", "5", "-q", "--no-shm", "--no-render", "--out", dir_.path("out")});
   ASSERT_EQ(::kill(pid_, SIGSTOP), 0);
   // Filled before a thread still inside accept() stops, the backlog would gain a slot.
-  ASSERT_TRUE(test::wait_until_stopped(pid_, 5000)) << "foveald did not stop";
+  ASSERT_TRUE(test::wait_until_stopped(pid_, test::kEventWithinMs)) << "foveald did not stop";
   std::vector<int> queued;  // connections it will never accept while stopped
   sockaddr_un a{};
   a.sun_family = AF_UNIX;

@@ -25,7 +25,7 @@ FoveaFrame tag(const GazeSample& s, float x) {
 }
 
 void wait_finished(const GazeLoop& loop) {
-  for (int i = 0; i < 2000 && !loop.finished(); ++i) sleep_until_ns(monotonic_now_ns() + kNsPerMs);
+  test::eventually([&] { return loop.finished(); }, test::kEventWithinMs, 1);
 }
 
 TEST(GazeLoop, PublishesEverySampleUntilTheSourceEnds) {
@@ -86,20 +86,20 @@ TEST(GazeLoop, PauseSkipsAndSetMapperTakesEffect) {
   GazeLoop loop(src, [](const GazeSample& s) { return tag(s, 1.0f); });
   loop.start();
   loop.set_paused(true);
-  sleep_until_ns(monotonic_now_ns() + 100 * kNsPerMs);
-  const std::uint64_t during_pause = loop.stats().samples;
-  sleep_until_ns(monotonic_now_ns() + 100 * kNsPerMs);
+  // The pause is in once the stats count a skipped sample: every sample published before
+  // it is counted in that snapshot, and none after it (waited for, not slept out).
+  ASSERT_TRUE(test::eventually([&] { return loop.stats().skipped > 0; }));
+  const GazeLoopStats paused = loop.stats();
+  const std::uint64_t during_pause = paused.samples;
+  ASSERT_TRUE(test::eventually([&] { return loop.stats().skipped > paused.skipped; }));  // a later snapshot
   EXPECT_EQ(loop.stats().samples, during_pause);
-  EXPECT_GT(loop.stats().skipped, 0u);
   loop.set_paused(false);
   loop.set_mapper([](const GazeSample& s) { return tag(s, 2.0f); });
   // The new mapper's first sample, and the stats that count it (published every
-  // kStatsPeriod, after the fovea), are waited for (up to 10 s), not expected by a set time.
+  // kStatsPeriod, after the fovea), are waited for, not expected by a set time.
   FoveaFrame f;
-  for (int i = 0; i < 1000 && !(loop.latest().load(f) && f.eyes[0].px.x == 2.0f &&
-                                loop.stats().samples > during_pause);
-       ++i)
-    sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
+  EXPECT_TRUE(test::eventually(
+      [&] { return loop.latest().load(f) && f.eyes[0].px.x == 2.0f && loop.stats().samples > during_pause; }));
   ASSERT_TRUE(loop.latest().load(f));
   EXPECT_FLOAT_EQ(f.eyes[0].px.x, 2.0f);
   EXPECT_GT(loop.stats().samples, during_pause);

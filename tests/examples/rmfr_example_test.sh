@@ -51,7 +51,7 @@ example=$work/ex/rmfr_deferred
 libs=$(ldd "$example")
 grep -q "$prefix.*libfoveal-rmfr" <<< "$libs" || { echo "$libs"; fail "the example does not load the prefix's libfoveal-rmfr"; }
 
-start_foveald 120
+start_foveald 600  # ended by the script; the duration is a hang guard
 
 render() {  # NAME ARGS...: one frame set, its JSON line kept as NAME.json
   local name=$1

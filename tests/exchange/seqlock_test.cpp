@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "foveal/runtime/seqlock.hpp"
+#include "test_support.hpp"
 
 namespace foveal {
 namespace {
@@ -49,7 +50,7 @@ TEST(SeqLock, ReadersNeverSeeATornValue) {
       }
     });
   // Let the readers get going first: on a loaded machine they may start late.
-  for (int i = 0; i < 2000 && reads.load() < 100; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  EXPECT_TRUE(test::eventually([&] { return reads.load() >= 100; }, test::kEventWithinMs, 1));  // joined below either way
   constexpr std::uint64_t kWrites = 200000;
   for (std::uint64_t k = 1; k <= kWrites; ++k)
     s.store({k, k, k, static_cast<double>(k), static_cast<std::uint32_t>(k)});

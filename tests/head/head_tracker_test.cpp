@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "foveal/runtime/head_tracker.hpp"
+#include "test_support.hpp"
 
 namespace foveal {
 namespace {
@@ -49,19 +50,11 @@ class ScriptedImu final : public PoseDevice {
   }
 };
 
-bool wait_for(const std::function<bool()>& f, int ms) {
-  for (int i = 0; i < ms / 5; ++i) {
-    if (f()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return f();
-}
-
 TEST(HeadTracker, FusesPredictsHoldsAndRecovers) {
   ScriptedImu imu;
   HeadTracker t(imu);
   t.start();
-  ASSERT_TRUE(wait_for([&] { return t.stats().poses > 200; }, 3000));
+  ASSERT_TRUE(test::eventually([&] { return t.stats().poses > 200; }));
   EXPECT_EQ(t.stats().state, HeadState::tracking);
   // Yaw grows at 0.5 rad/s: a prediction 50 ms ahead turns ~1.4° further than the newest pose.
   const TimedPose newest = *t.track().newest();
@@ -70,7 +63,7 @@ TEST(HeadTracker, FusesPredictsHoldsAndRecovers) {
   EXPECT_NEAR(angle_between(ahead.pose.orientation, newest.pose.orientation), 0.025, 0.004);
 
   imu.plugged = false;
-  ASSERT_TRUE(wait_for([&] { return t.stats().state == HeadState::reconnecting; }, 2000));
+  ASSERT_TRUE(test::eventually([&] { return t.stats().state == HeadState::reconnecting; }));
   const TimedPose held = *t.track().newest();
   std::this_thread::sleep_for(std::chrono::milliseconds(150));
   EXPECT_TRUE(t.stats().state == HeadState::reconnecting);
@@ -81,9 +74,9 @@ TEST(HeadTracker, FusesPredictsHoldsAndRecovers) {
   EXPECT_EQ(t.track().pose_at(monotonic_now_ns()).pose, held.pose);
 
   imu.plugged = true;
-  ASSERT_TRUE(wait_for([&] { return t.stats().reconnects == 1 && t.stats().state == HeadState::tracking; }, 3000));
+  ASSERT_TRUE(test::eventually([&] { return t.stats().reconnects == 1 && t.stats().state == HeadState::tracking; }));
   EXPECT_GE(t.stats().disconnects, 1u);
-  ASSERT_TRUE(wait_for([&] { return t.track().newest()->t_ns > held.t_ns; }, 1000));
+  ASSERT_TRUE(test::eventually([&] { return t.track().newest()->t_ns > held.t_ns; }));
   t.stop();
   EXPECT_EQ(t.stats().state, HeadState::stopped);
 }
@@ -124,7 +117,7 @@ TEST(HeadTracker, VelocityIsOverTheDevicesClock) {
   ScriptedSlam slam;
   HeadTracker t(slam, /*wait_for_device=*/false);
   t.start();
-  ASSERT_TRUE(wait_for([&] { return t.stats().poses == 40; }, 2000));
+  ASSERT_TRUE(test::eventually([&] { return t.stats().poses == 40; }));
   t.stop();
   const MotionEstimate m = t.motion();
   EXPECT_NEAR(m.velocity_m_s.x, 1.0f, 1e-3f);  // on the runtime times it would be ~10000 m/s
@@ -140,7 +133,7 @@ TEST(HeadTracker, WaitsForAnAbsentDevice) {
   EXPECT_EQ(t.stats().state, HeadState::waiting);
   EXPECT_FALSE(t.predicted(monotonic_now_ns()).valid);
   imu.plugged = true;
-  ASSERT_TRUE(wait_for([&] { return t.stats().state == HeadState::tracking; }, 3000));
+  ASSERT_TRUE(test::eventually([&] { return t.stats().state == HeadState::tracking; }));
   t.stop();
 }
 

@@ -4,6 +4,7 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <mutex>
 
 #include "foveal/drivers/hid/hid_backend.hpp"
 
@@ -18,6 +19,13 @@ struct FakeHidState {
   std::map<std::uint8_t, std::deque<std::vector<std::uint8_t>>> feature_sequences;
   std::vector<std::vector<std::uint8_t>> sent;                  ///< SET_REPORT requests
   std::deque<std::vector<std::uint8_t>> inputs;
+  /// Guards `inputs` where a test feeds them while a reader thread takes them
+  /// (push_input); single-threaded tests may push directly.
+  std::mutex inputs_mutex;
+  void push_input(std::vector<std::uint8_t> report) {
+    std::lock_guard lock(inputs_mutex);
+    inputs.push_back(std::move(report));
+  }
   int open_handles = 0;
 };
 
@@ -43,6 +51,7 @@ class FakeHidDevice final : public hid::HidDevice {
   }
   Result<std::size_t> read(std::span<std::uint8_t> buffer, int) override {
     if (!s_->present) return Error{ErrorKind::device, "gone"};
+    std::lock_guard lock(s_->inputs_mutex);
     if (s_->inputs.empty()) return std::size_t{0};
     const auto r = s_->inputs.front();
     s_->inputs.pop_front();

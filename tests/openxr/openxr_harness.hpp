@@ -219,8 +219,7 @@ class OpenXRTest : public ::testing::Test {
   }
   /// Waits until foveald publishes its block (the app could start earlier: it waits too).
   void wait_for_block() const {
-    for (int i = 0; i < 500 && !std::filesystem::exists("/dev/shm" + rig_.shm()); ++i)
-      sleep_until_ns(monotonic_now_ns() + 10 * kNsPerMs);
+    eventually([&] { return std::filesystem::exists("/dev/shm" + rig_.shm()); });
     ASSERT_TRUE(std::filesystem::exists("/dev/shm" + rig_.shm())) << rig_.err("foveald");
   }
 

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "foveal/image/image.hpp"
+#include "foveal/runtime/fovea_prediction.hpp"
 #include "foveal/runtime/inset_levels.hpp"
 #include "quad_views_fixture.hpp"
 
@@ -144,7 +145,10 @@ TEST_F(QuadViews, WithFovealdEveryFrameObeysTheRulesAndTheInnerViewsFollowTheGaz
 
 TEST_F(QuadViews, InnerViewsArePlacedOnTheGazePredictedToTheDisplayTime) {
   // Issue 37 item 1: in smooth pursuit each inner view's centre is closer to the eye's
-  // true gaze at the frame's displayTime than the sample it was predicted from is.
+  // true gaze at the time it was predicted to than the sample it was predicted from is.
+  // That time is the frame's displayTime, or the sample's time plus the 50 ms horizon where
+  // the display is further ahead (a loaded machine): judged there, the figure does not
+  // depend on how late the app's frame is.
   const test::RunResult synth = test::run(test::bin("foveal") + " synth --seed 5 --duration 40 --noise 0.1 --blink-rate 0.1 " +
                                           "--pursuit 0.7 -o " + rig_.path("synth.csv") + " --truth " + rig_.path("truth.csv"));
   ASSERT_EQ(synth.exit_code, 0) << synth.err;
@@ -181,7 +185,8 @@ TEST_F(QuadViews, InnerViewsArePlacedOnTheGazePredictedToTheDisplayTime) {
       if (std::llabs(r.t_ns - sample) <= 2 * kNsPerMs) row = &r;
     if (!steady || !row || display <= sample) continue;
     for (int e = 0; e < 2; ++e) {
-      const auto at_display = pursuit_at(display, e), into = pursuit_at(sample - 50 * kNsPerMs, e);
+      const TimeNs target = std::min<TimeNs>(display, sample + FoveaPrediction{}.max_horizon_ns);
+      const auto at_display = pursuit_at(target, e), into = pursuit_at(sample - 50 * kNsPerMs, e);
       if (!at_display || !into || !row->tracked[e]) continue;
       const Tan o = tangents(f["views"][e]), i = tangents(f["views"][e + 2]);
       if (i.l - o.l < 2e-3 * (o.r - o.l) || o.r - i.r < 2e-3 * (o.r - o.l) || i.d - o.d < 2e-3 * (o.u - o.d) ||
@@ -196,7 +201,7 @@ TEST_F(QuadViews, InnerViewsArePlacedOnTheGazePredictedToTheDisplayTime) {
     std::sort(v.begin(), v.end());
     return v.empty() ? 0.0 : v[v.size() / 2];
   };
-  std::printf("quad views in pursuit: %zu eye-frames; against the truth at displayTime the inner view's centre is %.3f deg "
+  std::printf("quad views in pursuit: %zu eye-frames; against the truth at the predicted time the inner view's centre is %.3f deg "
               "off (median), the sample it came from %.3f deg\n",
               placed.size(), median(placed), median(sampled));
   ASSERT_GT(placed.size(), 20u) << "too few pursuit frames: " << rig_.err("quad");

@@ -93,6 +93,27 @@ TEST(Profile, SetParsesAndValidates) {
   EXPECT_FALSE(p.set("colour", "red"));
 }
 
+// Temporal accumulation (docs/rmfr.md): off by default and then not written, so older
+// readers and the files they wrote are unchanged; "on" round-trips; anything else is refused.
+TEST(Profile, TemporalKeyIsOffByDefaultAndOnOrOff) {
+  Profile p;
+  p.name = "a";
+  EXPECT_FALSE(p.temporal);
+  EXPECT_FALSE(p.to_json().contains("temporal"));
+  EXPECT_TRUE(p.set("temporal", "on"));
+  EXPECT_TRUE(p.temporal);
+  auto back = Profile::from_json(p.to_json(), "a", "x");
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_TRUE(back->temporal);
+  EXPECT_TRUE(p.set("temporal", "off"));
+  EXPECT_FALSE(p.temporal);
+  EXPECT_FALSE(p.set("temporal", "yes"));
+  EXPECT_FALSE(p.temporal);
+  auto bad = Profile::from_json(nlohmann::json{{"temporal", true}}, "a", "f.json");
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("temporal"), std::string::npos) << bad.error().message;
+}
+
 TEST(ProfileStore, SaveLoadListActiveDelete) {
   test::TempDir dir;
   ProfileStore store(dir.path("foveal"));

@@ -49,7 +49,7 @@ TEST(Window, CalibrationTakesAnswersFromTheKeyboard) {
   const std::string script =
       test::bin("foveal") + " calibrate --profile w --scene pattern:checker --json > " + d.path("out.json") + " 2> " +
       d.path("err.txt") + " & P=\\$!; " +
-      "W=\\$(xdotool search --sync --name 'foveal calibrate' | head -1); sleep 0.5; xdotool windowfocus --sync \\$W; "
+      "W=\\$(xdotool search --sync --onlyvisible --name 'foveal calibrate' | head -1); xdotool windowfocus --sync \\$W; "
       "xdotool key --delay 150 l l l s d s s s; wait \\$P";
   auto r = test::run("XDG_CONFIG_HOME=" + d.path() + " timeout 120 xvfb-run -a -s '-screen 0 1280x720x24' sh -c \"" + script + "\"");
   ASSERT_EQ(r.exit_code, 0) << r.err << test::read_file(d.path("err.txt"));

@@ -46,14 +46,14 @@ cmake -S "$work/src/cmake" -B "$work/cmake-build" -G Ninja -DCMAKE_PREFIX_PATH="
   > "$work/cmake.log" 2>&1 || { show "$work/cmake.log"; fail "the CMake consumer does not configure"; }
 cmake --build "$work/cmake-build" > "$work/cmake-build.log" 2>&1 || { show "$work/cmake-build.log"; fail "the CMake consumer does not build"; }
 
-start_foveald 90
+start_foveald 600  # ended by the script; the duration is a hang guard
 
 # NAME BINARY SIGMA_D: the consumer reads a fovea and says "ready"; then sigma_d changes.
 run_consumer() {
   local name=$1 binary=$2 sigma=$3 pid
   env -u LD_LIBRARY_PATH "$binary" "$sigma" > "$work/$name.out" 2> "$work/$name.err" &
   pid=$!
-  for _ in $(seq 300); do
+  for _ in $(seq 600); do  # 60 s at least: a hang guard
     grep -q '^ready' "$work/$name.out" && break
     kill -0 "$pid" 2>/dev/null || break
     sleep 0.1

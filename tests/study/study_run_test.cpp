@@ -286,7 +286,7 @@ TEST(StudyRun, HeadsetWindowTakesTheKeyboard) {
   const std::string run = common_args(o, " --condition rmfr:2.6 --condition kfr:2.6") + " --out " + d.path("out") +
                           " --json > " + d.path("out.json") + " 2> " + d.path("err.txt") + " & P=\\$!; " +
                           // Escaped: the inner shell under xvfb-run expands these, not the outer one.
-                          "W=\\$(xdotool search --sync --name 'foveal study' | head -1); sleep 0.5; "
+                          "W=\\$(xdotool search --sync --onlyvisible --name 'foveal study' | head -1); "
                           "xdotool windowfocus --sync \\$W; " + keys + "wait \\$P";
   const auto r = test::run("timeout 120 xvfb-run -a -s '-screen 0 1280x720x24' sh -c \"" + run + "\"");
   ASSERT_EQ(r.exit_code, 0) << r.err << test::read_file(d.path("err.txt"));

@@ -38,7 +38,10 @@ class TempUser {
     name_ = "fovtest" + std::to_string(::getpid()) + "x" + std::to_string(counter++);
     const std::string add =
         "useradd --system --no-create-home --user-group --shell /usr/sbin/nologin " + name_ + " >/dev/null 2>&1";
-    for (int attempt = 0; attempt < 20 && !ok_; ++attempt) {  // parallel tests contend for /etc/passwd's lock
+    // Parallel tests contend for /etc/passwd's lock: retried until it is free (the
+    // deadline only a hang guard, as a loaded machine holds the lock longer).
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!ok_ && std::chrono::steady_clock::now() < until) {
       if (std::system(add.c_str()) == 0) ok_ = true;
       else std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
@@ -51,7 +54,8 @@ class TempUser {
   ~TempUser() {
     if (!ok_) return;
     const std::string del = "userdel " + name_ + " >/dev/null 2>&1";
-    for (int attempt = 0; attempt < 20 && std::system(del.c_str()) != 0; ++attempt)
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::system(del.c_str()) != 0 && std::chrono::steady_clock::now() < until)
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
     (void)std::system(("groupdel " + name_ + " >/dev/null 2>&1").c_str());  // where userdel left the group
   }

@@ -39,6 +39,22 @@ class TempDir {
 /// (docs/testing.md, "Events, not times").
 inline constexpr long long kReturnsWithinNs = 10'000'000'000LL;
 inline constexpr int kExitsWithinMs = 30000;
+/// Hang guard for waiting on an event a test causes (a sample, a frame, a state, a line
+/// in a log): it is waited for, polled, for at most this long on the monotonic clock.
+inline constexpr int kEventWithinMs = 60000;
+
+/// Polls `ready` every `poll_ms` until it holds or `within_ms` passed (a hang guard, not
+/// a timing); its last value. The deadline is on the clock, so a loaded machine that
+/// stretches each poll's sleep does not stretch the guard.
+template <class Ready>
+bool eventually(Ready&& ready, int within_ms = kEventWithinMs, int poll_ms = 5) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(within_ms);
+  while (!ready()) {
+    if (std::chrono::steady_clock::now() >= until) return ready();
+    std::this_thread::sleep_for(std::chrono::milliseconds(poll_ms));
+  }
+  return true;
+}
 
 /// Waits up to `ms` for child `pid` to exit: its exit code (128 + the signal when
 /// killed), or -1 while it still runs (the child is then left as it is).

@@ -32,10 +32,24 @@ foveal record --device auto --out /tmp/rec.csv --duration 4 --json > /tmp/record
 echo "record: rc=$? $(tr -d '\n ' < /tmp/record.json)"
 foveal_vm_guest verify-log /tmp/rec.csv 300
 
-# foveal record rides out an unplug: 1 s without the device in a 5 s recording.
-foveal record --device auto --out /tmp/rec2.csv --duration 5 --json > /tmp/record2.json 2>/tmp/record2.err &
+# foveal record rides out an unplug: 1 s without the device in a recording. Each step
+# waits for its event (the recording has samples, the node is gone, samples come again
+# after the replug; the recording's control socket counts them), so a loaded machine only
+# makes it slower; the 60 s limits are hang guards.
+mkdir -m 700 /tmp/rec2  # the control socket's directory must be closed to others
+foveal record --device auto --out /tmp/rec2.csv --duration 600 --control-socket /tmp/rec2/control.sock --json \
+  > /tmp/record2.json 2>/tmp/record2.err &
 REC=$!
-sleep 1.5; echo "" > $G/UDC; sleep 1; echo dummy_udc.0 > $G/UDC
+rec_samples() { foveal ctl --socket /tmp/rec2/control.sock --json status 2>/dev/null | grep -o '"samples":[0-9]*' | grep -o '[0-9]*$'; }
+rec_has() { n=$(rec_samples); [ "${n:-0}" -ge "$1" ]; }
+hidraw_gone() { ! ls /dev/hidraw* >/dev/null 2>&1; }
+wait_until 600 rec_has 120 || echo "record across an unplug: no samples before the unplug"
+echo "" > $G/UDC
+wait_until 600 hidraw_gone || echo "record across an unplug: the node did not go away"
+sleep 1; echo dummy_udc.0 > $G/UDC
+before=$(rec_samples)
+wait_until 600 rec_has $(( ${before:-0} + 150 )) || echo "record across an unplug: no samples after the replug"
+kill -INT $REC
 wait $REC
 echo "record across an unplug: rc=$? $(tr -d '\n ' < /tmp/record2.json)"
 if grep -q '"reconnects": 1' /tmp/record2.json; then
@@ -44,7 +58,8 @@ else
   echo "VMTEST record_unplug FAIL no reconnect: $(tr -d '\n' < /tmp/record2.json) $(head -c 200 /tmp/record2.err)"
 fi
 
-# (c) 20 unplug/replug cycles.
+# (c) 20 unplug/replug cycles, from a plugged-in tracker.
+wait_until 600 hid_ready || echo "gadget_replug: the tracker is not back after the recording"
 foveal_vm_guest replug $G/UDC dummy_udc.0 20
 
 stop_device $FEED /tmp/feed.log

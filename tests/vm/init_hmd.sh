@@ -20,8 +20,10 @@ probe() {
   echo dummy_udc.0 > $2
   foveal_vm_guest hmd-probe $1
   echo "" > $2
-  sleep 0.5
+  wait_until 600 gadget_gone || echo "hmd_$1: the gadget stayed on the bus after the unplug"
 }
+# No gadget on the host side's bus any more (only the root hubs, vendor 1d6b).
+gadget_gone() { ! grep -qsv 1d6b /sys/bus/usb/devices/*/idVendor; }
 
 P=/sys/kernel/config/usb_gadget/psvr2
 psvr2_gadget $P /dev/ffs-gaze --pose

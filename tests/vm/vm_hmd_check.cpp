@@ -188,7 +188,14 @@ FollowCheck check_vive_rows(const std::vector<HeadRow>& rows, const std::vector<
     for (auto [t, h] : pts) {
       st += t - t0, sh += h, stt += (t - t0) * (t - t0), sth += (t - t0) * h;
     }
-    const double slope = (n * sth - st * sh) / (n * stt - st * st), icpt = (sh - slope * st) / n;
+    const double slope = (n * sth - st * sh) / (n * stt - st * st);
+    // The line's offset is the median pose's, not the least-squares one: poses that came
+    // late (a loaded host delays the emulated sensor's reports) would pull a mean back and
+    // make the timely ones look ahead by what they pulled.
+    std::vector<double> offsets;
+    for (auto [t, h] : pts) offsets.push_back(h - slope * (t - t0));
+    std::nth_element(offsets.begin(), offsets.begin() + static_cast<std::ptrdiff_t>(offsets.size() / 2), offsets.end());
+    const double icpt = offsets[offsets.size() / 2];
     // Residuals: ahead of the line by at most the angle tolerance (prediction
     // overshooting), behind by at most the late tolerance's worth of turning (late or
     // held measurements, as for the PS VR2).

@@ -63,11 +63,19 @@ int probe_psvr2() {
     if (ctx) libusb_exit(ctx);
     return verdict("hmd_psvr2_usb", pass, details) ? 0 : 1;
   };
-  // Enumeration after the bind takes about half a second here.
-  wait_for([] { return usb_device_present(kPsvr2Vendor, kPsvr2Product); }, 10 * kNsPerSec, 20 * kNsPerMs);
-  sleep_until_ns(monotonic_now_ns() + 200 * kNsPerMs);  // its device node follows the sysfs entry
-  if (libusb_init(&ctx) != 0) return done(false, "libusb_init failed");
-  h = libusb_open_device_with_vid_pid(ctx, kPsvr2Vendor, kPsvr2Product);
+  // Enumeration after the bind takes about half a second here, and its device node
+  // follows the sysfs entry: both waited for (60 s each, hang guards), not a time. A fresh
+  // libusb context each try, as one made before the node sees no new device without udevd.
+  wait_for([] { return usb_device_present(kPsvr2Vendor, kPsvr2Product); }, 60 * kNsPerSec, 20 * kNsPerMs);
+  wait_for(
+      [&] {
+        if (libusb_init(&ctx) != 0) return ctx = nullptr, false;
+        if ((h = libusb_open_device_with_vid_pid(ctx, kPsvr2Vendor, kPsvr2Product))) return true;
+        libusb_exit(ctx);
+        ctx = nullptr;
+        return false;
+      },
+      60 * kNsPerSec, 20 * kNsPerMs);
   if (!h) return done(false, "no 054c:0cde to open");
   std::uint8_t slam_ep = 0, status_ep = 0;
   int slam_alt = -1, status_alt = -1;
@@ -147,7 +155,7 @@ std::string vive_hidraw() {
 
 int probe_vive() {
   std::string node;
-  wait_for([&] { return !(node = vive_hidraw()).empty(); }, 10 * kNsPerSec, 50 * kNsPerMs);
+  wait_for([&] { return !(node = vive_hidraw()).empty(); }, 60 * kNsPerSec, 50 * kNsPerMs);
   if (node.empty()) return verdict("hmd_vive_hid", false, "no hidraw node for 28de:2300") ? 0 : 1;
   const int fd = ::open(node.c_str(), O_RDWR);
   if (fd < 0) return verdict("hmd_vive_hid", false, "cannot open " + node) ? 0 : 1;

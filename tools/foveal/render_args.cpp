@@ -24,6 +24,11 @@ void add_render_options(CLI::App& sub, RenderArgs& a) {
   sub.add_option("--pipeline", a.pipeline, "gbuffer or visibility: how surface samples are made (docs/rmfr.md, \"Pipelines\")")
       ->check(CLI::IsMember(render::pipeline_names()))
       ->capture_default_str();
+  sub.add_option("--temporal", a.temporal,
+                 "on or off: foveated temporal accumulation, RMFR in the visibility pipeline (docs/rmfr.md, \"Temporal "
+                 "accumulation\"); every frame rendered accumulates")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   sub.add_option("--sigma-d", a.sigma_d, "RMFR level of the dominant eye (>= 1)")->capture_default_str();
   sub.add_option("--sigma-nd", a.sigma_nd, "RMFR level of the other eye (>= sigma-d)")->capture_default_str();
   sub.add_option("--dominant", a.dominant, "Dominant eye")->check(CLI::IsMember({"left", "right"}))->capture_default_str();
@@ -118,6 +123,7 @@ Result<RenderSetup> resolve(const RenderArgs& a) {
   if (!pipeline) return Error{pipeline.error().kind, "--pipeline: " + pipeline.error().message};
   s.frame = render::efr_frame(*method, dominant, a.sigma_d, a.sigma_nd, a.fx, a.fy);
   s.frame.pipeline = *pipeline;
+  s.frame.temporal = a.temporal == "on";
   for (auto& e : s.frame.eyes)
     e.kfr_alpha = a.kfr_alpha, e.layer_scale = a.layer_scale, e.inset_deg = a.inset_deg, e.inset_band_deg = a.inset_band_deg;
   s.auto_f = a.f == "auto";

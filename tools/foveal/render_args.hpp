@@ -19,6 +19,7 @@ struct RenderArgs {
   std::string variant;  ///< --variant: a KHR_materials_variants variant of the scene
   std::string method = "rmfr";
   std::string pipeline = render::kDefaultPipelineName;
+  std::string temporal = "off";  ///< on: temporal accumulation (docs/rmfr.md)
   double sigma_d = 2.0, sigma_nd = 3.0;
   std::string dominant = "right";
   double fx = 0.3, fy = 0.3;

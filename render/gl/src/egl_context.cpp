@@ -5,7 +5,7 @@
 
 #include <cstring>
 
-#include "egl_util.hpp"
+#include "foveal/render/egl_util.hpp"
 #include "foveal/render/gl.hpp"
 
 namespace foveal::gl {

@@ -1,6 +1,6 @@
 #pragma once
 // Shared by the glTF loader's parts (gltf_loader.cpp, gltf_json_checks.cpp,
-// gltf_builder.cpp). CPU only.
+// gltf_builder.cpp and the files it calls). CPU only.
 #include <tiny_gltf.h>
 
 #include <nlohmann/json.hpp>

@@ -15,8 +15,8 @@
 #include <ctime>
 #include <filesystem>
 
-#include "../../gl/src/egl_util.hpp"
 #include "foveal/core/clock.hpp"
+#include "foveal/render/egl_util.hpp"
 
 namespace foveal::render {
 

@@ -61,11 +61,11 @@ Result<Compositor> Compositor::create(const CompositorOptions& o, const gl::Shad
   };
   for (const auto& [prog, stages] : programs)
     if (Status s = impl->build(*prog, stages, {}); !s) return s.error();
-  for (std::size_t m = 1; m < kBuiltinMappings; ++m) {  // RMFR's resolve is foveal-rmfr's
-    const std::string mapping = "#define MAPPING " + std::to_string(m) + "\n";
+  for (std::size_t v = 0; v < mapping_variant_count(); ++v) {  // RMFR's resolve is foveal-rmfr's
+    if (!mapping_kernel(v).built_up_front || mapping_kernel(v).rmfr_passes) continue;
     for (std::size_t lens = 0; lens < 2; ++lens)
-      if (Status s = impl->build(impl->resolve_progs[m][lens], {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "resolve.frag"}},
-                                 mapping + (lens ? "#define DISTORTION 1\n" : ""));
+      if (Status s = impl->build(impl->resolve_progs[v][lens], {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "resolve.frag"}},
+                                 lens ? "#define DISTORTION 1\n" : "", mapping_files(v));
           !s)
         return s.error();
   }
@@ -126,6 +126,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
   // the right eye's could come later still, but both eyes show one gaze sample.
   std::array<EyeFoveation, 2> eyes = params.eyes;
   const bool blended = detail::has_forward_draws(scene);
+  bool accumulated = false;
   for (Eye e : kEyes) {
     const std::size_t i = static_cast<std::size_t>(e);
     const LensDistortion& lens = m.opt.model.distortion[i];
@@ -163,6 +164,10 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     if (!mapping) return mapping.error();
     const std::size_t variant = *mapping;
     if (Status s = m.ensure_variant(variant); !s) return s.error();
+    // Temporal accumulation: RMFR's kernel in the visibility pipeline (docs/rmfr.md).
+    const bool accumulate = params.temporal && params.pipeline == Pipeline::visibility && mapping_kernel(variant).rmfr_passes && plan.method != Method::full;
+    if (Status s = m.use_jitter(i, variant, accumulate); !s) return s.error();
+    accumulated = accumulated || accumulate;
 
     // The eye's surface samples, through the frame's pipeline.
     const detail::SurfaceTargets* surface = nullptr;
@@ -233,10 +238,12 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     m.timer.mark(Pass::lighting);
 
     // Resolve into this eye's half of the output. KFR's angle axis wraps around.
-    if (variant == 0) {  // RMFR's kernel (rmfr, uniform, fixed): foveal-rmfr's resolve
+    if (mapping_kernel(variant).rmfr_passes) {  // RMFR's kernel (rmfr, uniform, fixed): foveal-rmfr's resolve
       const rmfr::Lens l = rmfr_lens(lens);
-      if (Status s = m.foveator->resolve(rmfr_plan(plan), rs.texture.id(), resolve_fbo, resolve_origin.x,
-                                         resolve_origin.y, distort && !blend_under_lens ? &l : nullptr);
+      const rmfr::Lens* through = distort && !blend_under_lens ? &l : nullptr;
+      if (Status s = accumulate ? m.temporal_resolve(i, plan, rs, tg, scene, view, resolve_fbo, resolve_origin, through)
+                                : m.foveator->resolve(rmfr_plan(plan), rs.texture.id(), resolve_fbo, resolve_origin.x,
+                                                      resolve_origin.y, through);
           !s)
         return s.error();
       m.timer.mark(Pass::inverse);
@@ -245,7 +252,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     }
     glBindFramebuffer(GL_FRAMEBUFFER, resolve_fbo);
     glViewport(resolve_origin.x, resolve_origin.y, m.eye_w, m.eye_h);
-    glTextureParameteri(rs.texture.id(), GL_TEXTURE_WRAP_T, plan.method == Method::kfr ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+    glTextureParameteri(rs.texture.id(), GL_TEXTURE_WRAP_T, mapping_kernel(variant).repeats_v ? GL_REPEAT : GL_CLAMP_TO_EDGE);
     const GLuint ip = m.resolve_progs[variant][distort && !blend_under_lens ? 1 : 0].id();
     glUseProgram(ip);
     set_mapping(ip, plan, texture_size);
@@ -259,6 +266,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     m.timer.mark(Pass::inverse);
     if (Status s = blend_eye(); !s) return s.error();
   }
+  if (accumulated) m.temporal->next_frame();
   glFinish();
   times.gpu_done_ns = monotonic_now_ns();
   times.cpu = std::chrono::duration<double, std::milli>(Clock::now() - cpu_start).count();
@@ -307,6 +315,9 @@ std::array<int, 2> Compositor::buffer_size(Eye e) const {
   return {p.buffer_w, p.buffer_h};
 }
 const EyePlan& Compositor::plan(Eye e) const { return impl_->plans[static_cast<std::size_t>(e)]; }
+void Compositor::reset_history() {
+  if (impl_->temporal) impl_->temporal->reset();
+}
 
 std::string Compositor::shading_variant() const { return impl_->layout.variant_name(); }
 std::size_t Compositor::gbuffer_bytes_per_pixel() const { return impl_->layout.bytes_per_pixel(); }

@@ -19,6 +19,7 @@
 #include "pass_timer.hpp"
 #include "pass_uniforms.hpp"
 #include "render_targets.hpp"
+#include "temporal_accumulation.hpp"
 #include "visibility_pipeline.hpp"
 
 namespace foveal::render {
@@ -31,9 +32,9 @@ struct Compositor::Impl {
   CompositorOptions opt;
   int eye_w = 0, eye_h = 0;
   gl::Program gbuffer_prog, pattern_prog, shadow_prog, blend_prog;
-  // One per MAPPING variant (mapping_variant_count: 0 RMFR/full, 1 KFR, 2 layers, then
-  // the described methods' kernels, built on first use); resolve also with and without
-  // the lens. RMFR maps and resolves through foveal-rmfr, so its map and resolve slots stay empty.
+  // One per method kernel (mapping_index: RMFR's, KFR's, the layers', the inset's; a
+  // kernel not built up front is built on first use); resolve also with and without the
+  // lens. RMFR maps and resolves through foveal-rmfr, so its map and resolve slots stay empty.
   std::vector<gl::Program> map_progs = std::vector<gl::Program>(mapping_variant_count());
   std::vector<gl::Program> lighting_progs = std::vector<gl::Program>(mapping_variant_count());
   std::vector<std::array<gl::Program, 2>> resolve_progs = std::vector<std::array<gl::Program, 2>>(mapping_variant_count());
@@ -59,6 +60,7 @@ struct Compositor::Impl {
   std::optional<detail::VisibilityPipeline> visibility;
   std::array<std::optional<detail::ColorTarget>, 2> reduced;
   std::optional<detail::ColorTarget> undistorted;  // blend target under the lens (made on first use)
+  std::optional<detail::TemporalAccumulation> temporal;  // FrameParams::temporal's pass and histories (first use)
   detail::ColorTarget output, shadow;
   std::array<EyePlan, 2> plans{};
   detail::PassTimer timer;
@@ -84,6 +86,14 @@ struct Compositor::Impl {
   void lighting_pass(GLuint p, const detail::SurfaceTargets& src, glm::ivec2 origin, const EyeView& v);
   void copy_behind(GLuint color, glm::ivec2 origin);
   void blend_pass(const Scene& scene, const EyeView& v, GLuint fbo, GLuint color, glm::ivec2 origin, GLuint depth);
+
+  // Temporal accumulation (temporal_accumulation.cpp): this frame's grid jitter on the
+  // eye's RMFR programs (0 unless `on`; off drops the eye's history), and the eye's lit
+  // reduced buffer accumulated and resolved into `fbo` at `origin`, through `lens` if given.
+  Status use_jitter(std::size_t eye, std::size_t variant, bool on);
+  Status temporal_resolve(std::size_t eye, const EyePlan& plan, const detail::ColorTarget& lit,
+                          const detail::SurfaceTargets& surface, const Scene& scene, const EyeView& view, GLuint fbo,
+                          glm::ivec2 origin, const rmfr::Lens* lens);
 
   // The programs: shader variants for the scene's features and lights, the described
   // methods' on first use (compositor_programs.cpp).

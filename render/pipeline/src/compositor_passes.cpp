@@ -104,7 +104,7 @@ Result<const detail::SurfaceTargets*> Compositor::Impl::gbuffer_surface(const Ey
   // Mapping: G-buffer -> reduced G-buffer; RMFR's (also full through the lens) is foveal-rmfr's.
   ensure_transformed(eye, plan.buffer_w, plan.buffer_h, !plan.layers.empty());
   const detail::SurfaceTargets& tg = *transformed[eye];
-  if (variant == 0) {  // RMFR's kernel: rmfr, and uniform and fixed as plans on it
+  if (mapping_kernel(variant).rmfr_passes) {  // RMFR's kernel: rmfr, and uniform and fixed as plans on it
     if (Status s = foveator->map(rmfr_plan(plan), (*g)->textures(), tg.fbo.id()); !s) return s.error();
     timer.mark(Pass::mapping);
     return &tg;

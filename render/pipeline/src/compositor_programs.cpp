@@ -1,5 +1,6 @@
 // The compositor's programs: the shader variant for the scene's material features and
-// lights (use_features), the described methods' programs on first use (ensure_variant).
+// lights (use_features), the programs of the kernels not built up front on first use
+// (ensure_variant).
 #include <string>
 #include <vector>
 
@@ -42,16 +43,20 @@ Status Compositor::Impl::use_features(unsigned features, bool file_lights) {
   const std::string lit = d + (file_lights ? "#define FILE_LIGHTS 1\n" : "");
   if (Status s = build(blend_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "blend.frag"}}, lit); !s) return s;
   const gl::ShaderStage vert{GL_VERTEX_SHADER, "fullscreen.vert"};
-  for (std::size_t m = 0; m < kBuiltinMappings; ++m)
-    if (Status s = build(lighting_progs[m], {vert, {GL_FRAGMENT_SHADER, "lighting.frag"}}, mapping_define(m) + lit); !s) return s;
-  for (std::size_t m = kBuiltinMappings; m < lighting_progs.size(); ++m) lighting_progs[m].reset();  // rebuilt on use
+  for (std::size_t v = 0; v < lighting_progs.size(); ++v) {
+    lighting_progs[v].reset();  // the kernels not built up front: rebuilt on use
+    if (mapping_kernel(v).built_up_front)
+      if (Status s = build(lighting_progs[v], {vert, {GL_FRAGMENT_SHADER, "lighting.frag"}}, lit, mapping_files(v)); !s) return s;
+  }
   lit_defines = lit;
   requested_file_lights = file_lights;
   if (same_features) return {};  // the rest depends on the features only
   if (Status s = build(gbuffer_prog, {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "gbuffer.frag"}}, d); !s) return s;
-  for (std::size_t m = 1; m < kBuiltinMappings; ++m)  // RMFR maps through foveal-rmfr, which maps every attachment
-    if (Status s = build(map_progs[m], {vert, {GL_FRAGMENT_SHADER, "map.frag"}}, mapping_define(m) + d); !s) return s;
-  for (std::size_t m = kBuiltinMappings; m < map_progs.size(); ++m) map_progs[m].reset();
+  for (std::size_t v = 0; v < map_progs.size(); ++v) {  // RMFR maps through foveal-rmfr, which maps every attachment
+    map_progs[v].reset();
+    if (mapping_kernel(v).built_up_front && !mapping_kernel(v).rmfr_passes)
+      if (Status s = build(map_progs[v], {vert, {GL_FRAGMENT_SHADER, "map.frag"}}, d, mapping_files(v)); !s) return s;
+  }
   if (Status s = visibility->use_layout(shaders, next); !s) return s;
   if ((features & feature_sheen) && !sheen_albedo) {
     constexpr int kSize = 32;
@@ -70,23 +75,24 @@ Status Compositor::Impl::use_features(unsigned features, bool file_lights) {
   return {};
 }
 
-// A described method's programs (variant v >= kBuiltinMappings), built on first use
-// and again after a features change: compiling every kernel up front would cost each
-// compositor the programs of methods it never runs.
+// The programs of a kernel not built up front (MethodKernel::built_up_front), built on
+// first use and again after a features change: compiling every kernel up front would
+// cost each compositor the programs of methods it never runs.
 Status Compositor::Impl::ensure_variant(std::size_t v) {
-  if (v < kBuiltinMappings) return {};
+  const MethodKernel& kernel = mapping_kernel(v);
+  if (kernel.built_up_front) return {};
   const std::vector<gl::VirtualFile> files = mapping_files(v);
   const gl::ShaderStage vert{GL_VERTEX_SHADER, "fullscreen.vert"};
   if (!lighting_progs[v])
-    if (Status s = build(lighting_progs[v], {vert, {GL_FRAGMENT_SHADER, "lighting.frag"}}, mapping_define(v) + lit_defines, files); !s)
+    if (Status s = build(lighting_progs[v], {vert, {GL_FRAGMENT_SHADER, "lighting.frag"}}, lit_defines, files); !s)
       return s;
-  if (!map_progs[v])
-    if (Status s = build(map_progs[v], {vert, {GL_FRAGMENT_SHADER, "map.frag"}}, mapping_define(v) + layout.defines(), files); !s)
+  if (!map_progs[v] && !kernel.rmfr_passes)  // foveal-rmfr maps and resolves RMFR's
+    if (Status s = build(map_progs[v], {vert, {GL_FRAGMENT_SHADER, "map.frag"}}, layout.defines(), files); !s)
       return s;
   for (std::size_t lens = 0; lens < 2; ++lens)
-    if (!resolve_progs[v][lens])
+    if (!resolve_progs[v][lens] && !kernel.rmfr_passes)
       if (Status s = build(resolve_progs[v][lens], {vert, {GL_FRAGMENT_SHADER, "resolve.frag"}},
-                           mapping_define(v) + (lens ? "#define DISTORTION 1\n" : ""), files);
+                           lens ? "#define DISTORTION 1\n" : "", files);
           !s)
         return s;
   return visibility->ensure_mapping(shaders, v);

@@ -39,6 +39,7 @@ TargetMemory Compositor::memory() const {
   t.gbuffer += v.gbuffer;
   t.transformed += v.transformed;
   t.visibility = v.visibility;
+  t.temporal = v.temporal;
   return t;
 }
 
@@ -54,6 +55,7 @@ TargetMemory Compositor::memory(Pipeline p) const {
     t.visibility = m.visibility->visibility_bytes();
     t.transformed = m.visibility->eye_surface_bytes();
     t.gbuffer = m.visibility->full_surface_bytes();
+    t.temporal = m.temporal ? m.temporal->bytes() : 0;
     return t;
   }
   t.gbuffer = m.gbuffer ? m.gbuffer->bytes() : 0;

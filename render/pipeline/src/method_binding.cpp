@@ -1,5 +1,5 @@
-// Method binding: which MAPPING program variant a foveation method runs, its defines and
-// kernel file, its plan as foveal-rmfr takes it, and the mapping uniforms of
+// Method binding: which program variant (kernel) a foveation method runs and its GLSL,
+// its plan as foveal-rmfr takes it, and the mapping uniforms of
 // shaders/common/mapping.glsl for one eye's plan.
 #include <algorithm>
 #include <cmath>
@@ -20,28 +20,17 @@ using detail::set;
 
 }  // namespace
 
-std::size_t mapping_variant_count() { return kBuiltinMappings + described_kernels().size(); }
+std::size_t mapping_variant_count() { return method_kernels().size(); }
 
-std::string mapping_define(std::size_t v) {
-  return "#define MAPPING " + std::to_string(std::min(v, kBuiltinMappings)) + "\n";
-}
+const MethodKernel& mapping_kernel(std::size_t v) { return *method_kernels().at(v); }
 
 std::vector<gl::VirtualFile> mapping_files(std::size_t v) {
-  if (v < kBuiltinMappings || v >= mapping_variant_count()) return {};
-  return {{"method/kernel", described_kernels()[v - kBuiltinMappings]->kernel_glsl}};
+  if (v >= mapping_variant_count()) return {};
+  return {{"method/kernel", mapping_kernel(v).glsl}};
 }
 
 Result<std::size_t> mapping_index(const EyePlan& plan) {
-  if (const int k = kernel_index(plan.method); k >= 0) return kBuiltinMappings + static_cast<std::size_t>(k);
-  switch (plan.method) {
-    case Method::full:
-    case Method::rmfr:
-    case Method::uniform:
-    case Method::fixed: return std::size_t{0};
-    case Method::kfr: return std::size_t{1};
-    case Method::hyperbolic:
-    case Method::linear: return std::size_t{2};
-  }
+  if (const int k = kernel_index(plan.method); k >= 0) return static_cast<std::size_t>(k);
   return bad_input("no mapping for foveation method " + std::to_string(static_cast<int>(plan.method)));
 }
 
@@ -64,13 +53,11 @@ rmfr::Lens rmfr_lens(const LensDistortion& l) {
 
 // The mapping uniforms of shaders/common/mapping.glsl for one eye's plan.
 void set_mapping(GLuint p, const EyePlan& plan, glm::vec2 texture_size) {
-  const bool full = plan.method == Method::full;
   set(p, "u_buffer_size", glm::vec2(plan.buffer_w, plan.buffer_h));
   set(p, "u_texture_size", texture_size);
   set(p, "u_screen_size", glm::vec2(plan.screen_w, plan.screen_h));
   set(p, "u_fovea", glm::vec2(plan.fovea));
-  const float identity = static_cast<float>(rmfr::kRmfrIdentityF);
-  set(p, "u_f", full ? glm::vec2(identity) : glm::vec2(plan.f));
+  set(p, "u_f", glm::vec2(plan.f));  // full's plan holds the identity (1e30)
   set(p, "u_kfr", glm::vec2(static_cast<float>(plan.kfr_log_max), static_cast<float>(plan.kfr_alpha)));
   set(p, "u_tan", glm::vec4(plan.frustum.tan_left, plan.frustum.tan_right, plan.frustum.tan_bottom, plan.frustum.tan_top));
   const int n = std::min<int>(static_cast<int>(plan.layers.size()), 8);

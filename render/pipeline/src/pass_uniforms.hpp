@@ -9,6 +9,7 @@
 
 #include "foveal/core/error.hpp"
 #include "foveal/image/foveation_plan.hpp"
+#include "foveal/image/method_description.hpp"
 #include "foveal/render/gl.hpp"
 #include "foveal/render/shader_loader.hpp"
 #include "foveal/render/scene_types.hpp"
@@ -51,18 +52,16 @@ bool has_forward_draws(const Scene& scene);
 
 }  // namespace detail
 
-/// The MAPPING variant of the mapping-dependent programs (shaders/common/mapping.glsl).
-/// A method without one is an error, never another method's kernel.
+/// The variant of the mapping-dependent programs: one per method kernel, in the order
+/// of method_kernels() (foveal/image/method_description.hpp). A method
+/// without one is an error, never another method's kernel.
 Result<std::size_t> mapping_index(const EyePlan& plan);
-
-/// The variants: 0 RMFR (and full, uniform, fixed), 1 KFR, 2 the layers, then one per
-/// described method's kernel (foveal/image/method_description.hpp), whose programs are
-/// built on first use.
-constexpr std::size_t kBuiltinMappings = 3;
 std::size_t mapping_variant_count();
-/// What a program is built with for variant v: its defines ("#define MAPPING n") and,
-/// for a described kernel, its GLSL as the virtual file "method/kernel".
-std::string mapping_define(std::size_t v);
+/// Variant v's kernel: whether foveal-rmfr runs its mapping and resolve (rmfr_passes),
+/// whether its programs are built up front or on first use (built_up_front).
+const MethodKernel& mapping_kernel(std::size_t v);
+/// What a program of variant v is built with: its kernel's GLSL as the virtual file
+/// "method/kernel" (shaders/common/mapping.glsl).
 std::vector<gl::VirtualFile> mapping_files(std::size_t v);
 
 /// The mapping uniforms of shaders/common/mapping.glsl for one eye's plan.

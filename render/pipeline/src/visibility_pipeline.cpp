@@ -72,10 +72,12 @@ Result<VisibilityPipeline> VisibilityPipeline::create(const gl::ShaderLoader& sh
   v.classify_progs_.resize(mapping_variant_count());
   v.pattern_progs_.resize(mapping_variant_count());
   v.material_progs_.resize(mapping_variant_count());
-  for (std::size_t m = 0; m < kBuiltinMappings; ++m) {
-    if (Status s = build(v.classify_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "classify.frag"}}, mapping_define(m)); !s)
+  for (std::size_t m = 0; m < mapping_variant_count(); ++m) {
+    if (!mapping_kernel(m).built_up_front) continue;  // ensure_mapping, on first use
+    if (Status s = build_program(shaders, v.classify_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "classify.frag"}}, "", mapping_files(m)); !s)
       return s.error();
-    if (Status s = build(v.pattern_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "material.frag"}}, mapping_define(m) + "#define PATTERN 1\n");
+    if (Status s = build_program(shaders, v.pattern_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "material.frag"}}, "#define PATTERN 1\n",
+                                 mapping_files(m));
         !s)
       return s.error();
   }
@@ -86,12 +88,14 @@ Result<VisibilityPipeline> VisibilityPipeline::create(const gl::ShaderLoader& sh
 }
 
 Status VisibilityPipeline::use_layout(const gl::ShaderLoader& shaders, const SurfaceLayout& layout) {
-  for (std::size_t m = 0; m < kBuiltinMappings; ++m)
-    if (Status s = build_program(shaders, material_progs_[m], {{GL_VERTEX_SHADER, "material_tile.vert"}, {GL_FRAGMENT_SHADER, "material.frag"}},
-                                 mapping_define(m) + tile_defines() + layout.defines());
-        !s)
-      return s;
-  for (std::size_t m = kBuiltinMappings; m < material_progs_.size(); ++m) material_progs_[m].reset();  // rebuilt on use
+  for (std::size_t m = 0; m < material_progs_.size(); ++m) {
+    material_progs_[m].reset();  // the kernels not built up front: rebuilt on use
+    if (mapping_kernel(m).built_up_front)
+      if (Status s = build_program(shaders, material_progs_[m], {{GL_VERTEX_SHADER, "material_tile.vert"}, {GL_FRAGMENT_SHADER, "material.frag"}},
+                                   tile_defines() + layout.defines(), mapping_files(m));
+          !s)
+        return s;
+  }
   layout_ = layout;
   full_.reset();
   for (auto& e : eyes_) e.reset();
@@ -99,23 +103,28 @@ Status VisibilityPipeline::use_layout(const gl::ShaderLoader& shaders, const Sur
 }
 
 Status VisibilityPipeline::ensure_mapping(const gl::ShaderLoader& shaders, std::size_t m) {
-  if (m < kBuiltinMappings) return {};
+  if (mapping_kernel(m).built_up_front) return {};
   const std::vector<gl::VirtualFile> files = mapping_files(m);
   const gl::ShaderStage fullscreen{GL_VERTEX_SHADER, "fullscreen.vert"};
   if (!classify_progs_[m])
-    if (Status s = build_program(shaders, classify_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "classify.frag"}}, mapping_define(m), files); !s)
+    if (Status s = build_program(shaders, classify_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "classify.frag"}}, "", files); !s)
       return s;
   if (!pattern_progs_[m])
     if (Status s = build_program(shaders, pattern_progs_[m], {fullscreen, {GL_FRAGMENT_SHADER, "material.frag"}},
-                                 mapping_define(m) + "#define PATTERN 1\n", files);
+                                 "#define PATTERN 1\n", files);
         !s)
       return s;
   if (!material_progs_[m])
     if (Status s = build_program(shaders, material_progs_[m], {{GL_VERTEX_SHADER, "material_tile.vert"}, {GL_FRAGMENT_SHADER, "material.frag"}},
-                                 mapping_define(m) + tile_defines() + layout_.defines(), files);
+                                 tile_defines() + layout_.defines(), files);
         !s)
       return s;
   return {};
+}
+
+void VisibilityPipeline::set_jitter(std::size_t m, glm::vec2 jitter) {
+  for (const gl::Program* p : {&classify_progs_[m], &material_progs_[m], &pattern_progs_[m]})
+    if (*p) set(p->id(), "u_jitter", jitter);
 }
 
 void VisibilityPipeline::visibility_pass(const Scene& scene, const EyeView& view) {

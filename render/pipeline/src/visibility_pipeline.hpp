@@ -34,16 +34,21 @@ class VisibilityPipeline {
   Status use_layout(const gl::ShaderLoader& shaders, const SurfaceLayout& layout);
   const SurfaceLayout& layout() const { return layout_; }
 
-  /// Builds the programs of mapping variant `mapping` if it is a described method's and
-  /// they are not built yet (the built-in ones are built by create and use_layout).
+  /// Builds the programs of mapping variant `mapping` if its kernel is not built up front
+  /// (MethodKernel::built_up_front: those are built by create and use_layout) and they
+  /// are not built yet.
   Status ensure_mapping(const gl::ShaderLoader& shaders, std::size_t mapping);
+
+  /// The grid jitter (texels; shaders/temporal/jitter.glsl) of mapping variant `mapping`'s
+  /// classification and material programs: 0 unless temporal accumulation is on.
+  void set_jitter(std::size_t mapping, glm::vec2 jitter);
 
   /// Depth and (draw + 1, triangle) of every pixel of one eye. Nothing for patterns.
   void visibility_pass(const Scene& scene, const EyeView& view);
 
   /// Fills `dst` over `regions` (viewport rectangles x, y, w, h; one per layer of a
-  /// layered plan) with the G-buffer of the samples `plan` keeps, through MAPPING
-  /// variant `mapping` (mapping_index). The mapping uniforms are set here.
+  /// layered plan) with the G-buffer of the samples `plan` keeps, through the
+  /// kernel's variant `mapping` (mapping_index). The mapping uniforms are set here.
   void material_pass(const Scene& scene, const EyeView& view, const EyePlan& plan, std::size_t mapping,
                      const std::vector<glm::ivec4>& regions, MaterialSurface& dst);
 
@@ -64,7 +69,7 @@ class VisibilityPipeline {
   int eye_w_ = 0, eye_h_ = 0;
   SurfaceLayout layout_;
   gl::Program visibility_prog_, visibility_mask_prog_, tiles_prog_;
-  std::vector<gl::Program> classify_progs_, material_progs_, pattern_progs_;  // per MAPPING variant
+  std::vector<gl::Program> classify_progs_, material_progs_, pattern_progs_;  // per kernel variant (mapping_index)
   gl::VertexArray empty_vao_;
   std::optional<VisibilityTarget> visibility_;
   std::array<std::optional<MaterialSurface>, 2> eyes_;

@@ -121,6 +121,7 @@ nlohmann::json Profile::to_json() const {
   j["filter"] = filter;
   if (gaze_quality) j["gaze_quality"] = quality_to_json(*gaze_quality);
   if (!quality.empty()) j["quality"] = quality;
+  if (temporal) j["temporal"] = "on";
   return j;
 }
 
@@ -172,6 +173,10 @@ Result<Profile> Profile::from_json(const nlohmann::json& j, const std::string& n
     } else if (k == "quality") {
       if (!v.is_string()) return bad_input(where + ": quality: expected a string (\"off\" or \"jod:T\")");
       p.quality = v.get<std::string>() == "off" ? "" : v.get<std::string>();
+    } else if (k == "temporal") {
+      if (!v.is_string() || (v.get<std::string>() != "on" && v.get<std::string>() != "off"))
+        return bad_input(where + ": temporal: expected \"on\" or \"off\"");
+      p.temporal = v.get<std::string>() == "on";
     } else if (k == "gaze_quality") {
       auto q = quality_from_json(v, where);
       if (!q) return q.error();
@@ -186,12 +191,12 @@ Result<Profile> Profile::from_json(const nlohmann::json& j, const std::string& n
 
 Status Profile::set(const std::string& key, const std::string& value) {
   nlohmann::json j = to_json();
-  if ((!j.contains(key) && key != "quality") || key == "format") return bad_input("profile " + name + ": unknown key '" + key + "'");
+  if ((!j.contains(key) && key != "quality" && key != "temporal") || key == "format") return bad_input("profile " + name + ": unknown key '" + key + "'");
   if (key == "filter") {
     auto parsed = parse_json(value, "profile " + name + ": filter");
     if (!parsed) return parsed.error();
     j[key] = std::move(*parsed);
-  } else if (key == "dominant_eye" || key == "display_model" || key == "quality" || value == "auto") {
+  } else if (key == "dominant_eye" || key == "display_model" || key == "quality" || key == "temporal" || value == "auto") {
     j[key] = value;
   } else {
     char* end = nullptr;

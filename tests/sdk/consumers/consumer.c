@@ -26,7 +26,7 @@ int main(int argc, char **argv) {
   const double want = atof(argv[1]);
   foveal_error err;
   foveal_client *c = NULL;
-  for (int i = 0; i < 200 && !c; ++i) { /* foveald may still be starting */
+  for (int i = 0; i < 600 && !c; ++i) { /* foveald may still be starting */
     c = foveal_client_open(NULL, &err);
     if (!c) sleep_ms(100);
   }
@@ -36,7 +36,7 @@ int main(int argc, char **argv) {
   }
   foveal_fovea f;
   int rc = FOVEAL_ERR_NO_DATA;
-  for (int i = 0; i < 200 && rc == FOVEAL_ERR_NO_DATA; ++i) {
+  for (int i = 0; i < 600 && rc == FOVEAL_ERR_NO_DATA; ++i) {
     rc = foveal_client_read(c, &f);
     if (rc == FOVEAL_ERR_NO_DATA) sleep_ms(100);
   }
@@ -59,7 +59,7 @@ int main(int argc, char **argv) {
   const uint64_t first = s.generation;
   printf("ready generation=%llu sigma_d=%g\n", (unsigned long long)first, s.sigma_d);
   fflush(stdout);
-  for (int i = 0; i < 2000; ++i) {
+  for (int i = 0; i < 6000; ++i) { /* 60 s at least: a hang guard */
     if ((rc = foveal_client_settings(c, &s)) != FOVEAL_OK) {
       fprintf(stderr, "consumer: settings: %s\n", foveal_error_message(rc));
       return 1;

@@ -100,15 +100,17 @@ vec4 method_resolve(sampler2D reduced, vec2 p) {
 }
 )glsl";
 
+constexpr MethodKernel kInsetKernel{"inset", kKernel, /*rmfr_passes=*/false, /*repeats_v=*/false, /*built_up_front=*/false};
+
 }  // namespace
 
 const MethodDescription& inset_method() {
-  static const MethodDescription d{"inset", true, plan_inset, "inset", kKernel};
+  static const MethodDescription d{"inset", FoveaSource::gaze, plan_inset, &kInsetKernel};
   return d;
 }
 
 const MethodDescription& inset_fixed_method() {
-  static const MethodDescription d{"inset-fixed", false, plan_inset, "inset", kKernel};
+  static const MethodDescription d{"inset-fixed", FoveaSource::optical_centre, plan_inset, &kInsetKernel};
   return d;
 }
 

@@ -20,12 +20,12 @@ int main(int argc, char** argv) {
   const double want = std::atof(argv[1]);
   foveal_error err{};
   foveal_client* c = nullptr;
-  for (int i = 0; i < 200 && !c; ++i)
+  for (int i = 0; i < 600 && !c; ++i)  // hang guards of 60 s at least
     if (!(c = foveal_client_open(nullptr, &err))) sleep_ms(100);
   if (!c) return std::fprintf(stderr, "consumer_cpp: %s\n", err.message), 1;
   foveal_fovea f{};
   int rc = FOVEAL_ERR_NO_DATA;
-  for (int i = 0; i < 200 && rc == FOVEAL_ERR_NO_DATA; ++i)
+  for (int i = 0; i < 600 && rc == FOVEAL_ERR_NO_DATA; ++i)
     if ((rc = foveal_client_read(c, &f)) == FOVEAL_ERR_NO_DATA) sleep_ms(100);
   if (rc != FOVEAL_OK) return std::fprintf(stderr, "consumer_cpp: read: %s\n", foveal_error_message(rc)), 1;
   for (int e = 0; e < 2; ++e)
@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
   const std::uint64_t first = s.generation;
   std::printf("ready generation=%llu sigma_d=%g\n", static_cast<unsigned long long>(first), s.sigma_d);
   std::fflush(stdout);
-  for (int i = 0; i < 2000; ++i, sleep_ms(10)) {
+  for (int i = 0; i < 6000; ++i, sleep_ms(10)) {
     if ((rc = foveal_client_settings(c, &s)) != FOVEAL_OK)
       return std::fprintf(stderr, "consumer_cpp: settings: %s\n", foveal_error_message(rc)), 1;
     if (s.generation > first && s.sigma_d == want) {

@@ -18,13 +18,14 @@
 
 namespace foveal::render {
 
-// uniform and fixed are the choices without eye tracking (docs/methods.md): uniform
-// shades a W/σ × H/σ grid and upsamples (RMFR's passes with the identity map); fixed is
-// RMFR with the fovea pinned at the eye's optical centre, whatever the gaze.
-// Methods described in one file (foveal/image/method_description.hpp: inset,
-// inset-fixed) have values from kDescribedMethodBase on, one per row of their list.
+// Each method is described in one file (foveal/image/method_description.hpp); its value
+// is its row in the list (render/image/src/methods/method_list.cpp). The values named
+// here are the rows code refers to by name (full the reference, rmfr for EFR and the
+// bench, ...); the methods after them (inset, inset-fixed) are reached by name
+// (parse_method). uniform and fixed are the choices without eye tracking
+// (docs/methods.md): uniform shades a W/σ × H/σ grid and upsamples (RMFR's passes with
+// the identity map); fixed is RMFR with the fovea pinned at the eye's optical centre.
 enum class Method { full, rmfr, kfr, hyperbolic, linear, uniform, fixed };
-constexpr int kDescribedMethodBase = 64;
 const char* method_name(Method m);
 /// One of method_names(); bad_input otherwise.
 Result<Method> parse_method(const std::string& s);
@@ -67,8 +68,8 @@ struct EyePlan {
   glm::dvec2 f{0.3};               ///< RMFR: effective f per axis (1e30 at σ = 1: no warp)
   double kfr_log_max = 1, kfr_alpha = 4;  ///< KFR: L = ln(largest fovea-corner distance, px)
   double layer_scale = 1;          ///< layered: the eccentricity scale used
-  std::vector<Layer> layers;       ///< layered and described methods, innermost first
-  glm::dvec4 kernel_params{0.0};   ///< described methods: their kernel's u_kernel_params
+  std::vector<Layer> layers;       ///< layered methods (hyperbolic, linear, inset), innermost first
+  glm::dvec4 kernel_params{0.0};   ///< a kernel's own numbers (u_kernel_params; the inset's band)
   EyeFrustum frustum;              ///< for eccentricities
 
   /// Samples the lighting pass shades for this eye.

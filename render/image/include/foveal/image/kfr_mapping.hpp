@@ -6,7 +6,8 @@
 // (pixels) from the fovea to a viewport corner; α = 4 is the authors' default. With α > 1
 // this spreads the buffer's columns outwards compared with plain log-polar (α = 1), which
 // would spend most of them on the first few pixels around the fovea (docs/methods.md).
-// The same formulas live in shaders/common/mapping.glsl; tests hold the two together.
+// The same formulas are KFR's GLSL kernel (render/image/src/methods/kfr.cpp); tests hold
+// the two together.
 #include <algorithm>
 #include <cmath>
 

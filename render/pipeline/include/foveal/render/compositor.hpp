@@ -60,6 +60,11 @@ struct FrameParams {
   /// Inter-pupillary distance, mm (the user profile's). 0: the display model's.
   /// Anything else outside (0, 200] or not finite is bad_input.
   double ipd_mm = 0.0;
+  /// Foveated temporal accumulation (docs/rmfr.md, "Temporal accumulation"): RMFR's grid
+  /// jittered every frame and each eye's frame accumulated into a full-resolution history.
+  /// Applies to RMFR's kernel (rmfr, uniform, fixed) in the visibility pipeline; other
+  /// methods and the G-buffer pipeline render as without it. Off by default.
+  bool temporal = false;
 };
 
 /// EFR: the dominant eye at sigma_d, the other at sigma_nd.
@@ -114,7 +119,8 @@ struct CompositorOptions {
 /// as `gbuffer`).
 struct TargetMemory {
   std::size_t gbuffer = 0, transformed = 0, reduced = 0, output = 0, shadow = 0, visibility = 0;
-  std::size_t total() const { return gbuffer + transformed + reduced + output + shadow + visibility; }
+  std::size_t temporal = 0;  ///< temporal accumulation's histories (visibility pipeline; 0 until used)
+  std::size_t total() const { return gbuffer + transformed + reduced + output + shadow + visibility + temporal; }
 };
 
 class Compositor {
@@ -144,6 +150,9 @@ class Compositor {
   std::array<int, 2> buffer_size(Eye e) const;
   /// The plan each eye was rendered with in the last frame.
   const EyePlan& plan(Eye e) const;
+  /// Drops temporal accumulation's history: the next frame shows its own samples only
+  /// (the jitter sequence goes on).
+  void reset_history();
   TargetMemory memory() const;
   /// The targets one pipeline's frames use (those held now; a pipeline not used yet
   /// holds only the shared output and shadow map).

@@ -48,6 +48,9 @@ struct Profile {
   /// Levels chosen by perception: "jod:T" picks sigma_d, sigma_nd and f from the display
   /// model's JOD table (foveal/runtime/jod_levels.hpp); empty: the levels above.
   std::string quality;
+  /// Foveated temporal accumulation (docs/rmfr.md, "Temporal accumulation"): "on" or "off"
+  /// (the default; written to the file only when on).
+  bool temporal = false;
 
   /// sigma for an eye: sigma_d for the dominant one, sigma_nd for the other.
   double sigma(Eye e) const { return e == dominant_eye ? sigma_d : sigma_nd; }

@@ -1,5 +1,6 @@
 #pragma once
-// EGL helpers shared by the headless context and direct mode.
+// EGL helpers shared by the headless context (egl_context.cpp) and direct mode
+// (render/output, drm_output.cpp).
 #include <EGL/egl.h>
 
 #include <cstdio>

@@ -2,11 +2,12 @@
 // GLSL programs from the files in shaders/, read at run time. Files hold no #version
 // line (the loader adds "#version 450 core" and the caller's defines); a line
 // `#include "path"` pulls in another file relative to the shader root (`foveal/...`
-// names foveal-rmfr's GLSL, which comes from the library: foveal::rmfr::glsl_file).
-// Compile and link errors are reported as "file:line: message" for the file the line
-// came from. `method/...` names are virtual files the caller gives with the program (a
-// described foveation method's kernel, foveal/image/method_description.hpp); one not
-// given is empty.
+// names foveal-rmfr's GLSL, which comes from the library: foveal::rmfr::glsl_file; that
+// is why the loader stands on the pipeline's floor, above foveal-rmfr, and not in
+// render/gl). Compile and link errors are reported as "file:line: message" for the file
+// the line came from. `method/...` names are virtual files the caller gives with the
+// program (a described foveation method's kernel, foveal/image/method_description.hpp);
+// one not given is empty.
 #include <string>
 #include <vector>
 

@@ -1,8 +1,9 @@
 #pragma once
 // RMFR's rectangular mapping on one axis, in normalised coordinates (docs/rmfr.md), and
-// the per-eye quantities derived from σ. Header-only: foveal-rmfr, foveal's image-space
-// tools and automatic f all use these. The GLSL twin is glsl/foveal/rmfr_mapping.glsl;
-// tests hold the two together.
+// the per-eye quantities derived from σ. Header-only, on the ground floor: foveal-rmfr,
+// foveal's image-space tools and automatic f all use these. The GLSL twin is
+// render/foveation/glsl/foveal/rmfr_mapping.glsl (embedded in and installed with
+// foveal-rmfr); tests hold the two together.
 //
 // Screen coordinate p and buffer coordinate u both lie in [0, 1]; c is the fovea, f > 0
 // the axis parameter (a fraction of the axis length). D is the distance from the fovea
