@@ -37,11 +37,13 @@ foveal_vm_guest verify-log /tmp/rec.csv 300
 # after the replug; the recording's control socket counts them), so a loaded machine only
 # makes it slower; the 60 s limits are hang guards.
 mkdir -m 700 /tmp/rec2  # the control socket's directory must be closed to others
+# From a plugged-in tracker: on a loaded host the emulated bus may still be re-enumerating it.
+wait_until 600 hid_ready || echo "record across an unplug: no tracker before the recording"
 foveal record --device auto --out /tmp/rec2.csv --duration 600 --control-socket /tmp/rec2/control.sock --json \
   > /tmp/record2.json 2>/tmp/record2.err &
 REC=$!
 rec_samples() { foveal ctl --socket /tmp/rec2/control.sock --json status 2>/dev/null | grep -o '"samples":[0-9]*' | grep -o '[0-9]*$'; }
-rec_has() { n=$(rec_samples); [ "${n:-0}" -ge "$1" ]; }
+rec_has() { have=$(rec_samples); [ "${have:-0}" -ge "$1" ]; }  # not n: wait_until counts with it
 hidraw_gone() { ! ls /dev/hidraw* >/dev/null 2>&1; }
 wait_until 600 rec_has 120 || echo "record across an unplug: no samples before the unplug"
 echo "" > $G/UDC
