@@ -31,11 +31,12 @@ foveald_guest_env() {
 }
 
 # wait_until TENTHS COMMAND...: runs COMMAND every 0.1 s until it succeeds, at most
-# TENTHS times.
+# TENTHS times. Its counter has a name of its own: busybox sh has no locals, and a
+# COMMAND that set a plain `n` would end the wait at once.
 wait_until() {
-  n=$1; shift
+  wait_until_left=$1; shift
   until "$@"; do
-    n=$((n - 1)); [ $n -le 0 ] && return 1; sleep 0.1
+    wait_until_left=$((wait_until_left - 1)); [ $wait_until_left -le 0 ] && return 1; sleep 0.1
   done
 }
 

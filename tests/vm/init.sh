@@ -43,7 +43,7 @@ foveal record --device auto --out /tmp/rec2.csv --duration 600 --control-socket 
   > /tmp/record2.json 2>/tmp/record2.err &
 REC=$!
 rec_samples() { foveal ctl --socket /tmp/rec2/control.sock --json status 2>/dev/null | grep -o '"samples":[0-9]*' | grep -o '[0-9]*$'; }
-rec_has() { have=$(rec_samples); [ "${have:-0}" -ge "$1" ]; }  # not n: wait_until counts with it
+rec_has() { have=$(rec_samples); [ "${have:-0}" -ge "$1" ]; }
 hidraw_gone() { ! ls /dev/hidraw* >/dev/null 2>&1; }
 wait_until 600 rec_has 120 || echo "record across an unplug: no samples before the unplug"
 echo "" > $G/UDC
