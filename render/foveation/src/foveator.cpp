@@ -123,16 +123,6 @@ Status check_plan(const Plan& p) {
   return {};
 }
 
-gl::Sampler make_sampler(GLint filter) {
-  gl::Sampler s = gl::Sampler::create();
-  glSamplerParameteri(s.id(), GL_TEXTURE_MIN_FILTER, filter);
-  glSamplerParameteri(s.id(), GL_TEXTURE_MAG_FILTER, filter);
-  glSamplerParameteri(s.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glSamplerParameteri(s.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glSamplerParameteri(s.id(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
-  return s;
-}
-
 }  // namespace
 
 struct Foveator::Impl {
@@ -152,8 +142,8 @@ Result<Foveator> Foveator::create() {
                                              (version ? version : "none") + ")"};
   auto impl = std::make_unique<Impl>();
   impl->vao = gl::VertexArray::create();
-  impl->nearest = make_sampler(GL_NEAREST);
-  impl->linear = make_sampler(GL_LINEAR);
+  impl->nearest = gl::make_clamped_sampler(GL_NEAREST);
+  impl->linear = gl::make_clamped_sampler(GL_LINEAR);
   for (std::size_t lens = 0; lens < 2; ++lens) {
     auto p = build(lens ? "#define LENS 1\n" : "", kResolveFrag, "resolve");
     if (!p) return p.error();

@@ -27,16 +27,6 @@ double halton(std::uint64_t index, std::uint64_t base) {
   return r;
 }
 
-gl::Sampler make_sampler() {
-  gl::Sampler s = gl::Sampler::create();
-  glSamplerParameteri(s.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glSamplerParameteri(s.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glSamplerParameteri(s.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glSamplerParameteri(s.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glSamplerParameteri(s.id(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
-  return s;
-}
-
 glm::dvec3 view_ray(const rmfr::Frustum& f, double x, double y) {
   return glm::normalize(glm::dvec3(f.tan_left + (f.tan_right - f.tan_left) * x, f.tan_bottom + (f.tan_top - f.tan_bottom) * y, -1.0));
 }
@@ -58,7 +48,7 @@ Result<TemporalAccumulation> TemporalAccumulation::create(const gl::ShaderLoader
   auto p = shaders.program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "temporal/accumulate.frag"}}, "");
   if (!p) return p.error();
   t.program_ = std::move(*p);
-  t.nearest_ = make_sampler();
+  t.nearest_ = gl::make_clamped_sampler(GL_NEAREST);
   t.vao_ = gl::VertexArray::create();
   return t;
 }

@@ -86,6 +86,18 @@ inline Texture make_texture(GLenum target) {
   return Texture(id);
 }
 
+/// A sampler that filters with `filter` both ways, clamps to the edge and compares
+/// nothing (a depth texture read as values).
+inline Sampler make_clamped_sampler(GLint filter) {
+  Sampler s = Sampler::create();
+  glSamplerParameteri(s.id(), GL_TEXTURE_MIN_FILTER, filter);
+  glSamplerParameteri(s.id(), GL_TEXTURE_MAG_FILTER, filter);
+  glSamplerParameteri(s.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glSamplerParameteri(s.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glSamplerParameteri(s.id(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
+  return s;
+}
+
 /// A 2D texture with storage for `levels` mip levels.
 inline Texture make_texture_2d(GLenum internal_format, int width, int height, int levels = 1) {
   Texture t = make_texture(GL_TEXTURE_2D);
