@@ -127,7 +127,7 @@ Status FrameRenderer::render(const std::function<FoveaFrame()>& latest, const Re
   // The fovea the frame was rendered with (`fixed` pins it at the optical centre).
   for (Eye e : kEyes) {
     auto& eye = p.eyes[static_cast<std::size_t>(e)];
-    eye.fovea_x = comp_->plan(e).fovea.x, eye.fovea_y = 1.0 - comp_->plan(e).fovea.y;
+    eye.fovea_x = comp_->plan(e).fovea.x, eye.fovea_y = comp_->plan(e).fovea.y;
   }
   // The head pose this frame used, in the tracking frame as the log records it (the
   // identity for a static camera); %.9g keeps a float's digits, so the columns equal the log's.

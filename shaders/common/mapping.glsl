@@ -12,13 +12,13 @@ const float PI_F = 3.14159265359;
 uniform vec2 u_buffer_size;   // texels in use
 uniform vec2 u_texture_size;  // texels allocated (layers: the atlas may be larger)
 uniform vec2 u_screen_size;
-uniform vec2 u_fovea;         // normalised
+uniform vec2 u_fovea;         // normalised, GL frame (method_binding.cpp flips the plan's top-left)
 uniform vec2 u_f;             // RMFR
 uniform vec2 u_kfr;           // L, alpha
 uniform vec4 u_tan;           // frustum tangents: left, right, bottom, top
 uniform int u_layer;          // layer drawn by the mapping and lighting passes
 uniform int u_layer_count;
-uniform vec4 u_layer_rect[MAX_LAYERS];   // screen x, y, w, h (pixels)
+uniform vec4 u_layer_rect[MAX_LAYERS];   // screen x, y, w, h (pixels, GL frame: y the bottom row)
 uniform vec4 u_layer_atlas[MAX_LAYERS];  // atlas y, buffer w, buffer h, pixel size
 uniform float u_layer_ecc[MAX_LAYERS];   // degrees; the last is huge
 uniform vec4 u_kernel_params;            // a method's own numbers (EyePlan::kernel_params)

@@ -4,7 +4,7 @@
 #include <set>
 #include <utility>
 
-#include "pixel_font.hpp"
+#include "calibrate/pixel_font.hpp"
 
 namespace foveal::cmd {
 namespace {

@@ -1,5 +1,6 @@
 // Foveation plans: every method shades what its level says, layers nest around the
-// fovea wherever it is, σ = 1 is full rate.
+// fovea wherever it is, σ = 1 is full rate, and every point and rectangle is in viewport
+// coordinates with the origin top-left (docs/conventions.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -104,6 +105,44 @@ TEST(FoveationPlan, EccentricityThroughTheFrustum) {
   EXPECT_NEAR(eccentricity_deg(kVive, {0.5, 0.5}, {1.0, 0.5}), std::atan(kVive.tan_right) * 180 / M_PI, 1e-5);
 }
 
+// One convention at the render API: a fovea near the top-left corner is where the plan,
+// its rectangles, its σ and its eccentricities say it is, in top-left terms.
+TEST(FoveationPlan, PointsAndRectanglesAreTopLeft) {
+  const glm::dvec2 at_top(0.25, 0.2);
+  for (Method m : all_methods()) {
+    auto p = plan_eye(m, at(2.6, at_top.x, at_top.y), kW, kH, kVive);
+    ASSERT_TRUE(p) << method_name(m);
+    EXPECT_EQ(p->sigma, m == Method::full ? 1.0 : 2.6) << method_name(m);  // σ is the plan's
+    if (!follows_gaze(m)) continue;
+    EXPECT_EQ(p->fovea, at_top) << method_name(m);
+    // The innermost layer (inset's inner view, the layered methods' fovea) lies around
+    // the fovea, in the upper half.
+    if (p->layers.empty()) continue;
+    const Layer& inner = p->layers.front();
+    EXPECT_LE(inner.y, at_top.y * kH) << method_name(m);
+    EXPECT_GE(inner.y + inner.h, at_top.y * kH) << method_name(m);
+    EXPECT_LT(inner.y + inner.h, kH / 2) << method_name(m);
+  }
+  // The inset's inner view is centred on the fovea's row counted from the top.
+  auto inset = plan_eye(*parse_method("inset"), at(2.6, at_top.x, at_top.y), kW, kH, kVive);
+  ASSERT_TRUE(inset);
+  const Layer& in = inset->layers.front();
+  EXPECT_NEAR(in.y + 0.5 * in.h, at_top.y * kH, 0.5);
+  EXPECT_NEAR(in.x + 0.5 * in.w, at_top.x * kW, 0.5);
+
+  // Through a frustum taller above the axis than below it: the axis lies 0.75 of the way
+  // down, the top edge is atan(1.5) away from it, the bottom edge atan(0.5).
+  const EyeFrustum tall{-1.0f, 1.0f, -0.5f, 1.5f};
+  const glm::dvec2 c = optical_centre(tall);
+  EXPECT_DOUBLE_EQ(c.x, 0.5);
+  EXPECT_DOUBLE_EQ(c.y, 0.75);
+  EXPECT_NEAR(eccentricity_deg(tall, c, {0.5, 0.0}), std::atan(1.5) * 180 / M_PI, 1e-9);
+  EXPECT_NEAR(eccentricity_deg(tall, c, {0.5, 1.0}), std::atan(0.5) * 180 / M_PI, 1e-9);
+  auto fixed = plan_eye(Method::fixed, at(2.6, at_top.x, at_top.y), kW, kH, tall);
+  ASSERT_TRUE(fixed);
+  EXPECT_EQ(fixed->fovea, c);
+}
+
 TEST(FoveationPlan, RejectsBadLevels) {
   EXPECT_FALSE(plan_eye(Method::rmfr, at(0.5, 0.5, 0.5), kW, kH, kVive));
   EXPECT_FALSE(plan_eye(Method::kfr, at(NAN, 0.5, 0.5), kW, kH, kVive));
@@ -162,7 +201,7 @@ TEST(FoveationPlan, FixedPinsTheFoveaAtTheOpticalCentreWhateverTheGaze) {
   const EyeFrustum vive{-1.397f, 1.251f, -1.478f, 1.464f};
   const glm::dvec2 c = optical_centre(vive);
   EXPECT_NEAR(c.x, 1.397 / (1.397 + 1.251), 1e-6);
-  EXPECT_NEAR(c.y, 1.478 / (1.478 + 1.464), 1e-6);
+  EXPECT_NEAR(c.y, 1.464 / (1.478 + 1.464), 1e-6);  // from the top edge
   EXPECT_NEAR(optical_centre(kVive).x, 0.5, 1e-9);
   for (const auto& p : kPositions) {
     auto f = plan_eye(Method::fixed, at(2.6, p[0], p[1]), kW, kH, vive);

@@ -107,6 +107,27 @@ TEST(Compositor, MethodsAtEqualCostAreSharperAtTheFoveaThanAway) {
   }
 }
 
+// The plans are top-left and the shaders GL's bottom-left: the one flip between them
+// (method_binding.cpp) puts each method's sharp region where the fovea is, near the
+// top, and not at its mirror image near the bottom.
+TEST(Compositor, EveryGazeMethodIsSharpWhereTheTopLeftFoveaIs) {
+  ASSERT_TRUE(test::gl_ready());
+  render::Compositor c = test::make_compositor(kW, kH);
+  render::Scene s = test::scene("pattern:noise");
+  const image::Image full = test::render_frame(c, s, test::frame(Method::full, 1.0));
+  const double x = 0.25, y = 0.2;
+  for (Method m : render::all_methods()) {
+    if (!render::follows_gaze(m)) continue;
+    const image::Image img = test::render_frame(c, s, test::frame(m, 3.0, x, y));
+    for (Eye e : kEyes) {
+      const double at = image::psnr(full, img, test::fovea_patch(c, e, x, y, 24));
+      const double mirror = image::psnr(full, img, test::fovea_patch(c, e, x, 1.0 - y, 24));
+      EXPECT_GT(at, mirror + 1.0) << render::method_name(m) << " " << eye_name(e) << ": " << at << " dB at the fovea, "
+                                  << mirror << " dB at its mirror";
+    }
+  }
+}
+
 TEST(Compositor, NonFiniteFoveaFallsBackToTheCentre) {
   ASSERT_TRUE(test::gl_ready());
   render::Compositor c = test::make_compositor(kW, kH);

@@ -163,11 +163,13 @@ TEST(Inset, TheBlendBandHasNoHardEdge) {
     for (auto& e : p.eyes) e.inset_band_deg = band;
     const std::vector<float> img = render_float(p);
     const render::Layer in = c.plan(Eye::left).layers[0];
-    // Columns from 20 left of the inner view's left edge to its middle (left eye, GL frame).
+    // Columns from 20 left of the inner view's left edge to its middle (left eye), over
+    // its middle rows: read_float's rows run from the bottom, the plan's from the top.
+    const int bottom = H - in.y - in.h;
     std::vector<double> w;
     for (int x = in.x - 20; x < in.x + in.w / 2; ++x) {
       double num = 0, den = 0;
-      for (int y = in.y + in.h / 4; y < in.y + 3 * in.h / 4; ++y)
+      for (int y = bottom + in.h / 4; y < bottom + 3 * in.h / 4; ++y)
         for (int ch = 0; ch < 3; ++ch) {
           const std::size_t k = (static_cast<std::size_t>(y) * static_cast<std::size_t>(2 * W) + static_cast<std::size_t>(x)) * 4 + ch;
           const double d = full[k] - outer[k];
@@ -192,7 +194,6 @@ TEST(Inset, TheBlendBandHasNoHardEdge) {
     } else {
       EXPECT_GT(max_step, 0.9) << "band 0 should be a hard edge";
     }
-    (void)H;
   }
 }
 

@@ -40,12 +40,12 @@ image::Image render(render::Compositor& c, const render::Scene& s, const render:
   return test::render_frame(c, s, p);
 }
 
-// FPSNR of a side-by-side frame against `ref`, both foveae at (x, y) (GL frame: y up), at
+// FPSNR of a side-by-side frame against `ref`, both foveae at (x, y) (origin top-left), at
 // the display's pixels per degree scaled to this viewport (the same field of view).
 double fpsnr(const image::Image& ref, const image::Image& img, double x, double y) {
   image::MetricsOptions o;
   o.ppd = image::kDefaultPixelsPerDegree * (kWidth / 2.0) / 1440.0;
-  o.fovea = o.fovea_right = {x, 1.0 - y};
+  o.fovea = o.fovea_right = {x, y};
   auto m = image::compute_stereo_metrics(ref, img, o);
   EXPECT_TRUE(m) << (m ? "" : m.error().message);
   return m ? m->combined.fpsnr_db : 0.0;

@@ -1,6 +1,7 @@
 #pragma once
-// Each `foveal` subcommand lives in its own cmd_*.cpp and registers itself here.
-// A command's callback stores its exit code in `exit_code`.
+// Each `foveal` subcommand lives in its own commands/cmd_*.cpp, which parses its options
+// and calls the code of its job (tools/README.md); it is declared here and added in
+// main.cpp. A command's callback stores its exit code in `exit_code`.
 namespace CLI {
 class App;
 }

@@ -15,13 +15,14 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-glm::dvec3 ray(const EyeFrustum& f, glm::dvec2 p) {
+}  // namespace
+
+glm::dvec3 view_ray(const EyeFrustum& f, glm::dvec2 p) {
+  // The tangents grow upwards: p lies 1 - y of the height above the bottom edge.
   const double tx = f.tan_left + p.x * (f.tan_right - f.tan_left);
-  const double ty = f.tan_bottom + p.y * (f.tan_top - f.tan_bottom);
+  const double ty = f.tan_bottom + (1.0 - p.y) * (f.tan_top - f.tan_bottom);
   return glm::normalize(glm::dvec3(tx, ty, -1.0));
 }
-
-}  // namespace
 
 const char* method_name(Method m) {
   const MethodDescription* d = describe(m);
@@ -73,12 +74,15 @@ double EyePlan::pixels_per_degree() const {
 }
 
 double eccentricity_deg(const EyeFrustum& f, glm::dvec2 p, glm::dvec2 q) {
-  const double c = std::clamp(glm::dot(ray(f, p), ray(f, q)), -1.0, 1.0);
+  const double c = std::clamp(glm::dot(view_ray(f, p), view_ray(f, q)), -1.0, 1.0);
   return std::acos(c) * 180.0 / kPi;
 }
 
 glm::dvec2 optical_centre(const EyeFrustum& f) {
-  return {-f.tan_left / (f.tan_right - f.tan_left), -f.tan_bottom / (f.tan_top - f.tan_bottom)};
+  // The axis (tangent 0) lies `up` of the height above the bottom edge; `up` is a float
+  // like the tangents, so 1 - up is exact and flips back to it exactly.
+  const float up = -f.tan_bottom / (f.tan_top - f.tan_bottom);
+  return {-f.tan_left / (f.tan_right - f.tan_left), 1.0 - up};
 }
 
 bool follows_gaze(Method m) {
@@ -97,10 +101,11 @@ Result<EyePlan> plan_eye(Method m, const EyeFoveation& e, int W, int H, const Ey
   p.method = m;
   p.screen_w = W, p.screen_h = H;
   p.frustum = frustum;
-  p.fovea = {rmfr::sanitize_fovea(e.fovea_x), 1.0 - rmfr::sanitize_fovea(e.fovea_y)};
+  p.fovea = {rmfr::sanitize_fovea(e.fovea_x), rmfr::sanitize_fovea(e.fovea_y)};
   p.buffer_w = W, p.buffer_h = H;
   // σ = 1 is full-rate rendering for every method; only RMFR's passes run it (identity).
   if (e.sigma <= 1.0 && m != Method::full) m = p.method = Method::rmfr;
+  p.sigma = m == Method::full ? 1.0 : e.sigma;  // the methods read σ from here
   const MethodDescription& d = *describe(m);
   if (d.fovea == FoveaSource::optical_centre) p.fovea = optical_centre(frustum);
   if (Status s = d.plan(p, e); !s) return s.error();

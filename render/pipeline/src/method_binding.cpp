@@ -1,6 +1,8 @@
 // Method binding: which program variant (kernel) a foveation method runs and its GLSL,
 // its plan as foveal-rmfr takes it, and the mapping uniforms of
-// shaders/common/mapping.glsl for one eye's plan.
+// shaders/common/mapping.glsl for one eye's plan. Plans are top-left (y down,
+// docs/conventions.md); the shaders work in GL's frame (origin bottom-left): the flip
+// between the two is here and nowhere else (gl_fovea, gl_rect).
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -17,6 +19,12 @@ namespace foveal::render {
 namespace {
 
 using detail::set;
+
+// A plan's fovea in GL's frame: normalised, origin bottom-left.
+glm::dvec2 gl_fovea(const EyePlan& p) { return {p.fovea.x, 1.0 - p.fovea.y}; }
+
+// A layer's screen rectangle in GL's frame: (x, y of its bottom row, w, h), pixels.
+glm::vec4 gl_rect(const Layer& l, int screen_h) { return glm::vec4(l.x, screen_h - l.y - l.h, l.w, l.h); }
 
 }  // namespace
 
@@ -35,13 +43,14 @@ Result<std::size_t> mapping_index(const EyePlan& plan) {
 }
 
 // An RMFR eye's plan as foveal-rmfr takes it (plan_eye computed it with the library's
-// formulas, foveal/rmfr_mapping.hpp).
+// formulas, foveal/rmfr_mapping.hpp); rmfr::Plan holds its fovea in GL's frame.
 rmfr::Plan rmfr_plan(const EyePlan& p) {
   rmfr::Plan r;
   r.screen_w = p.screen_w, r.screen_h = p.screen_h;
   r.buffer_w = p.buffer_w, r.buffer_h = p.buffer_h;
-  r.sigma = static_cast<double>(p.screen_w) / p.buffer_w;  // informative; the passes use the sizes
-  r.fovea_x = p.fovea.x, r.fovea_y = p.fovea.y;
+  r.sigma = p.sigma;
+  const glm::dvec2 fovea = gl_fovea(p);
+  r.fovea_x = fovea.x, r.fovea_y = fovea.y;
   r.fx = p.f.x, r.fy = p.f.y;
   r.frustum = {p.frustum.tan_left, p.frustum.tan_right, p.frustum.tan_bottom, p.frustum.tan_top};
   return r;
@@ -56,7 +65,7 @@ void set_mapping(GLuint p, const EyePlan& plan, glm::vec2 texture_size) {
   set(p, "u_buffer_size", glm::vec2(plan.buffer_w, plan.buffer_h));
   set(p, "u_texture_size", texture_size);
   set(p, "u_screen_size", glm::vec2(plan.screen_w, plan.screen_h));
-  set(p, "u_fovea", glm::vec2(plan.fovea));
+  set(p, "u_fovea", glm::vec2(gl_fovea(plan)));
   set(p, "u_f", glm::vec2(plan.f));  // full's plan holds the identity (1e30)
   set(p, "u_kfr", glm::vec2(static_cast<float>(plan.kfr_log_max), static_cast<float>(plan.kfr_alpha)));
   set(p, "u_tan", glm::vec4(plan.frustum.tan_left, plan.frustum.tan_right, plan.frustum.tan_bottom, plan.frustum.tan_top));
@@ -65,7 +74,7 @@ void set_mapping(GLuint p, const EyePlan& plan, glm::vec2 texture_size) {
   for (int i = 0; i < n; ++i) {
     const Layer& l = plan.layers[static_cast<std::size_t>(i)];
     const std::string k = "[" + std::to_string(i) + "]";
-    set(p, ("u_layer_rect" + k).c_str(), glm::vec4(l.x, l.y, l.w, l.h));
+    set(p, ("u_layer_rect" + k).c_str(), gl_rect(l, plan.screen_h));
     set(p, ("u_layer_atlas" + k).c_str(), glm::vec4(l.atlas_y, l.buffer_w, l.buffer_h, l.pixel_size));
     set(p, ("u_layer_ecc" + k).c_str(), std::isfinite(l.ecc_max_deg) ? static_cast<float>(l.ecc_max_deg) : 1e9f);
   }

@@ -187,8 +187,6 @@ class GazeBench {
   std::uint64_t done_ = 0;
 };
 
-glm::dvec2 gl_point(glm::dvec2 p) { return {p.x, 1.0 - p.y}; }
-
 }  // namespace
 
 int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
@@ -346,8 +344,8 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
           for (Eye e : kEyes) {
             const std::size_t i = static_cast<std::size_t>(e);
             const render::EyePlan& plan = comp->plan(e);
-            used[i] = gl_point(plan.fovea);
-            err[i] = render::eccentricity_deg(plan.frustum, plan.fovea, gl_point(f.truth[i]));
+            used[i] = plan.fovea;
+            err[i] = render::eccentricity_deg(plan.frustum, plan.fovea, f.truth[i]);
             patch = std::min({patch, image::psnr(*ref, *img, bench.patch(e, f.truth[i])), kPatchCeilingDb});
           }
           std::string jod_cells;

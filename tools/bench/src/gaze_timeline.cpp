@@ -66,8 +66,7 @@ Result<GazeTimeline> build_gaze_timeline(const std::vector<GazeSample>& samples,
     for (Eye e : kEyes) {
       const std::size_t i = static_cast<std::size_t>(e);
       ok = raw_gaze_at(samples, model, e, t, truth[i]) && ok;
-      const glm::dvec2 gl(truth[i].x, 1.0 - truth[i].y);
-      ecc += 0.5 * render::eccentricity_deg(model.eye(e), render::optical_centre(model.eye(e)), gl);
+      ecc += 0.5 * render::eccentricity_deg(model.eye(e), render::optical_centre(model.eye(e)), truth[i]);
     }
     return ok;
   };

@@ -44,14 +44,17 @@ Status plan_inset(EyePlan& p, const EyeFoveation& e) {
   inner.pixel_size = 1;
   inner.w = iw, inner.h = ih;
   inner.x = std::clamp(static_cast<int>(std::lround(p.fovea.x * W - 0.5 * iw)), 0, W - iw);
-  inner.y = std::clamp(static_cast<int>(std::lround(p.fovea.y * H - 0.5 * ih)), 0, H - ih);
+  // Rows counted from the bottom edge, as the shader's run, so that a tie rounds up (and
+  // right along x); stored as the top row.
+  const int bottom = std::clamp(static_cast<int>(std::lround((1.0 - p.fovea.y) * H - 0.5 * ih)), 0, H - ih);
+  inner.y = H - ih - bottom;
   inner.buffer_w = iw, inner.buffer_h = ih, inner.atlas_y = 0;
 
   Layer outer;  // the whole eye at 1/σ per axis, above the inner view in the atlas
   outer.ecc_max_deg = std::numeric_limits<double>::infinity();
-  outer.pixel_size = e.sigma;
+  outer.pixel_size = p.sigma;
   outer.w = W, outer.h = H;
-  outer.buffer_w = rmfr::rmfr_buffer_size(W, e.sigma), outer.buffer_h = rmfr::rmfr_buffer_size(H, e.sigma);
+  outer.buffer_w = rmfr::rmfr_buffer_size(W, p.sigma), outer.buffer_h = rmfr::rmfr_buffer_size(H, p.sigma);
   outer.atlas_y = ih;
 
   p.layers = {inner, outer};

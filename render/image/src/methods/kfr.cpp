@@ -11,8 +11,10 @@ namespace {
 
 Status plan_kfr(EyePlan& p, const EyeFoveation& e) {
   const int W = p.screen_w, H = p.screen_h;
-  p.buffer_w = rmfr::rmfr_buffer_size(W, e.sigma), p.buffer_h = rmfr::rmfr_buffer_size(H, e.sigma);
-  p.kfr_log_max = image::kfr_log_max(W, H, p.fovea.x * W, p.fovea.y * H);
+  p.buffer_w = rmfr::rmfr_buffer_size(W, p.sigma), p.buffer_h = rmfr::rmfr_buffer_size(H, p.sigma);
+  // L reaches the farthest corner, measured from the bottom edge as the kernel does
+  // (either edge gives the same L but for the last bit of rounding).
+  p.kfr_log_max = image::kfr_log_max(W, H, p.fovea.x * W, (1.0 - p.fovea.y) * H);
   p.kfr_alpha = e.kfr_alpha;
   return {};
 }

@@ -43,23 +43,17 @@ std::vector<LayerSpec> linear_layers(double k) {
   return l;
 }
 
-// The view ray through normalised GL viewport point p (as eccentricity_deg takes it).
-glm::dvec3 ray(const EyeFrustum& f, glm::dvec2 p) {
-  const double tx = f.tan_left + p.x * (f.tan_right - f.tan_left);
-  const double ty = f.tan_bottom + p.y * (f.tan_top - f.tan_bottom);
-  return glm::normalize(glm::dvec3(tx, ty, -1.0));
-}
-
-// Screen rectangle (pixels, GL frame) holding every pixel within `ecc` degrees of the
+// Screen rectangle (pixels, origin top-left) holding every pixel within `ecc` degrees of the
 // fovea: the bounding box of the cone's rim projected onto the image plane.
 void cone_rect(const EyeFrustum& f, glm::dvec2 fovea, double ecc_deg, int W, int H, Layer& out) {
   out.x = 0, out.y = 0, out.w = W, out.h = H;
   if (!std::isfinite(ecc_deg) || ecc_deg >= 89.0) return;
-  const glm::dvec3 g = ray(f, fovea);
+  const glm::dvec3 g = view_ray(f, fovea);
   const glm::dvec3 a = glm::normalize(glm::cross(g, std::abs(g.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0)));
   const glm::dvec3 b = glm::cross(g, a);
   const double e = ecc_deg * kPi / 180.0;
-  double x0 = fovea.x * W, x1 = x0, y0 = fovea.y * H, y1 = y0;
+  // y: pixels above the bottom edge, the way the tangents grow; turned into the top row at the end.
+  double x0 = fovea.x * W, x1 = x0, y0 = (1.0 - fovea.y) * H, y1 = y0;
   for (int i = 0; i < 64; ++i) {
     const double phi = 2 * kPi * i / 64;
     const glm::dvec3 d = std::cos(e) * g + std::sin(e) * (std::cos(phi) * a + std::sin(phi) * b);
@@ -80,8 +74,9 @@ void cone_rect(const EyeFrustum& f, glm::dvec2 fovea, double ecc_deg, int W, int
   auto lo = [](double v, int n) { return static_cast<int>(std::clamp(std::floor(v) - 1, 0.0, double(n))); };
   auto hi = [](double v, int n) { return static_cast<int>(std::clamp(std::ceil(v) + 1, 0.0, double(n))); };
   const int ix0 = lo(x0, W), ix1 = hi(x1, W), iy0 = lo(y0, H), iy1 = hi(y1, H);
-  out.x = ix0, out.y = iy0, out.w = std::max(ix1 - ix0, 1), out.h = std::max(iy1 - iy0, 1);
-  out.x = std::min(out.x, W - out.w), out.y = std::min(out.y, H - out.h);
+  out.w = std::max(ix1 - ix0, 1), out.h = std::max(iy1 - iy0, 1);
+  const int bottom = std::min(iy0, H - out.h);  // its lowest row, counted from the bottom edge
+  out.x = std::min(ix0, W - out.w), out.y = H - out.h - bottom;
 }
 
 void layout_layers(EyePlan& p, const std::vector<LayerSpec>& specs) {
@@ -111,7 +106,7 @@ Status plan_layers(EyePlan& p, const EyeFoveation& e, LayerSpecs specs) {
   double k = e.layer_scale;
   if (k == 0) {
     // Bisect the eccentricity scale (log scale) until the layers shade W·H/σ² samples.
-    const double target = static_cast<double>(p.screen_w) * p.screen_h / (e.sigma * e.sigma);
+    const double target = static_cast<double>(p.screen_w) * p.screen_h / (p.sigma * p.sigma);
     double lo = std::log(1e-3), hi = std::log(1e3);
     for (int i = 0; i < 40; ++i) {
       const double mid = 0.5 * (lo + hi);

@@ -17,18 +17,19 @@ Status plan_full(EyePlan& p, const EyeFoveation&) {
   return {};
 }
 
-void rmfr_buffer(EyePlan& p, const EyeFoveation& e) {
-  p.buffer_w = rmfr::rmfr_buffer_size(p.screen_w, e.sigma), p.buffer_h = rmfr::rmfr_buffer_size(p.screen_h, e.sigma);
+void rmfr_buffer(EyePlan& p) {
+  p.buffer_w = rmfr::rmfr_buffer_size(p.screen_w, p.sigma), p.buffer_h = rmfr::rmfr_buffer_size(p.screen_h, p.sigma);
 }
 
 Status plan_rmfr(EyePlan& p, const EyeFoveation& e) {
-  rmfr_buffer(p, e);
-  p.f = {rmfr::rmfr_effective_f(e.fx, e.sigma, p.fovea.x), rmfr::rmfr_effective_f(e.fy, e.sigma, p.fovea.y)};
+  rmfr_buffer(p);
+  // f depends on the fovea only through max(c, 1 - c): the same in either vertical frame.
+  p.f = {rmfr::rmfr_effective_f(e.fx, p.sigma, p.fovea.x), rmfr::rmfr_effective_f(e.fy, p.sigma, p.fovea.y)};
   return {};
 }
 
-Status plan_uniform(EyePlan& p, const EyeFoveation& e) {
-  rmfr_buffer(p, e);
+Status plan_uniform(EyePlan& p, const EyeFoveation&) {
+  rmfr_buffer(p);
   p.f = glm::dvec2(rmfr::kRmfrIdentityF);
   return {};
 }

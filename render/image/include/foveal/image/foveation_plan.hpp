@@ -7,6 +7,11 @@
 // Every method takes the same level σ: it shades about W·H/σ² samples (KFR and RMFR:
 // a w×h buffer with w = round(W/σ); the layered methods scale their eccentricity
 // thresholds until they shade that many). σ = 1 renders at full rate.
+//
+// Every point and rectangle here (EyeFoveation's fovea, EyePlan::fovea, Layer rectangles,
+// eccentricity_deg, optical_centre) is in viewport coordinates with the origin at the
+// top-left, y down (docs/conventions.md, "Display and pixels"). The one flip to GL's
+// bottom-left origin is where the shader uniforms are bound (render/pipeline/src/method_binding.cpp).
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -56,7 +61,7 @@ struct EyeFoveation {
 struct Layer {
   double ecc_max_deg = 0;  ///< the layer serves pixels below this eccentricity (inf: the rest)
   double pixel_size = 1;   ///< screen pixels per buffer texel along each axis
-  int x = 0, y = 0, w = 0, h = 0;           ///< screen rectangle, pixels, GL frame (origin bottom-left)
+  int x = 0, y = 0, w = 0, h = 0;           ///< screen rectangle, pixels, (x, y) its top-left corner
   int atlas_y = 0, buffer_w = 0, buffer_h = 0;  ///< where its texels sit in the eye's buffer
 };
 
@@ -64,7 +69,8 @@ struct EyePlan {
   Method method = Method::full;
   int screen_w = 0, screen_h = 0;
   int buffer_w = 0, buffer_h = 0;  ///< the eye's reduced buffer (an atlas for layered methods)
-  glm::dvec2 fovea{0.5};           ///< normalised, GL frame (origin bottom-left)
+  double sigma = 1;                ///< the level planned (EyeFoveation::sigma; 1 for full)
+  glm::dvec2 fovea{0.5};           ///< normalised, origin top-left (sanitised; see FoveaSource)
   glm::dvec2 f{0.3};               ///< RMFR: effective f per axis (1e30 at σ = 1: no warp)
   double kfr_log_max = 1, kfr_alpha = 4;  ///< KFR: L = ln(largest fovea-corner distance, px)
   double layer_scale = 1;          ///< layered: the eccentricity scale used
@@ -81,12 +87,12 @@ struct EyePlan {
 /// Plans one eye of W×H. Errors: σ < 1, f <= 0, alpha <= 0, negative layer scale.
 Result<EyePlan> plan_eye(Method m, const EyeFoveation& f, int width, int height, const EyeFrustum& frustum);
 
-/// Angle in degrees between the view rays through two points given in normalised GL
-/// viewport coordinates (origin bottom-left), through the eye's frustum.
+/// Angle in degrees between the view rays through two points given in normalised
+/// viewport coordinates (origin top-left), through the eye's frustum.
 double eccentricity_deg(const EyeFrustum& frustum, glm::dvec2 p, glm::dvec2 q);
 
-/// Where the eye's optical axis (direction (0,0,-1)) meets its viewport, normalised, GL
-/// frame (origin bottom-left): the fovea of the `fixed` method.
+/// Where the eye's optical axis (direction (0,0,-1)) meets its viewport, normalised,
+/// origin top-left: the fovea of the `fixed` method.
 glm::dvec2 optical_centre(const EyeFrustum& frustum);
 
 /// Whether the method's fovea follows the gaze (false for full, uniform and fixed).

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "foveal/core/error.hpp"
 #include "foveal/image/foveation_plan.hpp"
 
@@ -52,13 +54,17 @@ enum class FoveaSource {
 struct MethodDescription {
   const char* name;  ///< on command lines, in bench files and golden names
   FoveaSource fovea;
-  /// Fills a plan whose method, screen size, frustum, fovea (normalised, GL frame, per
-  /// `fovea`) and buffer (W×H) are set: buffer_w/h, f, kfr_*, layers (the atlas the passes
+  /// Fills a plan whose method, screen size, frustum, σ, fovea (normalised, origin top-left,
+  /// per `fovea`) and buffer (W×H) are set: buffer_w/h, f, kfr_*, layers (the atlas the passes
   /// draw, innermost first) and kernel_params as the kernel reads them. shaded_samples()
   /// sums the layers when there are any. Errors: bad_input (bad parameter).
   Status (*plan)(EyePlan& plan, const EyeFoveation& eye);
   const MethodKernel* kernel;
 };
+
+/// The unit view ray (-z forward) through normalised viewport point p (origin top-left)
+/// of the eye's frustum: what eccentricity_deg measures, and the layered methods' cones.
+glm::dvec3 view_ray(const EyeFrustum& frustum, glm::dvec2 p);
 
 /// Every method, one row each, in the order of the Method values (full first).
 const std::vector<const MethodDescription*>& described_methods();
