@@ -4,6 +4,7 @@
 // validation layer, both bound to one fovea block of their own.
 #include <signal.h>
 #include <spawn.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -20,6 +21,7 @@
 #include "csv_rows.hpp"
 #include "foveal/core/clock.hpp"
 #include "foveal/core/display_model.hpp"
+#include "foveal/runtime/fovea_shm.hpp"
 #include "test_support.hpp"
 
 namespace foveal::test {
@@ -146,9 +148,16 @@ class OpenXRRig {
   OpenXRRig() {
     static std::atomic<int> n{0};
     shm_ = "/foveal-xrtest-" + std::to_string(::getpid()) + "-" + std::to_string(n++);
+    // foveald leaves its block behind when it exits (readers see the writer stopped), so
+    // a block of this name can be a dead run's whose pid came round again: its fovea
+    // would pass for this run's first one, and a FIFO could not be made in its place.
+    ::shm_unlink(shm_.c_str());
     std::filesystem::create_directories(dir_.path("run"));
     std::filesystem::create_directories(dir_.path("config"));
   }
+  ~OpenXRRig() { ::shm_unlink(shm_.c_str()); }
+  OpenXRRig(const OpenXRRig&) = delete;
+  OpenXRRig& operator=(const OpenXRRig&) = delete;
   std::string path(const std::string& p) const { return dir_.path(p); }
   const std::string& shm() const { return shm_; }
 
@@ -217,10 +226,18 @@ class OpenXRTest : public ::testing::Test {
     if (std::string(FOVEAL_TEST_OPENXR_RUNTIME).empty())
       GTEST_SKIP() << "no OpenXR runtime: scripts/build_monado.sh builds Monado from ../shared/vendor/monado";
   }
-  /// Waits until foveald publishes its block (the app could start earlier: it waits too).
+  /// Waits until foveald has published its block and its first fovea. The app could start
+  /// earlier (it waits too), but then its first frames sit at the fixed place for as long
+  /// as a loaded machine delays foveald's first sample, and a test that counts frames
+  /// following the gaze would depend on that delay.
   void wait_for_block() const {
-    eventually([&] { return std::filesystem::exists("/dev/shm" + rig_.shm()); });
-    ASSERT_TRUE(std::filesystem::exists("/dev/shm" + rig_.shm())) << rig_.err("foveald");
+    eventually([&] { return first_fovea_published(); });
+    ASSERT_TRUE(first_fovea_published()) << rig_.err("foveald");
+  }
+  bool first_fovea_published() const {
+    auto shm = FoveaShm::open(rig_.shm());
+    FoveaShmPayload fovea{};
+    return shm && shm->read(fovea) && fovea.frame > 0;
   }
 
   OpenXRRig rig_;
