@@ -37,23 +37,6 @@ constexpr double kTolerance = 0.3;
 // centre, so a fixed inset would not be at the gaze).
 constexpr double kTanX = 0.17632698, kTanY = 0.08748866;  // tan(10°), tan(5°)
 
-/// A native gaze log that looks at (kTanX, kTanY) for `seconds` at 120 Hz, both eyes open.
-void write_fixation_log(const std::string& path, double seconds) {
-  GazeLogHeader header;
-  header.rate_hz = 120;
-  auto w = GazeLogWriter::create(path, header);
-  ASSERT_TRUE(w) << w.error().message;
-  const glm::vec3 look = glm::normalize(glm::vec3(static_cast<float>(kTanX), static_cast<float>(kTanY), -1.0f));
-  for (long i = 0; i < std::lround(seconds * 120); ++i) {
-    GazeSample s;
-    s.t_ns = i * 1'000'000'000 / 120;
-    for (EyeSample* e : {&s.eyes[0], &s.eyes[1]}) *e = {kValidDirection | kValidOpenness, look, {}, 0.0f, 1.0f};
-    s.combined = {kValidDirection, look};
-    ASSERT_TRUE(w->write(s));
-  }
-  ASSERT_TRUE(w->commit());
-}
-
 TEST_F(QuadViews, TheComposedImageHoldsTheJodTheInsetTableDisplayPredictsAtTheTrueGaze) {
   const std::string model_path = test::source_path("tests/openxr/data/monado_null_simulated.json");
   auto model = DisplayModel::load(model_path);
@@ -65,7 +48,7 @@ TEST_F(QuadViews, TheComposedImageHoldsTheJodTheInsetTableDisplayPredictsAtTheTr
   const InsetLevels& levels = **chosen;
   ASSERT_GT(levels.sigma_d, 1.1) << "the table foveates at this target";
 
-  ASSERT_NO_FATAL_FAILURE(write_fixation_log(rig_.path("fixation.csv"), 6));
+  ASSERT_NO_FATAL_FAILURE(test::write_fixation_log(rig_.path("fixation.csv"), 6, kTanX, kTanY));
   auto fd = rig_.foveald({"--source", "replay:" + rig_.path("fixation.csv"), "--end", "5", "--loop", "--no-render", "--out",
                           rig_.path("fd")},
                          "foveald");

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "foveal/core/gaze_log.hpp"
 #include "openxr_harness.hpp"
 
 namespace foveal::test {
@@ -26,6 +27,24 @@ inline Tan tangents(const json& view) {
   const json& f = view["fov"];  // angles left, right, up, down
   return {std::tan(f[0].get<double>()), std::tan(f[1].get<double>()), std::tan(f[3].get<double>()),
           std::tan(f[2].get<double>())};
+}
+
+/// A native gaze log that looks along (tan_x, tan_y, -1) for `seconds` at 120 Hz, both
+/// eyes open: a gaze that never moves, so whatever moves the inset is the layer's doing.
+inline void write_fixation_log(const std::string& path, double seconds, double tan_x, double tan_y) {
+  GazeLogHeader header;
+  header.rate_hz = 120;
+  auto w = GazeLogWriter::create(path, header);
+  ASSERT_TRUE(w) << w.error().message;
+  const glm::vec3 look = glm::normalize(glm::vec3(static_cast<float>(tan_x), static_cast<float>(tan_y), -1.0f));
+  for (long i = 0; i < std::lround(seconds * 120); ++i) {
+    GazeSample s;
+    s.t_ns = i * 1'000'000'000 / 120;
+    for (EyeSample* e : {&s.eyes[0], &s.eyes[1]}) *e = {kValidDirection | kValidOpenness, look, {}, 0.0f, 1.0f};
+    s.combined = {kValidDirection, look};
+    ASSERT_TRUE(w->write(s));
+  }
+  ASSERT_TRUE(w->commit());
 }
 
 class QuadViews : public test::OpenXRTest {
