@@ -105,21 +105,6 @@ void main() {
   }
   vec3 current = own_weight > 1e-4 ? own / own_weight : plain;
 
-  // The samples around it on the same surface: the box the history is clamped into (in
-  // samples, not pixels: a peripheral texel spans several pixels, whose 3×3 would hold
-  // one sample).
-  ivec2 n = ivec2(floor(t));
-  vec3 lo = current, hi = current;
-  for (int y = -1; y <= 1; ++y)
-    for (int x = -1; x <= 1; ++x) {
-      ivec2 texel = clamp(n + ivec2(x, y), ivec2(0), last);
-      if (u_has_depth != 0 && !same_surface(view_depth_of(texelFetch(u_sample_depth, texel, 0).r), view_depth, SAMPLE_TOLERANCE))
-        continue;
-      vec3 s = texelFetch(u_reduced, texel, 0).rgb;
-      lo = min(lo, s);
-      hi = max(hi, s);
-    }
-
   // How much of the history still applies, 0 to 1, and its value: the bilinear read at
   // the reprojected point over only those of its 2×2 pixels that showed this surface
   // (disocclusion: none of them did; at an edge, the other surface's pixels are left out).
@@ -129,7 +114,7 @@ void main() {
   vec2 fq = q - vec2(q0);
   vec4 history = vec4(0.0);
   float found = 0.0;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < 4 && keep > 0.0; ++k) {  // no reads where there is no history
     ivec2 o = ivec2(k & 1, k >> 1);
     ivec2 pix = clamp(q0 + o, ivec2(0), ivec2(u_screen_size) - 1);
     float w = (o.x == 1 ? fq.x : 1.0 - fq.x) * (o.y == 1 ? fq.y : 1.0 - fq.y);
@@ -163,11 +148,30 @@ void main() {
   // frame alone: accumulation could only blur it) nor below u_min_blend.
   float alpha = max(1.0 / frames, clamp(density, u_min_blend, 1.0));
   alpha = keep > 0.0 ? 1.0 - (1.0 - alpha) * keep : 1.0;
+  o_history = vec4(current, frames);
+  o_depth = view_depth;
+  // The current frame alone (no history, or a sample per pixel): the box below could not
+  // change the result, and its 18 reads are half of the pass's.
+  if (alpha >= 1.0) return;
+
+  // The samples around it on the same surface: the box the history is clamped into (in
+  // samples, not pixels: a peripheral texel spans several pixels, whose 3×3 would hold
+  // one sample).
+  ivec2 n = ivec2(floor(t));
+  vec3 lo = current, hi = current;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) {
+      ivec2 texel = clamp(n + ivec2(x, y), ivec2(0), last);
+      if (u_has_depth != 0 && !same_surface(view_depth_of(texelFetch(u_sample_depth, texel, 0).r), view_depth, SAMPLE_TOLERANCE))
+        continue;
+      vec3 s = texelFetch(u_reduced, texel, 0).rgb;
+      lo = min(lo, s);
+      hi = max(hi, s);
+    }
 #ifndef TEMPORAL_NO_CLAMP
   vec3 past = clamp(history.rgb, lo, hi);
 #else
   vec3 past = history.rgb;
 #endif
-  o_history = vec4(mix(past, current, alpha), frames);
-  o_depth = view_depth;
+  o_history.rgb = mix(past, current, alpha);
 }

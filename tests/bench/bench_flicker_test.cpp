@@ -1,6 +1,7 @@
 // foveal bench --flicker from the command line (real EGL rendering): the gaze filter
 // lowers RMFR's flicker under gaze jitter; a moving camera changes the reference's frames
-// and both pipelines get their figures against it; bad input (docs/stability.md).
+// and both pipelines get their figures against it; temporal accumulation's rows; bad
+// input (docs/stability.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -122,6 +123,30 @@ TEST(BenchFlicker, OwnReferenceScoresEachPipelineAgainstItsOwnFullFrames) {
   }
 }
 
+TEST(BenchFlicker, TemporalOnAddsARowWhereAccumulationApplies) {
+  test::TempDir d;
+  auto r = run_moving_camera(d, "--temporal on,off --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = read_csv(test::read_file(d.path("b/flicker.csv")));
+  // Per pipeline full (off), rmfr off; rmfr on only in the visibility pipeline (RMFR's
+  // kernel there is what accumulates).
+  ASSERT_EQ(rows.size(), 5u);
+  std::map<std::string, int> seen;
+  for (const Row& row : rows) ++seen[row.at("pipeline") + "/" + row.at("method") + "/" + row.at("temporal")];
+  EXPECT_EQ(seen, (std::map<std::string, int>{{"gbuffer/full/off", 1}, {"gbuffer/rmfr/off", 1}, {"visibility/full/off", 1},
+                                              {"visibility/rmfr/off", 1}, {"visibility/rmfr/on", 1}}));
+  // Still camera and fovea: without accumulation every frame is the same; with it the
+  // grid is jittered frame to frame, so the frames change while the history fills.
+  for (const Row& row : rows) {
+    if (row.at("method") != "rmfr" || row.at("pipeline") != "visibility") continue;
+    if (row.at("temporal") == "off") EXPECT_EQ(value(row, "periphery_change"), 0.0);
+    else EXPECT_GT(value(row, "periphery_change"), 0.0);
+  }
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["flicker"].size(), 5u);
+  EXPECT_EQ(j["flicker"][4]["temporal"], "on");  // off first, whatever the order given
+}
+
 TEST(BenchFlicker, BadInputExitsTwoNamingTheOptionAndWritesNothing) {
   test::TempDir d;
   const std::string base = test::bin("foveal") + " bench --scene pattern:noise --methods rmfr --sigmas 2 --size 64x36 --frames 1 ";
@@ -139,6 +164,9 @@ TEST(BenchFlicker, BadInputExitsTwoNamingTheOptionAndWritesNothing) {
   expect_bad("--flicker --flicker-sigma-nd 0.5", "--flicker-sigma-nd");
   expect_bad("--flicker --flicker-reference mine", "--flicker-reference");
   expect_bad("--camera-path orbit", "--camera-path requires --flicker");
+  expect_bad("--flicker --temporal sideways", "--temporal: 'sideways': expected off or on");
+  expect_bad("--flicker --temporal on,on", "--temporal: 'on' is listed twice");
+  expect_bad("--temporal on", "--temporal on: temporal accumulation needs a sequence of frames");
   // A log without head poses cannot drive the recorded camera.
   ASSERT_EQ(test::run(test::bin("foveal") + " synth --seed 3 --duration 3 --out " + d.path("g.csv")).exit_code, 0);
   expect_bad("--flicker --flicker-frames 3 --camera-path recorded --flicker-log " + d.path("g.csv"), d.path("g.csv") + " has no head pose");

@@ -337,7 +337,9 @@ TEST(BenchJod, GazeVideoScoresEachLogMethodAndLevelAsOneVideoAlongTheHead) {
   r = test::run(common + " --gaze-video 8 --head static --out " + d.path("static"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string csv = test::read_file(d.path("rec/gaze_video.csv"));
-  EXPECT_EQ(first_line(csv), "scene,log,display,method,gaze,sigma_d,sigma_nd,frames,blink_frames,fps,head_speed_deg_s,jod_left,jod_right,jod");
+  EXPECT_EQ(first_line(csv), "scene,log,display,method,gaze,sigma_d,sigma_nd,frames,blink_frames,fps,head_speed_deg_s,jod_left,jod_right,jod,"
+                             "temporal,shaded_samples,cost,gpu_ms,cpu_ms,saccades,post_saccade_frames,post_saccade_fpsnr_mean,"
+                             "post_saccade_jod_mean,post_saccade_fpsnr_worst_vs_off,post_saccade_jod_worst_vs_off");
   const auto rows = test::read_csv_rows(csv), still = test::read_csv_rows(test::read_file(d.path("static/gaze_video.csv")));
   ASSERT_EQ(rows.size(), 3u);  // the oracle, uniform, rmfr at the one level
   ASSERT_EQ(still.size(), 3u);
@@ -378,6 +380,57 @@ TEST(BenchJod, GazeVideoScoresEachLogMethodAndLevelAsOneVideoAlongTheHead) {
   r = test::run(test::bin("foveal") + " bench --scene pattern:noise --gaze-video 4 --out " + d.path("bad"));
   EXPECT_NE(r.exit_code, 0);
   EXPECT_FALSE(std::filesystem::exists(d.path("bad")));
+}
+
+TEST(BenchJod, GazeVideoWithTemporalAccumulationAtEqualSamplesAndAfterSaccades) {
+  test::TempDir d;
+  // TESTNA01's right eye jumps about 3 deg a frame at 2.74-2.77 s: a real saccade in the
+  // video's 12 frames from 2.7 s.
+  const std::string log = test::source_path("data/gaze/vive_pro_eye_TESTNA01.csv");
+  auto r = test::run(test::bin("foveal") + " bench --gaze " + log + " --gaze-start 2.7 --scene " +
+                     test::source_path("data/scenes/WaterBottle/WaterBottle.gltf") +
+                     " --methods rmfr,kfr --sigmas 2 --size 96x54 --gaze-frames 1 --frames 1 --warmup 0 --no-png --gaze-video 12"
+                     " --temporal on,off --out " + d.path("b"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = test::read_csv_rows(test::read_file(d.path("b/gaze_video.csv")));
+  const auto frames = test::read_csv_rows(test::read_file(d.path("b/gaze_video_frames.csv")));
+  // The oracle and rmfr off and on (RMFR's kernel accumulates), kfr off only.
+  ASSERT_EQ(rows.size(), 5u);
+  std::map<std::string, const test::CsvRow*> by;
+  for (const auto& row : rows) by[row.at("method") + "/" + row.at("gaze") + "/" + row.at("temporal")] = &row;
+  ASSERT_EQ(by.size(), 5u);
+  for (const char* k : {"rmfr/true/off", "rmfr/true/on", "rmfr/filtered/off", "rmfr/filtered/on", "kfr/filtered/off"})
+    EXPECT_TRUE(by.count(k)) << k;
+  const auto& off = *by["rmfr/filtered/off"];
+  const auto& on = *by["rmfr/filtered/on"];
+  // Equal shaded samples: the jitter moves the grid, not its size.
+  EXPECT_EQ(off.at("shaded_samples"), on.at("shaded_samples"));
+  EXPECT_GT(cell(on, "cost"), 0);
+  EXPECT_LT(cell(on, "cost"), 1);
+  EXPECT_NE(cell(off, "jod"), cell(on, "jod")) << "the switch reaches the frames";
+  std::map<std::string, int> post;  // post-saccade frames per point, from the frames file
+  for (const auto& f : frames) {
+    const std::string point = f.at("method") + "/" + f.at("gaze") + "/" + f.at("temporal");
+    const bool after = f.at("post_saccade") == "1";
+    post[point] += after ? 1 : 0;
+    EXPECT_EQ(!f.at("jod").empty(), after) << point << " frame " << f.at("frame") << ": JOD on the frames after saccades only";
+    EXPECT_GT(cell(f, "fpsnr_db"), 0);
+  }
+  EXPECT_EQ(frames.size(), 5u * 12u);
+  for (const auto& [point, row] : by) {
+    SCOPED_TRACE(point);
+    EXPECT_GE(cell(*row, "saccades"), 1);
+    EXPECT_EQ(cell(*row, "post_saccade_frames"), post[point]);
+    EXPECT_GT(post[point], 0);
+    EXPECT_GT(cell(*row, "post_saccade_jod_mean"), 0);
+    // Against the same frames without accumulation: on rows only.
+    EXPECT_EQ(row->at("post_saccade_jod_worst_vs_off").empty(), row->at("temporal") == "off");
+    EXPECT_EQ(row->at("post_saccade_fpsnr_worst_vs_off").empty(), row->at("temporal") == "off");
+  }
+  const auto j = nlohmann::json::parse(test::read_file(d.path("b/gaze.json")));
+  EXPECT_EQ(j["temporal"], "off,on");
+  EXPECT_EQ(j["pipeline"], "visibility");
+  EXPECT_GT(j["temporal_history_mb"].get<double>(), 0);
 }
 
 TEST(BenchJod, GazeVideoLeavesOutTheFramesInBlinksAsTheStillsDo) {

@@ -98,8 +98,10 @@ def main():
               bench_rows.table(d("gaze-merged", "gaze.csv"))[0][-3:] == ["jod_mean", "jod_p5", "jod_min"],
               "the merged gaze_frames.csv and gaze.csv end with their JOD columns")
         video = bench_rows.table(d("gaze-merged", "gaze_video.csv"))
-        check(len(video) == 1 + 2 * 2 * 3 and video[0][-3:] == ["jod_left", "jod_right", "jod"],
+        check(len(video) == 1 + 2 * 2 * 3 and video[0][11:15] == ["jod_left", "jod_right", "jod", "temporal"],
               f"the merged gaze_video.csv has a row per log, level and point (oracle, rmfr, kfr): {len(video) - 1}")
+        check(len(bench_rows.table(d("gaze-merged", "gaze_video_frames.csv"))) > len(video),
+              "the merged gaze_video_frames.csv has the videos' frames")
 
         # Bad input: exit 2, a message naming it, no output.
         r = run(a.foveal, ["bench"] + SWEEP[:2] + ["--sigmas", "3", "--size", "64x36", "--frames", "1", "--shard", "2/4",

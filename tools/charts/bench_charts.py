@@ -222,18 +222,21 @@ def flicker(rows, out):
         r.setdefault("pipeline", "gbuffer")
         r.setdefault("camera", "static")
         r.setdefault("flicker", r["periphery_change"])
+        r.setdefault("temporal", "off")
     panels = list(dict.fromkeys((r["scene"], r["camera"]) for r in rows))
     methods = [m for m in COLORS if any(r["method"] == m for r in rows)]
-    series = list(dict.fromkeys((r["pipeline"], r["gaze"]) for r in rows))
+    series = list(dict.fromkeys((r["pipeline"], r["gaze"], r["temporal"]) for r in rows))
     fig, axes = scene_axes(len(panels), 7.5, 4.3)
     width = 0.8 / len(series)
     shades = ["tab:gray", "tab:purple", "tab:olive", "tab:cyan", "tab:brown", "tab:pink"]
     for ax, (scene, camera) in zip(axes, panels):
         mine = [r for r in rows if r["scene"] == scene and r["camera"] == camera]
-        for k, (pipeline, gaze) in enumerate(series):
+        for k, (pipeline, gaze, temporal) in enumerate(series):
             x = [i + (k - (len(series) - 1) / 2) * width for i in range(len(methods))]
-            pick = [next((r for r in mine if r["method"] == m and r["pipeline"] == pipeline and r["gaze"] == gaze), None) for m in methods]
-            ax.bar(x, [num(r["flicker"]) if r else 0 for r in pick], width, color=shades[k % len(shades)], label=f"{pipeline}, {gaze} gaze")
+            pick = [next((r for r in mine if r["method"] == m and r["pipeline"] == pipeline and r["gaze"] == gaze
+                          and r["temporal"] == temporal), None) for m in methods]
+            label = f"{pipeline}, {gaze} gaze" + (", temporal accumulation" if temporal == "on" else "")
+            ax.bar(x, [num(r["flicker"]) if r else 0 for r in pick], width, color=shades[k % len(shades)], label=label)
             pre = [(xi, num(r["prefiltered_flicker"])) for xi, r in zip(x, pick) if r and r.get("prefiltered_flicker")]
             if pre:
                 ax.bar([p[0] for p in pre], [p[1] for p in pre], width * 0.5, fill=False, hatch="//", edgecolor="black",

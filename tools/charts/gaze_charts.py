@@ -72,10 +72,11 @@ def points(avg, scene, method):
 
 
 def video_averaged(rows):
-    """gaze_video.csv (--gaze-video): (scene, series, sigma_d) -> mean video JOD over the logs."""
+    """gaze_video.csv (--gaze-video): (scene, series, sigma_d, temporal) -> mean video JOD over
+    the logs; temporal is "on" or "off" (files from before accumulation: off)."""
     groups = {}
     for r in rows:
-        groups.setdefault((r["scene"], series(r), num(r["sigma_d"])), []).append(num(r["jod"]))
+        groups.setdefault((r["scene"], series(r), num(r["sigma_d"]), r.get("temporal", "off")), []).append(num(r["jod"]))
     return {k: sum(v) / len(v) for k, v in groups.items()}
 
 
@@ -99,10 +100,12 @@ def chart(avg, settings, out, video=None):
                 axes[2][col].plot(xs, [v["jod_mean"] for _, v in pts], "o-", color=color, label=label + " (mean)", markersize=4)
                 axes[2][col].plot(xs, [v["jod_p5"] for _, v in pts], "v--", color=color, alpha=0.6, markersize=3,
                                   label=label + " (5th pct.)")
-                seq = [(v["cost"], video[(scene, method, s)]) for s, v in pts if video and (scene, method, s) in video]
-                if seq:
-                    axes[2][col].plot([c for c, _ in seq], [j for _, j in seq], "s:", color=color, markersize=4,
-                                      label=label + " (video)")
+                for temporal, marker, name in (("off", "s:", " (video)"), ("on", "D-.", " (video, temporal accumulation)")):
+                    seq = [(v["cost"], video[(scene, method, s, temporal)]) for s, v in pts
+                           if video and (scene, method, s, temporal) in video]
+                    if seq:
+                        axes[2][col].plot([c for c, _ in seq], [j for _, j in seq], marker, color=color, markersize=4,
+                                          label=label + name)
         if jod:
             panel = axes[2][col]
             panel.axhline(9.5, color="black", linestyle=":", linewidth=1, label="JOD 9.5")

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Joins `foveal bench --gaze` runs that differ only in their logs into one directory
-(docs/bench.md): OUT/gaze.csv, gaze_frames.csv and, from --gaze-video runs, gaze_video.csv
+(docs/bench.md): OUT/gaze.csv, gaze_frames.csv and, from --gaze-video runs, gaze_video.csv (and gaze_video_frames.csv)
 (rows concatenated), gaze.json (logs, rows and video rows joined; the settings, the
 panel's luminance for JOD included, must agree). Chart it afterwards: tools/charts/gaze_charts.py OUT.
 
@@ -51,7 +51,9 @@ def main():
     video = [os.path.exists(os.path.join(r, "gaze_video.csv")) for r in runs]
     if any(video) and not all(video):
         sys.exit(f"{runs[video.index(False)]}: no gaze_video.csv, {runs[video.index(True)]} has one (--gaze-video): not joinable")
-    for name in ("gaze.csv", "gaze_frames.csv") + (("gaze_video.csv",) if all(video) else ()):
+    # gaze_video_frames.csv: from runs since temporal accumulation (all of them or none).
+    frames = all(video) and all(os.path.exists(os.path.join(r, "gaze_video_frames.csv")) for r in runs)
+    for name in ("gaze.csv", "gaze_frames.csv") + (("gaze_video.csv",) if all(video) else ()) + (("gaze_video_frames.csv",) if frames else ()):
         lines = []
         for i, r in enumerate(runs):
             with open(os.path.join(r, name)) as f:

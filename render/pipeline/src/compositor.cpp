@@ -165,7 +165,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     const std::size_t variant = *mapping;
     if (Status s = m.ensure_variant(variant); !s) return s.error();
     // Temporal accumulation: RMFR's kernel in the visibility pipeline (docs/rmfr.md).
-    const bool accumulate = params.temporal && params.pipeline == Pipeline::visibility && mapping_kernel(variant).rmfr_passes && plan.method != Method::full;
+    const bool accumulate = params.temporal && temporal_applies(plan.method, params.pipeline);
     if (Status s = m.use_jitter(i, variant, accumulate); !s) return s.error();
     accumulated = accumulated || accumulate;
 

@@ -1,11 +1,18 @@
-// What a frame is asked for: the EFR helper (efr_frame: each eye its own level) and the
-// pipelines by name (parse_pipeline and the lists the CLI and bench show).
+// What a frame is asked for: the EFR helper (efr_frame: each eye its own level), where
+// temporal accumulation applies, and the pipelines by name (parse_pipeline and the lists
+// the CLI and bench show).
 #include <string>
 #include <vector>
 
+#include "foveal/image/method_description.hpp"
 #include "foveal/render/compositor.hpp"
 
 namespace foveal::render {
+
+bool temporal_applies(Method m, Pipeline p) {
+  const MethodDescription* d = describe(m);
+  return p == Pipeline::visibility && m != Method::full && d && d->kernel && d->kernel->rmfr_passes;
+}
 
 FrameParams efr_frame(Method method, Eye dominant, double sigma_d, double sigma_nd, double fx, double fy) {
   FrameParams p;

@@ -29,7 +29,7 @@ using render::Pipeline;
 
 const char* const kFlickerColumns =
     "scene,pipeline,camera,method,sigma,sigma_nd,gaze,frames,fovea_step_px,reference_change,periphery_error,periphery_change,flicker,"
-    "prefiltered_flicker,reference";
+    "prefiltered_flicker,reference,temporal";
 
 const char* flicker_gaze_name(FlickerGaze g) {
   switch (g) {
@@ -223,8 +223,27 @@ Result<std::vector<Pipeline>> parse_flicker_pipelines(const std::string& list, P
   });
 }
 
-std::size_t flicker_points(const FlickerOptions& o, std::size_t methods_without_full) {
-  return o.cameras.size() * o.pipelines.size() * (1 + methods_without_full) * o.gazes.size();
+Result<std::vector<bool>> parse_temporal_list(const std::string& list) {
+  auto v = parse_list<bool>(list, "--temporal", [](const std::string& s) -> Result<bool> {
+    if (s == "off" || s == "on") return s == "on";
+    return bad_input("--temporal: '" + s + "': expected off or on");
+  });
+  if (v) std::sort(v->begin(), v->end());  // off first: the on rows compare against it
+  return v;
+}
+
+std::vector<bool> temporal_values(const std::vector<bool>& temporal, Method m, Pipeline p) {
+  if (!render::temporal_applies(m, p)) return {false};
+  return temporal;
+}
+
+std::size_t flicker_points(const FlickerOptions& o, const std::vector<Method>& methods_without_full) {
+  std::size_t per_camera = 0;
+  for (Pipeline p : o.pipelines) {
+    per_camera += 1;  // full
+    for (Method m : methods_without_full) per_camera += temporal_values(o.temporal, m, p).size();
+  }
+  return o.cameras.size() * per_camera * o.gazes.size();
 }
 
 Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std::vector<Method>& methods_without_full,
@@ -246,11 +265,12 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
   std::vector<Method> methods = {Method::full};
   methods.insert(methods.end(), methods_without_full.begin(), methods_without_full.end());
 
-  auto frame = [&](Method m, Pipeline p, const Foveae& fv, const Pose& head) {
+  auto frame = [&](Method m, Pipeline p, const Foveae& fv, const Pose& head, bool temporal = false) {
     render::FrameParams f = render::efr_frame(m, Eye::right, o.sigma, o.sigma_nd > 0 ? o.sigma_nd : o.sigma, o.fx, o.fy);
     for (std::size_t i = 0; i < 2; ++i) f.eyes[i].fovea_x = fv[i].x, f.eyes[i].fovea_y = fv[i].y;
     f.pipeline = p;
     f.head = head;
+    f.temporal = temporal;
     return f;
   };
   auto render_image = [&](const render::FrameParams& f) -> Result<image::Image> {
@@ -319,80 +339,82 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
 
     for (Pipeline pipeline : o.pipelines)
       for (Method m : methods)
-        for (std::size_t gi = 0; gi < o.gazes.size(); ++gi) {
-          const FlickerGaze gaze = o.gazes[gi];
-          if (!rows.take()) continue;
-          if (Status s = prepare(); !s) return s;
-          const Pipeline rp = o.own_reference ? pipeline : kSharedReference;
-          auto refs = references_of(rp);
-          if (!refs) return refs.error();
-          const References& refset = **refs;
-          auto ref = [&](std::size_t k) -> const Samples& { return refset.frames[std::min(k, refset.frames.size() - 1)]; };
-          auto ref_image = [&](std::size_t k) -> const image::Image& { return refset.images[std::min(k, refset.images.size() - 1)]; };
-          const std::size_t n = heads.size();
-          const std::vector<Foveae> foveae = foveae_of(gaze);
-          static const Samples none;
-          auto ideal_at = [&](std::size_t k) -> const Samples& { return m == Method::rmfr ? refset.ideal[gi][k] : none; };
-          const double ppd = comp.plan(Eye::left).screen_w > 0 ? comp.plan(Eye::left).pixels_per_degree() : 13.15 * eye_w / 1440.0;
-          const double f_px = image::focal_length_px(ppd);
-          // The reference's own frames stand for full through its pipeline (it renders them).
-          const bool is_reference = m == Method::full && pipeline == rp;
-          Sums sums;
-          Samples prev;
-          // JOD as a video at the log's rate, each eye at its recorded (raw) gaze: where the
-          // viewer looked, whichever fovea the frame was rendered with.
-          std::optional<StereoJodScorer::Video> video;
-          if (jod) {
-            auto v = jod->video(window->fps);
-            if (!v) return v.error();
-            video.emplace(std::move(*v));
-          }
-          for (std::size_t k = 0; k < n; ++k) {
-            Samples cur;
-            const EyeFovea gaze_l = std::array<double, 2>{window->raw[k][0].x, window->raw[k][0].y};
-            const EyeFovea gaze_r = std::array<double, 2>{window->raw[k][1].x, window->raw[k][1].y};
-            if (is_reference) {
-              cur = ref(k);
-              if (video)
-                if (Status st = video->push(ref_image(k), ref_image(k), gaze_l, gaze_r); !st) return st;
-            } else {
-              auto r = render_image(frame(m, pipeline, foveae[k], heads[k]));
-              if (!r) return r.error();
-              cur = sample(*r);
-              if (video)
-                if (Status st = video->push(ref_image(k), *r, gaze_l, gaze_r); !st) return st;
+          for (bool temporal : temporal_values(o.temporal, m, pipeline))
+          for (std::size_t gi = 0; gi < o.gazes.size(); ++gi) {
+            const FlickerGaze gaze = o.gazes[gi];
+            if (!rows.take()) continue;
+            if (Status s = prepare(); !s) return s;
+            const Pipeline rp = o.own_reference ? pipeline : kSharedReference;
+            auto refs = references_of(rp);
+            if (!refs) return refs.error();
+            const References& refset = **refs;
+            auto ref = [&](std::size_t k) -> const Samples& { return refset.frames[std::min(k, refset.frames.size() - 1)]; };
+            auto ref_image = [&](std::size_t k) -> const image::Image& { return refset.images[std::min(k, refset.images.size() - 1)]; };
+            const std::size_t n = heads.size();
+            const std::vector<Foveae> foveae = foveae_of(gaze);
+            static const Samples none;
+            auto ideal_at = [&](std::size_t k) -> const Samples& { return m == Method::rmfr ? refset.ideal[gi][k] : none; };
+            const double ppd = comp.plan(Eye::left).screen_w > 0 ? comp.plan(Eye::left).pixels_per_degree() : 13.15 * eye_w / 1440.0;
+            const double f_px = image::focal_length_px(ppd);
+            // The reference's own frames stand for full through its pipeline (it renders them).
+            const bool is_reference = m == Method::full && pipeline == rp;
+            Sums sums;
+            Samples prev;
+            // JOD as a video at the log's rate, each eye at its recorded (raw) gaze: where the
+            // viewer looked, whichever fovea the frame was rendered with.
+            std::optional<StereoJodScorer::Video> video;
+            if (jod) {
+              auto v = jod->video(window->fps);
+              if (!v) return v.error();
+              video.emplace(std::move(*v));
             }
-            if (k > 0)
-              accumulate({&prev, &ref(k - 1), &ideal_at(k - 1)}, {&cur, &ref(k), &ideal_at(k)}, foveae[k - 1], foveae[k], eye_w, eye_h, f_px, sums);
-            prev = std::move(cur);
+            comp.reset_history();  // a point's history starts with its first frame
+            for (std::size_t k = 0; k < n; ++k) {
+              Samples cur;
+              const EyeFovea gaze_l = std::array<double, 2>{window->raw[k][0].x, window->raw[k][0].y};
+              const EyeFovea gaze_r = std::array<double, 2>{window->raw[k][1].x, window->raw[k][1].y};
+              if (is_reference) {
+                cur = ref(k);
+                if (video)
+                  if (Status st = video->push(ref_image(k), ref_image(k), gaze_l, gaze_r); !st) return st;
+              } else {
+                auto r = render_image(frame(m, pipeline, foveae[k], heads[k], temporal));
+                if (!r) return r.error();
+                cur = sample(*r);
+                if (video)
+                  if (Status st = video->push(ref_image(k), *r, gaze_l, gaze_r); !st) return st;
+              }
+              if (k > 0)
+                accumulate({&prev, &ref(k - 1), &ideal_at(k - 1)}, {&cur, &ref(k), &ideal_at(k)}, foveae[k - 1], foveae[k], eye_w, eye_h, f_px, sums);
+              prev = std::move(cur);
+            }
+            std::optional<StereoJod> jv;
+            if (video) {
+              auto sc = video->score();
+              if (!sc) return sc.error();
+              jv = *sc;
+            }
+            tick();
+            const double values = sums.values ? static_cast<double>(sums.values) : 1.0;
+            const double sigma = m == Method::full ? 1.0 : o.sigma, sigma_nd = m == Method::full ? 1.0 : o.sigma_nd > 0 ? o.sigma_nd : o.sigma;
+            const double step = sums.fovea_step / static_cast<double>(n - 1);
+            rows.add_line("flicker.csv", scene_name + "," + render::pipeline_name(pipeline) + "," + path.text() + "," + render::method_name(m) +
+                                             "," + num(sigma) + "," + num(sigma_nd) + "," + flicker_gaze_name(gaze) + "," + std::to_string(n) + "," + num(step) +
+                                             "," + num(sums.reference_change / values) + "," + num(sums.error / values) + "," +
+                                             num(sums.change / values) + "," + num(sums.flicker / values) + "," +
+                                             (m == Method::rmfr ? num(sums.prefiltered_flicker / values) : std::string()) + "," +
+                                             render::pipeline_name(rp) + (temporal ? ",on" : ",off") +
+                                             (jv ? "," + num(jv->left) + "," + num(jv->right) + "," + num(jv->combined) : ""));
+            nlohmann::json item = {{"scene", scene_name}, {"pipeline", render::pipeline_name(pipeline)}, {"camera", path.text()},
+                                      {"method", render::method_name(m)}, {"sigma", sigma}, {"sigma_nd", sigma_nd}, {"gaze", flicker_gaze_name(gaze)},
+                                      {"frames", n}, {"fovea_step_px", step}, {"reference_change", sums.reference_change / values},
+                                      {"periphery_error", sums.error / values}, {"periphery_change", sums.change / values},
+                                      {"flicker", sums.flicker / values},
+                                      {"prefiltered_flicker", m == Method::rmfr ? nlohmann::json(sums.prefiltered_flicker / values) : nlohmann::json()},
+                                      {"reference", render::pipeline_name(rp)}, {"temporal", temporal ? "on" : "off"}};
+            if (jv) item.update({{"jod_left", jv->left}, {"jod_right", jv->right}, {"jod", jv->combined}});
+            rows.add_item("flicker", std::move(item));
           }
-          std::optional<StereoJod> jv;
-          if (video) {
-            auto sc = video->score();
-            if (!sc) return sc.error();
-            jv = *sc;
-          }
-          tick();
-          const double values = sums.values ? static_cast<double>(sums.values) : 1.0;
-          const double sigma = m == Method::full ? 1.0 : o.sigma, sigma_nd = m == Method::full ? 1.0 : o.sigma_nd > 0 ? o.sigma_nd : o.sigma;
-          const double step = sums.fovea_step / static_cast<double>(n - 1);
-          rows.add_line("flicker.csv", scene_name + "," + render::pipeline_name(pipeline) + "," + path.text() + "," + render::method_name(m) +
-                                           "," + num(sigma) + "," + num(sigma_nd) + "," + flicker_gaze_name(gaze) + "," + std::to_string(n) + "," + num(step) +
-                                           "," + num(sums.reference_change / values) + "," + num(sums.error / values) + "," +
-                                           num(sums.change / values) + "," + num(sums.flicker / values) + "," +
-                                           (m == Method::rmfr ? num(sums.prefiltered_flicker / values) : std::string()) + "," +
-                                           render::pipeline_name(rp) +
-                                           (jv ? "," + num(jv->left) + "," + num(jv->right) + "," + num(jv->combined) : ""));
-          nlohmann::json item = {{"scene", scene_name}, {"pipeline", render::pipeline_name(pipeline)}, {"camera", path.text()},
-                                    {"method", render::method_name(m)}, {"sigma", sigma}, {"sigma_nd", sigma_nd}, {"gaze", flicker_gaze_name(gaze)},
-                                    {"frames", n}, {"fovea_step_px", step}, {"reference_change", sums.reference_change / values},
-                                    {"periphery_error", sums.error / values}, {"periphery_change", sums.change / values},
-                                    {"flicker", sums.flicker / values},
-                                    {"prefiltered_flicker", m == Method::rmfr ? nlohmann::json(sums.prefiltered_flicker / values) : nlohmann::json()},
-                                    {"reference", render::pipeline_name(rp)}};
-          if (jv) item.update({{"jod_left", jv->left}, {"jod_right", jv->right}, {"jod", jv->combined}});
-          rows.add_item("flicker", std::move(item));
-        }
   }
   return {};
 }

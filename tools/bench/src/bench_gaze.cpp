@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "foveal/bench/bench_flicker.hpp"
 #include "foveal/bench/bench_jod.hpp"
 #include "foveal/bench/bench_outputs.hpp"
 #include "foveal/bench/bench_sweep.hpp"
@@ -45,6 +46,10 @@ double quantile(std::vector<double> v, double q) {
   if (!std::isfinite(v[lo]) || !std::isfinite(v[hi])) return v[lo];
   return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
+
+/// A figure that may have no value (no frame after a saccade; no run without accumulation
+/// to compare with): null in the JSON, an empty cell in the CSV.
+nlohmann::json or_null(double v) { return std::isnan(v) ? nlohmann::json() : nlohmann::json(v); }
 
 // Patch PSNRs above this count as this: an RMS error under one 8-bit level is not an
 // error a viewer sees, and an identical patch (∞ dB) would make every other frame "worse".
@@ -102,8 +107,9 @@ std::vector<std::string> summary_columns(bool jod) {
 std::string csv_line(const nlohmann::json& row, const std::vector<std::string>& columns) {
   std::string line;
   for (const std::string& c : columns) {
-    if (!line.empty()) line += ",";
+    if (&c != &columns.front()) line += ",";
     if (row.is_null()) line += c;
+    else if (row.at(c).is_null()) continue;  // no value: an empty cell
     else if (row.at(c).is_string()) line += row.at(c).get<std::string>();
     else if (row.at(c).is_number_integer() || row.at(c).is_number_unsigned()) line += json_text(row.at(c));
     else line += fmt(row.at(c).get<double>());
@@ -140,11 +146,13 @@ class GazeBench {
 
   double ppd() const { return ppd_; }
 
-  render::FrameParams params(Method m, double sigma, const GazeFrame& f, bool oracle = false) const {
+  render::FrameParams params(Method m, double sigma, const GazeFrame& f, bool oracle = false, bool temporal = false) const {
     render::FrameParams p = render::efr_frame(m, Eye::right, sigma, m == Method::full ? sigma : sigma * g_.efr_ratio, s_.fx, s_.fy);
     const auto& fovea = oracle ? f.truth : f.fovea;
     for (std::size_t i = 0; i < 2; ++i) p.eyes[i].fovea_x = fovea[i].x, p.eyes[i].fovea_y = fovea[i].y, p.eyes[i].inset_deg = g_.inset_deg;
     if (f.head.valid) p.head = f.head.relative;
+    p.pipeline = s_.pipeline;
+    p.temporal = temporal;
     return p;
   }
 
@@ -165,6 +173,26 @@ class GazeBench {
     if (!r) return r.error();
     progress_.update(++done_);
     return comp_.read_image();
+  }
+
+  /// A video frame's FPSNR and fovea patch at the true gaze, and with `jod` its still JOD.
+  Result<VideoFrameFigures> frame_figures(const image::Image& ref, const image::Image& img, const GazeFrame& f, StereoJodScorer* jod) const {
+    image::MetricsOptions mo;
+    mo.ppd = ppd_;
+    mo.fovea = {f.truth[0].x, f.truth[0].y};
+    mo.fovea_right = {f.truth[1].x, f.truth[1].y};
+    auto q = image::compute_stereo_metrics(ref, img, mo);
+    if (!q) return q.error();
+    VideoFrameFigures out;
+    out.fpsnr_db = q->combined.fpsnr_db;
+    out.patch_psnr_db = kPatchCeilingDb;
+    for (Eye e : kEyes) out.patch_psnr_db = std::min(out.patch_psnr_db, image::psnr(ref, img, patch(e, f.truth[static_cast<std::size_t>(e)])));
+    if (jod) {
+      auto j = jod->still(ref, img, std::array<double, 2>{f.truth[0].x, f.truth[0].y}, std::array<double, 2>{f.truth[1].x, f.truth[1].y});
+      if (!j) return j.error();
+      out.jod = *j;
+    }
+    return out;
   }
 
   /// The fovea patch of eye `e`: a square of patch_deg degrees around the true gaze.
@@ -254,12 +282,15 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
     points.push_back({Method::rmfr, sigma, true});
     for (Method m : s.methods) points.push_back({m, sigma});
   }
+  // --gaze-video's runs per level: each point once per accumulation value that applies to it.
+  std::size_t video_runs = 0;
+  for (const Point& p : points) video_runs += temporal_values(s.temporal, p.method, s.pipeline).size();
   std::uint64_t total = s.scenes.size() * points.size();
   for (const LogInput& l : logs) {
     std::uint64_t renders = l.head_recorded ? 0 : 1;  // the full reference: per frame, or once with a static head
     for (const GazeFrame& f : l.timeline.frames) renders += f.blink ? 0 : points.size() + (l.head_recorded ? 1 : 0);
-    if (!l.video.frames.empty()) renders += l.head_recorded ? 0 : 1;
-    for (const GazeFrame& f : l.video.frames) renders += f.blink ? 0 : points.size() + (l.head_recorded ? 1 : 0);
+    if (!l.video.frames.empty()) renders += (l.head_recorded ? 0 : 1) + video_runs;  // + each run's timing
+    for (const GazeFrame& f : l.video.frames) renders += f.blink ? 0 : video_runs + (l.head_recorded ? 1 : 0);
     total += s.scenes.size() * renders;
   }
   cli::Progress progress("bench --gaze", total / static_cast<std::uint64_t>(shard->n), !s.json);
@@ -279,6 +310,7 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
   std::vector<std::string> video_columns;  // gaze_video.csv's, in order
   if (g.video_frames > 0) {
     rows.table("gaze_video.csv", kGazeVideoColumns);
+    rows.table("gaze_video_frames.csv", kGazeVideoFrameColumns);
     std::istringstream in(kGazeVideoColumns);
     for (std::string c; std::getline(in, c, ',');) video_columns.push_back(c);
   }
@@ -396,19 +428,52 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
         ref_of[k] = vrefs.size() - 1;
       }
       const double head_speed = mean_head_speed_deg_s(vf, g.fps);
+      const SaccadeWindows saccades = find_saccades(vf, *model, g.fps);
       auto reference = [&](std::size_t k) -> Result<image::Image> { return vrefs.at(ref_of[k]); };
       for (std::size_t k = 0; k < points.size(); ++k) {
         if (!mine[k / per_level]) continue;
         const Point& p = points[k];
-        auto test = [&](std::size_t i) { return bench.render(*scene, bench.params(p.method, p.sigma, vf[i], p.oracle)); };
-        auto v = score_gaze_video(*jod, g.fps, vf, reference, test);
-        if (!v) return fail(Error{v.error().kind, log.path + ": " + v.error().message});
-        nlohmann::json row = {{"scene", scene_name}, {"log", log.name}, {"display", model->name}, {"method", render::method_name(p.method)},
-                              {"gaze", p.gaze()}, {"sigma_d", p.sigma}, {"sigma_nd", p.sigma * g.efr_ratio}, {"frames", v->frames},
-                              {"blink_frames", v->blink_frames}, {"fps", g.fps}, {"head_speed_deg_s", head_speed},
-                              {"jod_left", v->jod.left}, {"jod_right", v->jod.right}, {"jod", v->jod.combined}};
-        rows.add_line("gaze_video.csv", chomp(csv_line(row, video_columns)), *mine[k / per_level]);
-        rows.add_item("video", std::move(row), *mine[k / per_level]);
+        std::vector<VideoFrameFigures> off;  // this point's frames without accumulation, for the on run
+        for (bool temporal : temporal_values(s.temporal, p.method, s.pipeline)) {
+          comp->reset_history();  // the timing's frames are no part of the video
+          auto t = bench.time(*scene, bench.params(p.method, p.sigma, vf.front(), p.oracle, temporal));
+          if (!t) return fail(t.error());
+          comp->reset_history();
+          std::vector<VideoFrameFigures> figures(vf.size());
+          auto test = [&](std::size_t i) { return bench.render(*scene, bench.params(p.method, p.sigma, vf[i], p.oracle, temporal)); };
+          auto check = [&](std::size_t i, const image::Image& r, const image::Image& img) -> Status {
+            auto fig = bench.frame_figures(r, img, vf[i], saccades.post[i] ? &*jod : nullptr);
+            if (!fig) return fig.error();
+            figures[i] = *fig;
+            return {};
+          };
+          auto v = score_gaze_video(*jod, g.fps, vf, reference, test, check);
+          if (!v) return fail(Error{v.error().kind, log.path + ": " + v.error().message});
+          const PostSaccade after = post_saccade(saccades, figures, temporal ? &off : nullptr);
+          const char* on_off = temporal ? "on" : "off";
+          nlohmann::json row = {{"scene", scene_name}, {"log", log.name}, {"display", model->name}, {"method", render::method_name(p.method)},
+                                {"gaze", p.gaze()}, {"sigma_d", p.sigma}, {"sigma_nd", p.sigma * g.efr_ratio}, {"frames", v->frames},
+                                {"blink_frames", v->blink_frames}, {"fps", g.fps}, {"head_speed_deg_s", head_speed},
+                                {"jod_left", v->jod.left}, {"jod_right", v->jod.right}, {"jod", v->jod.combined}, {"temporal", on_off},
+                                {"shaded_samples", t->shaded_samples}, {"cost", static_cast<double>(t->shaded_samples) / full_samples},
+                                {"gpu_ms", t->gpu_total}, {"cpu_ms", t->cpu}, {"saccades", saccades.onsets},
+                                {"post_saccade_frames", after.frames}, {"post_saccade_fpsnr_mean", or_null(after.fpsnr_mean)},
+                                {"post_saccade_jod_mean", or_null(after.jod_mean)}, {"post_saccade_fpsnr_worst_vs_off", or_null(after.fpsnr_worst_vs_off)},
+                                {"post_saccade_jod_worst_vs_off", or_null(after.jod_worst_vs_off)}};
+          rows.add_line("gaze_video.csv", chomp(csv_line(row, video_columns)), *mine[k / per_level]);
+          rows.add_item("video", std::move(row), *mine[k / per_level]);
+          for (std::size_t i = 0; i < vf.size(); ++i) {
+            if (vf[i].blink) continue;
+            const VideoFrameFigures& fg = figures[i];
+            const std::string jod_cells = fg.jod ? fmt(fg.jod->left) + "," + fmt(fg.jod->right) + "," + fmt(fg.jod->combined) : ",,";
+            rows.add_line("gaze_video_frames.csv",
+                          scene_name + "," + log.name + "," + render::method_name(p.method) + "," + p.gaze() + "," + fmt(p.sigma) + "," +
+                              on_off + "," + std::to_string(vf[i].index) + "," + secs(vf[i].t_display) + "," + fmt(saccades.step_deg[i]) +
+                              "," + (saccades.post[i] ? "1" : "0") + "," + fmt(fg.fpsnr_db) + "," + fmt(fg.patch_psnr_db) + "," + jod_cells,
+                          *mine[k / per_level]);
+          }
+          if (!temporal) off = std::move(figures);
+        }
       }
     }
   }
@@ -428,6 +493,8 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
       {"start_s", g.start_s}, {"efr_ratio", g.efr_ratio}, {"dominant", "right"}, {"fx", s.fx}, {"fy", s.fy}, {"inset_deg", g.inset_deg},
       {"patch_deg", g.patch_deg}, {"patch_margin_db", g.patch_margin_db}, {"filter", "FilterConfig defaults (foveald without a profile)"},
       {"timed_frames", s.timed_frames}, {"logs", log_info}, {"video_frames", g.video_frames},
+      {"pipeline", render::pipeline_name(s.pipeline)}, {"temporal", s.temporal.back() ? s.temporal.front() ? "on" : "off,on" : "off"},
+      {"temporal_history_mb", static_cast<double>(comp->memory().temporal) / 1e6},
       {"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()},
       {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
   if (jod) summary["jod"] = jod_settings(*jod);

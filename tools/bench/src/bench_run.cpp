@@ -148,6 +148,10 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
   if (!grid) return fail(grid.error());
   auto shard = bench::parse_shard(a.shard.empty() ? "1/1" : a.shard);
   if (!shard) return fail(shard.error());
+  auto temporal = parse_temporal_list(a.temporal);
+  if (!temporal) return fail(temporal.error());
+  if (temporal->back() && !a.flicker && a.gaze.video_frames == 0)
+    return fail(bad_input("--temporal on: temporal accumulation needs a sequence of frames: add --flicker, or --gaze with --gaze-video"));
   // Charts come after the sweep and a failed chart step writes nothing: find a missing
   // matplotlib before the work, not after it.
   if (!a.no_png && a.shard.empty())
@@ -167,12 +171,13 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
       return fail(bad_input("--camera-pivot: expected a distance in metres > 0, got " + num(*a.camera_pivot)));
     fo = {.log = a.flicker_log, .frames = a.flicker_frames, .sigma = a.grid_sigma, .fx = a.fx, .fy = a.fy, .sigma_nd = a.flicker_sigma_nd.value_or(0),
           .fovea = *fovea, .cameras = *cameras, .pivot_m = a.camera_pivot.value_or(0), .fill = a.camera_fill, .gazes = *gazes, .pipelines = *pipelines,
-          .own_reference = a.flicker_reference == "own"};
+          .own_reference = a.flicker_reference == "own", .temporal = *temporal};
   }
   if (!a.gaze.logs.empty()) {
     if (a.f_grid || a.rotation || a.stability || a.flicker)
       return fail(bad_input("--gaze runs on its own: drop --f-grid, --rotation, --stability and --flicker"));
-    return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json, a.shard, sweep, !a.no_jod, a.light});
+    return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json, a.shard, sweep,
+                                   !a.no_jod, a.light, a.pipeline, *temporal});
   }
 
   std::error_code ec;
@@ -194,7 +199,7 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
 
   const std::uint64_t per_scene = 1 + methods.size() * sigmas->size() + (a.f_grid ? grid->size() * grid->size() + 1 : 0);
   const std::uint64_t total = per_scene * scenes.size() + (a.rotation ? 19 * (1 + methods.size()) : 0) +
-                              (a.stability ? 1 + 22 * methods.size() : 0) + (a.flicker ? flicker_points(fo, methods.size()) * scenes.size() : 0);
+                              (a.stability ? 1 + 22 * methods.size() : 0) + (a.flicker ? flicker_points(fo, methods) * scenes.size() : 0);
   cli::Progress progress("bench", total / static_cast<std::uint64_t>(shard->n), !a.json);
   Bench bench(a, *comp, progress);
 

@@ -15,7 +15,7 @@ const std::vector<Kind>& kinds() {
   // The tables bench_run.cpp, bench_flicker.cpp and bench_gaze.cpp declare.
   static const std::vector<Kind> k = {
       {"bench", "bench.json", "tools/charts/bench_charts.py", {"bench.csv", "fgrid.csv", "rotation.csv", "stability.csv", "flicker.csv"}},
-      {"gaze", "gaze.json", "tools/charts/gaze_charts.py", {"gaze.csv", "gaze_frames.csv", "gaze_video.csv"}},
+      {"gaze", "gaze.json", "tools/charts/gaze_charts.py", {"gaze.csv", "gaze_frames.csv", "gaze_video.csv", "gaze_video_frames.csv"}},
   };
   return k;
 }

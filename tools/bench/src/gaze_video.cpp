@@ -1,9 +1,12 @@
 #include "foveal/bench/gaze_video.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
+
+#include "foveal/image/foveation_plan.hpp"
 
 namespace foveal::bench {
 
@@ -22,8 +25,54 @@ double mean_head_speed_deg_s(const std::vector<GazeFrame>& frames, double fps) {
   return deg / (static_cast<double>(frames.size() - 1) / fps);
 }
 
+SaccadeWindows find_saccades(const std::vector<GazeFrame>& frames, const DisplayModel& model, double fps) {
+  SaccadeWindows out;
+  out.step_deg.assign(frames.size(), 0.0);
+  out.post.assign(frames.size(), false);
+  const double threshold_deg = kSaccadeDegPerS / fps;
+  const GazeFrame* prev = nullptr;
+  std::size_t left = 0;  // frames of the current window still to mark
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const GazeFrame& f = frames[k];
+    if (f.blink) continue;
+    if (prev)
+      for (Eye e : kEyes) {
+        const std::size_t i = static_cast<std::size_t>(e);
+        out.step_deg[k] = std::max(out.step_deg[k], render::eccentricity_deg(model.eye(e), prev->truth[i], f.truth[i]));
+      }
+    if (out.step_deg[k] > threshold_deg) {
+      if (left == 0) ++out.onsets;  // a saccade spanning frames is one
+      left = kPostSaccadeFrames + 1;
+    }
+    if (left > 0) out.post[k] = true, --left;
+    prev = &f;
+  }
+  return out;
+}
+
+PostSaccade post_saccade(const SaccadeWindows& windows, const std::vector<VideoFrameFigures>& figures,
+                         const std::vector<VideoFrameFigures>* off) {
+  PostSaccade out;
+  double fpsnr = 0, jod = 0;
+  std::size_t jods = 0;
+  const bool compare = off && off->size() == figures.size();
+  for (std::size_t k = 0; k < figures.size() && k < windows.post.size(); ++k) {
+    if (!windows.post[k]) continue;
+    const VideoFrameFigures& f = figures[k];
+    ++out.frames;
+    fpsnr += f.fpsnr_db;
+    if (compare) out.fpsnr_worst_vs_off = std::fmin(out.fpsnr_worst_vs_off, f.fpsnr_db - (*off)[k].fpsnr_db);
+    if (!f.jod) continue;
+    jod += f.jod->combined, ++jods;
+    if (compare && (*off)[k].jod) out.jod_worst_vs_off = std::fmin(out.jod_worst_vs_off, f.jod->combined - (*off)[k].jod->combined);
+  }
+  if (out.frames) out.fpsnr_mean = fpsnr / static_cast<double>(out.frames);
+  if (jods) out.jod_mean = jod / static_cast<double>(jods);
+  return out;
+}
+
 Result<GazeVideoScore> score_gaze_video(StereoJodScorer& jod, double fps, const std::vector<GazeFrame>& frames,
-                                        const SequenceImage& reference, const SequenceImage& test) {
+                                        const SequenceImage& reference, const SequenceImage& test, const FrameCheck& check) {
   auto video = jod.video(fps);
   if (!video) return video.error();
   GazeVideoScore out;
@@ -41,6 +90,8 @@ Result<GazeVideoScore> score_gaze_video(StereoJodScorer& jod, double fps, const 
                                std::array<double, 2>{f.truth[1].x, f.truth[1].y});
         !s)
       return s.error();
+    if (check)
+      if (Status s = check(k, *ref, *img); !s) return s.error();
     ++out.frames;
   }
   if (!out.frames) return bad_input("--gaze-video: every frame of the sequence falls in a blink or dropout");

@@ -109,6 +109,10 @@ void add_bench(CLI::App& app, int& exit_code) {
       sub->add_option("--camera-pivot", o.camera_pivot, "Pivot distance ahead of the head, metres (default: from the scene's bounds)"),
       sub->add_flag("--camera-fill", o.camera_fill, "Start the camera where the scene's bounding sphere fills the view (object scenes)")})
     opt->needs(flicker);
+  sub->add_option("--temporal", o.temporal,
+                  "Comma list of off, on: each --flicker and --gaze-video point whose method and pipeline accumulate (RMFR's kernel, "
+                  "visibility pipeline; docs/rmfr.md) with temporal accumulation off and/or on; the rest off")
+      ->capture_default_str();
   sub->add_flag("--stability", o.stability, "Also: fovea from the centre to a corner and to a border, patch PSNR and FPSNR per method");
   const CLI::Option* size = sub->get_option("--size");
   add_gaze_options(*sub, o.gaze);

@@ -67,6 +67,10 @@ struct FrameParams {
   bool temporal = false;
 };
 
+/// Whether FrameParams::temporal accumulates frames of method `m` through pipeline `p`:
+/// RMFR's kernel (rmfr, uniform, fixed) in the visibility pipeline. Thread-safe (no state).
+bool temporal_applies(Method m, Pipeline p);
+
 /// EFR: the dominant eye at sigma_d, the other at sigma_nd.
 FrameParams efr_frame(Method method, Eye dominant, double sigma_d, double sigma_nd, double fx, double fy);
 

@@ -37,6 +37,9 @@ struct FlickerOptions {
   /// false: every pipeline is scored against full through the G-buffer pipeline; true:
   /// against full through itself (only what foveation adds, not the pipelines' difference).
   bool own_reference = false;
+  /// Temporal accumulation off and/or on (FrameParams::temporal), in this order: a point
+  /// where it applies (render::temporal_applies) runs once per value, any other once, off.
+  std::vector<bool> temporal{false};
 };
 
 /// The parsed form of the comma lists `--camera-path`, `--flicker-gaze` and
@@ -44,10 +47,14 @@ struct FlickerOptions {
 Result<std::vector<CameraPath>> parse_camera_paths(const std::string& list);
 Result<std::vector<FlickerGaze>> parse_flicker_gazes(const std::string& list);
 Result<std::vector<render::Pipeline>> parse_flicker_pipelines(const std::string& list, render::Pipeline fallback);
+/// `--temporal`'s comma list of off and on, off first whatever the order given.
+Result<std::vector<bool>> parse_temporal_list(const std::string& list);
+/// The values of `temporal` a point of method m through pipeline p runs with.
+std::vector<bool> temporal_values(const std::vector<bool>& temporal, render::Method m, render::Pipeline p);
 
 /// Points of the sweep one scene's flicker runs take: camera × pipeline × method (full
-/// first) × gaze.
-std::size_t flicker_points(const FlickerOptions& o, std::size_t methods_without_full);
+/// first) × its temporal values × gaze.
+std::size_t flicker_points(const FlickerOptions& o, const std::vector<render::Method>& methods_without_full);
 
 /// Renders every point on the scene `spec` and adds its rows (flicker.csv and the list
 /// "flicker") through `rows`; `tick` after each point. With `jod`, each point's frames
@@ -56,7 +63,8 @@ std::size_t flicker_points(const FlickerOptions& o, std::size_t methods_without_
 Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std::vector<render::Method>& methods_without_full,
                    const std::string& spec, bench::SweepRows& rows, const std::function<void()>& tick, StereoJodScorer* jod = nullptr);
 
-/// flicker.csv's header; with JOD, kFlickerJodColumns follow.
+/// flicker.csv's header (`temporal` after the columns it came after); with JOD,
+/// kFlickerJodColumns follow.
 extern const char* const kFlickerColumns;
 inline constexpr const char* kFlickerJodColumns = ",jod_left,jod_right,jod";
 

@@ -8,6 +8,7 @@
 
 #include "foveal/image/foveation_plan.hpp"
 #include "foveal/perception/jod.hpp"
+#include "foveal/render/compositor.hpp"
 
 namespace foveal::bench {
 
@@ -41,6 +42,8 @@ struct GazeBenchSweep {
   std::string sweep;  ///< the options that define the sweep, for the shard file
   bool jod = true;    ///< JOD per frame at the true gaze (bench_jod.hpp); false: --no-jod
   perception::Photometry light;  ///< the panel's luminance for JOD (--peak, --black)
+  render::Pipeline pipeline = render::Pipeline::visibility;  ///< every frame's, the references' too
+  std::vector<bool> temporal{false};  ///< --gaze-video's accumulation off and/or on (bench_flicker.hpp's temporal_values)
 };
 
 /// Runs the gaze-driven evaluation; returns the exit code.

@@ -31,6 +31,7 @@ struct BenchOptions {
   int flicker_frames = 48;
   std::string camera_paths = "static", flicker_gaze = "raw,filtered", flicker_pipelines;  ///< bench_flicker.hpp
   std::string flicker_reference = "shared";
+  std::string temporal = "off";  ///< --temporal: off, on or both (--flicker and --gaze-video; bench_flicker.hpp)
   std::optional<double> camera_pivot, flicker_sigma_nd;
   bool camera_fill = false;
   double grid_sigma = 2.0;
