@@ -192,7 +192,7 @@ TEST(BenchJod, FlickerAppendsVideoJodColumnsAndNoJodLeavesThemOut) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   auto header = [&](const std::string& file) { return first_line(test::read_file(d.path(file))); };
   EXPECT_EQ(header("jod/flicker.csv"), header("none/flicker.csv") + ",jod_left,jod_right,jod");
-  EXPECT_TRUE(header("none/flicker.csv").ends_with(",prefiltered_flicker,reference"));
+  EXPECT_TRUE(header("none/flicker.csv").ends_with(",prefiltered_flicker,reference,temporal"));
   const auto rows = test::read_csv_rows(test::read_file(d.path("jod/flicker.csv")));
   ASSERT_EQ(rows.size(), 2u);  // full and rmfr
   EXPECT_EQ(rows[0].at("jod"), "10");
