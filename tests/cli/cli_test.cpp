@@ -25,9 +25,22 @@ TEST(RenderCli, WritesAPngAndReportsPassesAsJson) {
   for (const char* pass : {"visibility", "material", "lighting", "inverse", "blend", "gpu_total", "cpu_frame"})
     EXPECT_GE(j["passes_ms"].value(pass, -1.0), 0.0) << pass << " in " << j["passes_ms"].dump();
   EXPECT_GT(j["targets_mb"]["total"].get<double>(), 0.0);
+  EXPECT_EQ(j["targets_mb"]["temporal"].get<double>(), 0.0);  // no history without --temporal on
   auto img = image::load(d.path("f.png"));
   ASSERT_TRUE(img) << img.error().message;
   EXPECT_EQ(img->width, 160);
+}
+
+// --temporal on's histories are counted in the targets' memory.
+TEST(RenderCli, TemporalAccumulationReportsItsHistoriesMemory) {
+  test::TempDir d;
+  auto r = test::run(test::bin("foveal") + " render --scene pattern:checker --size 160x90 --frames 2 --warmup 0 --temporal on "
+                     "--json --out " + d.path("t.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double temporal = j["targets_mb"]["temporal"].get<double>();
+  EXPECT_GT(temporal, 0.0);
+  EXPECT_LT(temporal, j["targets_mb"]["total"].get<double>());
 }
 
 // --display takes a bundled model's name as well as a file, as bench and metrics do.

@@ -172,7 +172,7 @@ int run(const Args& a) {
                      {"cpu_frame", med.cpu}}},
       {"targets_mb", {{"gbuffer", mb(mem.gbuffer)}, {"transformed", mb(mem.transformed)}, {"reduced", mb(mem.reduced)},
                       {"visibility", mb(mem.visibility)}, {"output", mb(mem.output)}, {"shadow", mb(mem.shadow)},
-                      {"total", mb(mem.total())}}},
+                      {"temporal", mb(mem.temporal)}, {"total", mb(mem.total())}}},
       {"textures_mb", mb(scene->texture_bytes)},
       // The shader variant and G-buffer layout the scene's materials chose (docs/scenes.md, "Materials").
       {"material_variant", {{"shader", comp->shading_variant()}, {"gbuffer_bytes_per_pixel", comp->gbuffer_bytes_per_pixel()},
