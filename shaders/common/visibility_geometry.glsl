@@ -8,7 +8,11 @@
 layout(binding = 8) uniform samplerBuffer u_vertex_pairs;  // GltfVertex: 9 RG32F texels
 layout(binding = 9) uniform usamplerBuffer u_triangles;    // indices: one RGB32UI texel per triangle
 layout(binding = 10) uniform samplerBuffer u_draw_floats;  // DrawRecord: 8 RGBA32F texels
-layout(binding = 11) uniform usamplerBuffer u_draw_uints;  // the same as RGBA32UI
+// Unit 11 unless the includer moves it (transparent_layer.frag: lighting's sheen table is there).
+#ifndef DRAW_UINTS_UNIT
+#define DRAW_UINTS_UNIT 11
+#endif
+layout(binding = DRAW_UINTS_UNIT) uniform usamplerBuffer u_draw_uints;  // the same as RGBA32UI
 
 struct DrawRecord {
   mat4 model;

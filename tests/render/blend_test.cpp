@@ -90,14 +90,18 @@ struct Case {
   render::Pipeline pipeline;
   render::Method method;
   double sigma;
+  render::BlendAt blend_at = render::BlendAt::output;
 };
+// The last: blended surfaces shaded at RMFR's kept samples (docs/rmfr.md, "Transparency at the kept samples").
 const Case kCases[] = {{render::Pipeline::gbuffer, render::Method::full, 1.0},
                        {render::Pipeline::gbuffer, render::Method::rmfr, 2.0},
                        {render::Pipeline::visibility, render::Method::full, 1.0},
-                       {render::Pipeline::visibility, render::Method::rmfr, 2.0}};
+                       {render::Pipeline::visibility, render::Method::rmfr, 2.0},
+                       {render::Pipeline::visibility, render::Method::rmfr, 2.0, render::BlendAt::samples}};
 
 std::string describe(const Case& c) {
-  return std::string(render::pipeline_name(c.pipeline)) + " " + render::method_name(c.method);
+  return std::string(render::pipeline_name(c.pipeline)) + " " + render::method_name(c.method) + " blend at " +
+         render::blend_at_name(c.blend_at);
 }
 
 render::Compositor lens_compositor() {
@@ -119,6 +123,7 @@ image::Image render_case(const std::string& spec, const Case& c, bool lens = fal
   render::Scene s = test::scene(spec);
   render::FrameParams p = test::frame(c.method, c.sigma);
   p.pipeline = c.pipeline;
+  p.blend_at = c.blend_at;
   auto t = comp.render(s, p);
   EXPECT_TRUE(t) << (t ? "" : t.error().message);
   bool blended = false;
@@ -286,9 +291,105 @@ TEST(Blend, AlphaBlendModeTestShowsTheBlendCheckMark) {
   for (const Case& c : kCases) {
     render::FrameParams p = test::frame(c.method, c.sigma);
     p.pipeline = c.pipeline;
+    p.blend_at = c.blend_at;
     // Measured 0 against 22-32 (the X is some 12 px wide).
     const int a = red(test::render_frame(comp, blended, p)), b = red(test::render_frame(comp, opaque, p));
     EXPECT_LT(a, 3) << describe(c) << ": red pixels with BLEND";
     EXPECT_GT(b, 12) << describe(c) << ": red pixels with BLEND drawn OPAQUE (the X the blend hides)";
   }
+}
+
+// Transparency at the kept samples (BlendAt::samples; docs/rmfr.md, "Transparency at the
+// kept samples"): peeled at W×H, shaded in RMFR's reduced buffer before the inverse pass.
+namespace {
+
+render::FrameParams samples_frame(double sigma, render::BlendAt at) {
+  render::FrameParams p = test::frame(render::Method::rmfr, sigma);
+  p.pipeline = render::Pipeline::visibility;
+  p.blend_at = at;
+  return p;
+}
+
+}  // namespace
+
+// At σ = 1 RMFR's map is the identity: the samples path shades every pixel, as the blend
+// pass does, and must give its image (texture reads filtered over the texel's footprint
+// in place of the rasteriser's derivatives, and the resolve's bilinear tap: not bit-equal).
+TEST(BlendAtSamples, AtSigmaOneItEqualsTheBlendPassAtOutputResolution) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir dir;
+  Quad bg = kBackground, a = kGreen, b = kBlue;
+  bg.unlit = a.unlit = b.unlit = false;  // lit: the material and the lights, not only a colour
+  const std::string quads = write_scene(dir, "lit", {bg, a, b});
+  render::Compositor comp = test::make_compositor(512, 256);
+  for (const std::string& spec : {quads, test::khronos("AlphaBlendModeTest")}) {
+    render::Scene s = test::scene(spec);
+    render::fill_view(s);
+    auto out = comp.render(s, samples_frame(1.0, render::BlendAt::output));
+    ASSERT_TRUE(out) << out.error().message;
+    const image::Image at_output = comp.read_image();
+    auto in = comp.render(s, samples_frame(1.0, render::BlendAt::samples));
+    ASSERT_TRUE(in) << in.error().message;
+    const image::Image at_samples = comp.read_image();
+    EXPECT_EQ(out->blend_layers, 0) << spec;
+    EXPECT_GT(in->blend_layers, 0) << spec << ": the samples path composited no layer";
+    EXPECT_GT(image::psnr(at_output, at_samples), 40.0) << spec;
+  }
+}
+
+// Peeled layers composite back to front: the nearer pane's colour dominates where they
+// overlap, whichever the file lists first. Five panes at one pixel: the nearest four (the
+// layer cap) are drawn, the deepest is left out and counted.
+TEST(BlendAtSamples, OverlappingPanesCompositeNearestLastAndTheCapDropsTheDeepest) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir dir;
+  const Quad red{{1, 0, 0, 0.8f}, "BLEND", 0.5f, 0.9f}, green{{0, 1, 0, 0.8f}, "BLEND", 1.0f, 0.7f};
+  const Quad black{{0, 0, 0, 1}, "OPAQUE", 0.0f, 2.0f};
+  for (const auto& order : {std::vector<Quad>{black, red, green}, std::vector<Quad>{black, green, red}}) {
+    render::Compositor comp = test::make_compositor(kWidth, kHeight);
+    render::Scene s = test::scene(write_scene(dir, "two", order));
+    auto t = comp.render(s, samples_frame(2.0, render::BlendAt::samples));
+    ASSERT_TRUE(t) << t.error().message;
+    EXPECT_EQ(t->blend_layers, 4) << "two layers per eye";
+    EXPECT_EQ(t->blend_dropped, 0u);
+    // Red 0.8 over black, then green 0.8 (nearer) over that: (0.16, 0.8, 0); the other
+    // order would give (0.8, 0.16, 0).
+    expect_centres(comp.read_image(), {0.16, 0.8, 0.0}, "green nearer");
+  }
+  // Five panes, nearest last: grey 0.5 at z 0.2, then four at 0.5 alpha nearer: the
+  // grey is the fifth layer at the centre, beyond the cap, and not drawn.
+  std::vector<Quad> five = {black, {{1, 1, 1, 0.5f}, "BLEND", 0.2f, 0.9f}};
+  for (int k = 0; k < 4; ++k) five.push_back({{0, 0, 1, 0.5f}, "BLEND", 0.4f + 0.2f * static_cast<float>(k), 0.8f - 0.1f * static_cast<float>(k)});
+  render::Compositor comp = test::make_compositor(kWidth, kHeight);
+  render::Scene s = test::scene(write_scene(dir, "five", five));
+  auto t = comp.render(s, samples_frame(2.0, render::BlendAt::samples));
+  ASSERT_TRUE(t) << t.error().message;
+  EXPECT_EQ(t->blend_layers, 8) << "the cap, four layers per eye";
+  EXPECT_GT(t->blend_dropped, 0u) << "the grey pane's centre is beyond the cap";
+  // Four blue panes at 0.5 over black: blue 1 - 0.5^4; the grey under them would add red and green.
+  expect_centres(comp.read_image(), {0.0, 0.0, 1.0 - 0.0625}, "four of five layers");
+}
+
+// The work scales with the kept samples: at σ = 2 the samples path composites about the
+// reduced buffers' share of the fragments the blend pass composites at output resolution.
+// A count of fragments (GL_SAMPLES_PASSED), never a time.
+TEST(BlendAtSamples, TheBlendedFragmentsScaleWithTheKeptSamples) {
+  ASSERT_TRUE(test::gl_ready());
+  test::TempDir dir;
+  render::Compositor comp = test::make_compositor(512, 256);
+  // Panes over the whole view: where the fovea's region alone were covered, RMFR would
+  // keep it at nearly full density.
+  Quad green = kGreen, blue = kBlue;
+  green.half = blue.half = 3.0f;
+  render::Scene s = test::scene(write_scene(dir, "panes", {kBackground, green, blue}));
+  auto out = comp.render(s, samples_frame(2.0, render::BlendAt::output));
+  auto in = comp.render(s, samples_frame(2.0, render::BlendAt::samples));
+  ASSERT_TRUE(out && in);
+  ASSERT_GT(out->blend_samples, 0u);
+  EXPECT_EQ(out->blend_layers, 0);
+  EXPECT_GT(in->blend_layers, 0);
+  const double kept = static_cast<double>(in->shaded_samples) / (512.0 * 256.0);
+  const double ratio = static_cast<double>(in->blend_samples) / static_cast<double>(out->blend_samples);
+  EXPECT_LT(kept, 0.5) << "the test needs foveation to keep a small share";
+  EXPECT_NEAR(ratio, kept, 0.15) << "blended fragments " << in->blend_samples << " at samples, " << out->blend_samples << " at output";
 }

@@ -126,6 +126,12 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
   // the right eye's could come later still, but both eyes show one gaze sample.
   std::array<EyeFoveation, 2> eyes = params.eyes;
   const bool blended = detail::has_forward_draws(scene);
+  // Blended surfaces at the kept samples (BlendAt::samples): foveated methods in the
+  // visibility pipeline; transmission needs the opaque result at screen positions, which
+  // only the output has, so such scenes blend there.
+  const bool blend_at_samples = blended && params.blend_at == BlendAt::samples && params.pipeline == Pipeline::visibility &&
+                                params.method != Method::full && (scene.features & feature_transmission) == 0;
+  m.blend_counted = {false, false};
   bool accumulated = false;
   for (Eye e : kEyes) {
     const std::size_t i = static_cast<std::size_t>(e);
@@ -183,18 +189,20 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     // Through the lens they must go on before it: the opaque result is resolved without
     // the lens into the eye's W×H blend target, blended there, and that is taken through
     // the lens by an identity resolve (one more full-resolution pass, only then).
-    const bool blend_under_lens = distort && blended;
+    const bool blend_under_lens = distort && blended && !blend_at_samples;
     if (blend_under_lens) m.ensure_undistorted();
     const GLuint resolve_fbo = blend_under_lens ? m.undistorted->fbo.id() : m.output.fbo.id();
     const glm::ivec2 resolve_origin = blend_under_lens ? glm::ivec2(0) : eye_origin;
     auto blend_eye = [&]() -> Status {
-      if (!blended) return {};
+      if (!blended || blend_at_samples) return {};  // at samples: composited before the inverse pass
       // llvmpipe runs the draws into one target as one scene, tile by tile, and stamps a
       // pass's end when its last tile is done: without a flush the previous pass's stamp
       // would fall after most of this pass (measured: the blend pass read 0 ms in full).
       glFlush();
+      m.begin_blend_count(i);
       m.blend_pass(scene, view, resolve_fbo, blend_under_lens ? m.undistorted->texture.id() : m.output.texture.id(), resolve_origin,
                    m.opaque_depth(params.pipeline));
+      glEndQuery(GL_SAMPLES_PASSED);
       if (blend_under_lens) {
         rmfr::Plan identity = rmfr_plan(plan);
         identity.buffer_w = identity.screen_w, identity.buffer_h = identity.screen_h;
@@ -236,6 +244,12 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
       m.lighting_pass(lp, tg, glm::ivec2(0), view);
     }
     m.timer.mark(Pass::lighting);
+    if (blend_at_samples) {
+      auto layers = m.samples_blend(scene, view, plan, i, variant, regions, texture_size, rs.fbo.id(), times);
+      if (!layers) return layers.error();
+      times.blend_layers += *layers;
+      m.timer.mark(Pass::blend);
+    }
 
     // Resolve into this eye's half of the output. KFR's angle axis wraps around.
     if (mapping_kernel(variant).rmfr_passes) {  // RMFR's kernel (rmfr, uniform, fixed): foveal-rmfr's resolve
@@ -271,6 +285,12 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
   times.gpu_done_ns = monotonic_now_ns();
   times.cpu = std::chrono::duration<double, std::milli>(Clock::now() - cpu_start).count();
   m.timer.collect(times);
+  for (std::size_t i = 0; i < 2; ++i)
+    if (m.blend_counted[i]) {
+      GLuint64 n = 0;
+      glGetQueryObjectui64v(m.blend_counts[i].id(), GL_QUERY_RESULT, &n);
+      times.blend_samples += static_cast<std::size_t>(n);
+    }
   if (GLenum err = glGetError(); err != GL_NO_ERROR) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "OpenGL error 0x%04x during the frame", static_cast<unsigned>(err));

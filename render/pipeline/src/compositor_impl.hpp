@@ -20,6 +20,7 @@
 #include "pass_uniforms.hpp"
 #include "render_targets.hpp"
 #include "temporal_accumulation.hpp"
+#include "transparent_layers.hpp"
 #include "visibility_pipeline.hpp"
 
 namespace foveal::render {
@@ -61,6 +62,10 @@ struct Compositor::Impl {
   std::array<std::optional<detail::ColorTarget>, 2> reduced;
   std::optional<detail::ColorTarget> undistorted;  // blend target under the lens (made on first use)
   std::optional<detail::TemporalAccumulation> temporal;  // FrameParams::temporal's pass and histories (first use)
+  std::optional<detail::TransparentLayers> transparent;  // BlendAt::samples's layers and programs (first use)
+  // Per eye: the blended fragments composited this frame (PassTimes::blend_samples).
+  std::array<gl::Query, 2> blend_counts;
+  std::array<bool, 2> blend_counted{};
   detail::ColorTarget output, shadow;
   std::array<EyePlan, 2> plans{};
   detail::PassTimer timer;
@@ -86,6 +91,13 @@ struct Compositor::Impl {
   void lighting_pass(GLuint p, const detail::SurfaceTargets& src, glm::ivec2 origin, const EyeView& v);
   void copy_behind(GLuint color, glm::ivec2 origin);
   void blend_pass(const Scene& scene, const EyeView& v, GLuint fbo, GLuint color, glm::ivec2 origin, GLuint depth);
+
+  // Blended surfaces at the eye's kept samples, into its lit reduced buffer `fbo`
+  // (BlendAt::samples; transparent_layers.cpp): the layers composited. And the count of
+  // the eye's composited blended fragments, begun (ended by the caller's glEndQuery).
+  Result<int> samples_blend(const Scene& scene, const EyeView& view, const EyePlan& plan, std::size_t eye, std::size_t variant,
+                            const std::vector<glm::ivec4>& regions, glm::vec2 texture_size, GLuint fbo, PassTimes& times);
+  void begin_blend_count(std::size_t eye);
 
   // Temporal accumulation (temporal_accumulation.cpp): this frame's grid jitter on the
   // eye's RMFR programs (0 unless `on`; off drops the eye's history), and the eye's lit

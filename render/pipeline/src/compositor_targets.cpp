@@ -52,7 +52,7 @@ TargetMemory Compositor::memory(Pipeline p) const {
   t.output = m.output.bytes() + (m.undistorted ? m.undistorted->bytes() : 0) + (m.behind ? m.behind->bytes() * 4 / 3 : 0);
   t.shadow = m.shadow.bytes();
   if (p == Pipeline::visibility) {
-    t.visibility = m.visibility->visibility_bytes();
+    t.visibility = m.visibility->visibility_bytes() + (m.transparent ? m.transparent->bytes() : 0);
     t.transformed = m.visibility->eye_surface_bytes();
     t.gbuffer = m.visibility->full_surface_bytes();
     t.temporal = m.temporal ? m.temporal->bytes() : 0;

@@ -1,6 +1,6 @@
 // What a frame is asked for: the EFR helper (efr_frame: each eye its own level), where
 // temporal accumulation applies, and the pipelines by name (parse_pipeline and the lists
-// the CLI and bench show).
+// the CLI and bench show), and where blended surfaces are shaded (BlendAt) by name.
 #include <string>
 #include <vector>
 
@@ -42,6 +42,19 @@ Result<Pipeline> parse_pipeline(const std::string& s) {
   for (Pipeline p : all_pipelines())
     if (s == pipeline_name(p)) return p;
   return bad_input("unknown pipeline '" + s + "' (gbuffer, visibility)");
+}
+
+const char* blend_at_name(BlendAt b) { return b == BlendAt::samples ? "samples" : "output"; }
+
+const std::vector<std::string>& blend_at_names() {
+  static const std::vector<std::string> n = {"output", "samples"};
+  return n;
+}
+
+Result<BlendAt> parse_blend_at(const std::string& s) {
+  for (BlendAt b : {BlendAt::output, BlendAt::samples})
+    if (s == blend_at_name(b)) return b;
+  return bad_input("unknown blend place '" + s + "' (output, samples)");
 }
 
 }  // namespace foveal::render

@@ -26,6 +26,9 @@ PassTimes median_pass_times(const std::vector<PassTimes>& frames) {
                                &PassTimes::inverse, &PassTimes::blend, &PassTimes::gpu_total, &PassTimes::cpu})
     m.*f = median(f);
   m.shaded_samples = frames.back().shaded_samples;
+  m.blend_samples = frames.back().blend_samples;
+  m.blend_layers = frames.back().blend_layers;
+  m.blend_dropped = frames.back().blend_dropped;
   m.pipeline = frames.back().pipeline;
   return m;
 }

@@ -45,6 +45,21 @@ const std::vector<std::string>& pipeline_names();
 /// (docs/rmfr.md, "Which pipeline by default"). FrameParams keeps gbuffer, the paper's.
 inline constexpr const char* kDefaultPipelineName = "visibility";
 
+/// Where alphaMode BLEND surfaces are shaded (docs/rmfr.md, "Transparency at the kept
+/// samples"):
+/// - output: after the eye's inverse pass, forward at full output resolution (the blend
+///   pass, docs/scenes.md "Transparency").
+/// - samples: in the visibility pipeline with a foveation method, depth-peeled at W×H
+///   (ids and depth only) and shaded and composited in the eye's reduced buffer before
+///   its inverse pass, so only the samples the method keeps are shaded. The full method,
+///   the G-buffer pipeline and scenes with KHR_materials_transmission blend at output.
+enum class BlendAt { output, samples };
+const char* blend_at_name(BlendAt b);
+/// "output" or "samples"; bad_input otherwise.
+Result<BlendAt> parse_blend_at(const std::string& s);
+/// Both names, output first.
+const std::vector<std::string>& blend_at_names();
+
 // Method and EyeFoveation: foveal/image/foveation_plan.hpp.
 struct FrameParams {
   Method method = Method::rmfr;
@@ -65,6 +80,8 @@ struct FrameParams {
   /// Applies to RMFR's kernel (rmfr, uniform, fixed) in the visibility pipeline; other
   /// methods and the G-buffer pipeline render as without it. Off by default.
   bool temporal = false;
+  /// Where alphaMode BLEND surfaces are shaded (BlendAt); output, today's, by default.
+  BlendAt blend_at = BlendAt::output;
 };
 
 /// Whether FrameParams::temporal accumulates frames of method `m` through pipeline `p`:
@@ -82,7 +99,16 @@ struct PassTimes {
   double shadow = 0, gbuffer = 0, mapping = 0, lighting = 0, inverse = 0;
   /// alphaMode BLEND surfaces shaded forward at output resolution after the inverse pass
   /// (with lens distortion, also the identity resolve through the lens); 0 without any.
+  /// With BlendAt::samples: the depth peeling and the composite in the reduced buffers.
   double blend = 0;
+  /// Blended fragments composited (GL_SAMPLES_PASSED, both eyes): at output, the blend
+  /// pass's (full resolution); at samples, the reduced buffers' texels, all layers.
+  std::size_t blend_samples = 0;
+  /// BlendAt::samples: depth-peeled layers composited in the reduced buffers, both eyes
+  /// (0: blended at output), and the pixels whose blended surfaces went deeper than the
+  /// cap (their deeper surfaces are not drawn; docs/rmfr.md).
+  int blend_layers = 0;
+  std::size_t blend_dropped = 0;
   double gpu_total = 0;  ///< first to last GPU timestamp of the frame
   double cpu = 0;        ///< wall time of render() including the wait for the GPU
   std::size_t shaded_samples = 0;  ///< lighting-pass samples, both eyes
@@ -119,7 +145,7 @@ struct CompositorOptions {
 };
 
 /// Bytes held by the render targets right now. `visibility`: the visibility pipeline's
-/// id and depth target; its material surfaces count as `transformed` (W×H ones for full
+/// id and depth target, and BlendAt::samples's peeled layers (W×H each); its material surfaces count as `transformed` (W×H ones for full
 /// as `gbuffer`).
 struct TargetMemory {
   std::size_t gbuffer = 0, transformed = 0, reduced = 0, output = 0, shadow = 0, visibility = 0;

@@ -1,0 +1,201 @@
+// Transparency at the kept samples (transparent_layers.hpp; docs/rmfr.md): the peel at
+// W×H, the composite in the reduced buffer, and the compositor's step that runs them for
+// one eye between its lighting and inverse passes.
+#include "transparent_layers.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "compositor_impl.hpp"
+#include "foveal/render/scene.hpp"
+#include "foveal/render/stereo_camera.hpp"
+#include "pass_uniforms.hpp"
+
+namespace foveal::render::detail {
+
+Status TransparentLayers::ensure_programs(const gl::ShaderLoader& shaders, std::size_t variant, const std::string& lit_defines) {
+  if (lit_defines != lit_defines_ || composite_progs_.size() != mapping_variant_count()) {
+    composite_progs_.clear();
+    composite_progs_.resize(mapping_variant_count());
+    lit_defines_ = lit_defines;
+  }
+  if (!peel_prog_) {
+    auto p = shaders.program({{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "transparent_peel.frag"}}, "");
+    if (!p) return p.error();
+    peel_prog_ = std::move(*p);
+    empty_vao_ = gl::VertexArray::create();
+  }
+  if (!composite_progs_[variant]) {
+    auto p = shaders.program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "transparent_layer.frag"}}, lit_defines,
+                             mapping_files(variant));
+    if (!p) return p.error();
+    composite_progs_[variant] = std::move(*p);
+  }
+  return {};
+}
+
+int TransparentLayers::peel(const Scene& scene, const glm::mat4& view_proj, GLuint opaque_depth, int width, int height,
+                            std::size_t& dropped) {
+  std::vector<std::size_t> draws;
+  for (std::size_t i = 0; i < scene.draws.size(); ++i)
+    if (material_of(scene, scene.primitives[static_cast<std::size_t>(scene.draws[i].primitive)].material).forward()) draws.push_back(i);
+  if (draws.empty()) return 0;
+  if (!any_) {
+    GLuint ids[2] = {0, 0};
+    glCreateQueries(GL_ANY_SAMPLES_PASSED, 1, &ids[0]);
+    glCreateQueries(GL_SAMPLES_PASSED, 1, &ids[1]);
+    any_ = gl::Query(ids[0]);
+    count_ = gl::Query(ids[1]);
+  }
+  const GLuint p = peel_prog_.id();
+  glUseProgram(p);
+  set(p, "u_view_proj", view_proj);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  int taken = 0;
+  // Front to back: layer k is the nearest surface behind layer k-1. One more peel past the
+  // cap only counts what the cap leaves out.
+  for (int k = 0; k <= kMaxLayers; ++k) {
+    std::optional<VisibilityTarget>& t = layers_[static_cast<std::size_t>(k)];
+    if (!t || t->width != width || t->height != height) t = VisibilityTarget::create(width, height);
+    const GLuint none[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferuiv(t->fbo.id(), GL_COLOR, 0, none);
+    glCopyImageSubData(opaque_depth, GL_TEXTURE_2D, 0, 0, 0, 0, t->depth.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo.id());
+    glViewport(0, 0, width, height);
+    set(p, "u_first", k == 0 ? 1 : 0);
+    glBindTextureUnit(6, k == 0 ? 0 : layers_[static_cast<std::size_t>(k - 1)]->depth.id());
+    const bool counting = k == kMaxLayers;
+    const GLenum target = counting ? GL_SAMPLES_PASSED : GL_ANY_SAMPLES_PASSED;
+    const GLuint query = counting ? count_.id() : any_.id();
+    glBeginQuery(target, query);
+    for (std::size_t i : draws) {
+      const DrawItem& d = scene.draws[i];
+      const Primitive& prim = scene.primitives[static_cast<std::size_t>(d.primitive)];
+      // Culled as the blend pass culls: single-sided back faces, the winding flipped by a mirroring transform.
+      if (material_of(scene, prim.material).double_sided) {
+        glDisable(GL_CULL_FACE);
+      } else {
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+        glFrontFace(glm::determinant(glm::mat3(d.world)) < 0.0f ? GL_CW : GL_CCW);
+      }
+      set(p, "u_model", d.world);
+      set(p, "u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(d.world))));
+      set(p, "u_draw", static_cast<unsigned>(i));
+      glBindVertexArray(prim.vao.id());
+      glDrawElements(GL_TRIANGLES, prim.index_count, GL_UNSIGNED_INT, nullptr);
+    }
+    glEndQuery(target);
+    // The next peel depends on whether this one found anything: a wait for this peel.
+    GLuint result = 0;
+    glGetQueryObjectuiv(query, GL_QUERY_RESULT, &result);
+    if (counting) dropped += result;
+    if (counting || result == 0) break;
+    ++taken;
+  }
+  glDisable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
+  glDisable(GL_DEPTH_TEST);
+  glBindTextureUnit(6, 0);
+  return taken;
+}
+
+void TransparentLayers::composite(const Scene& scene, const EyeView& view, const EyePlan& plan, std::size_t variant,
+                                  const std::vector<glm::ivec4>& regions, glm::vec2 texture_size, glm::ivec4 light_grid, int layers) {
+  // The forward materials the draws use, as DrawRecord::material numbers them (the default last).
+  std::vector<std::size_t> materials;
+  for (const DrawItem& d : scene.draws) {
+    const int m = scene.primitives[static_cast<std::size_t>(d.primitive)].material;
+    const std::size_t slot = m >= 0 ? static_cast<std::size_t>(m) : scene.materials.size();
+    if (material_of(scene, m).forward() && std::find(materials.begin(), materials.end(), slot) == materials.end())
+      materials.push_back(slot);
+  }
+  const GLuint p = composite_progs_[variant].id();
+  glUseProgram(p);
+  set_mapping(p, plan, texture_size);
+  set(p, "u_view_proj", view.view_proj);
+  set(p, "u_camera_pos", view.position);
+  set(p, "u_light_grid", light_grid);
+  const SceneGeometry& geo = scene.geometry;
+  const GLuint geometry[3] = {geo.vertex_pairs.id(), geo.triangles.id(), geo.draw_floats.id()};
+  glBindTextures(8, 3, geometry);
+  glBindTextureUnit(13, geo.draw_uints.id());  // transparent_layer.frag's DRAW_UINTS_UNIT
+  glBindVertexArray(empty_vao_.id());
+  for (int k = layers - 1; k >= 0; --k) {  // deepest first: "over" is back to front
+    glBindTextureUnit(6, layers_[static_cast<std::size_t>(k)]->ids.id());
+    // A layer's texels of different materials are disjoint: their order does not matter.
+    for (std::size_t m : materials) {
+      const Material& mat = material_of(scene, m < scene.materials.size() ? static_cast<int>(m) : -1);
+      set_material(p, scene, mat);
+      for (int slot = 0; slot < Material::slot_count; ++slot) {
+        const int t = mat.texture(static_cast<Material::Slot>(slot));
+        glBindSampler(material_texture_unit(slot), t >= 0 ? scene.isotropic_samplers[static_cast<std::size_t>(t)].id() : 0);
+      }
+      set(p, "u_material", static_cast<unsigned>(m));
+      for (std::size_t r = 0; r < regions.size(); ++r) {
+        glViewport(regions[r].x, regions[r].y, regions[r].z, regions[r].w);
+        set(p, "u_layer", static_cast<int>(r));
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+      }
+    }
+  }
+  for (int slot = 0; slot < Material::slot_count; ++slot) glBindSampler(material_texture_unit(slot), 0);
+  glBindTextures(8, 3, nullptr);
+  glBindTextureUnit(13, 0);
+  glBindTextureUnit(6, 0);
+}
+
+std::size_t TransparentLayers::bytes() const {
+  std::size_t b = 0;
+  for (const auto& l : layers_)
+    if (l) b += l->bytes();
+  return b;
+}
+
+}  // namespace foveal::render::detail
+
+namespace foveal::render {
+
+// One eye's blended surfaces at its kept samples, over its lit reduced buffer (bound as
+// the framebuffer), before its inverse pass. Returns the layers composited.
+Result<int> Compositor::Impl::samples_blend(const Scene& scene, const EyeView& view, const EyePlan& plan, std::size_t eye,
+                                            std::size_t variant, const std::vector<glm::ivec4>& regions, glm::vec2 texture_size,
+                                            GLuint fbo, PassTimes& times) {
+  if (!transparent) transparent.emplace();
+  if (Status s = transparent->ensure_programs(shaders, variant, lit_defines); !s) return s.error();
+  // llvmpipe stamps a pass's end when its target's last tile is done: flush the lighting
+  // pass so that its stamp is not charged here (as the blend pass does).
+  glFlush();
+  const int layers = transparent->peel(scene, view.view_proj, visibility->depth_texture(), eye_w, eye_h, times.blend_dropped);
+  if (layers == 0) return 0;
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glBindTextureUnit(5, shadow.texture.id());
+  glBindTextureUnit(7, light_tiles_texture.id());
+  glBindTextureUnit(11, sheen_albedo.id());
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, lights_ubo.id());
+  begin_blend_count(eye);
+  transparent->composite(scene, view, plan, variant, regions, texture_size, light_grid, layers);
+  glEndQuery(GL_SAMPLES_PASSED);
+  glDisable(GL_BLEND);
+  return layers;
+}
+
+void Compositor::Impl::begin_blend_count(std::size_t eye) {
+  if (!blend_counts[eye]) {
+    GLuint id = 0;
+    glCreateQueries(GL_SAMPLES_PASSED, 1, &id);
+    blend_counts[eye] = gl::Query(id);
+  }
+  blend_counted[eye] = true;
+  glBeginQuery(GL_SAMPLES_PASSED, blend_counts[eye].id());
+}
+
+}  // namespace foveal::render

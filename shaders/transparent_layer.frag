@@ -1,0 +1,81 @@
+// Transparency at the kept samples (docs/rmfr.md, "Transparency at the kept samples"):
+// one peeled layer of the forward draws (transparent_peel.frag), for one material,
+// composited over the eye's lit reduced buffer. Each texel takes its screen pixel (the
+// mapping's inverse), the layer's triangle there, rebuilds the surface as material.frag
+// does (texture reads filtered over the texel's footprint), evaluates the material and
+// lights it as blend.frag does, and leaves alpha to the fixed-function "over" blend.
+// Transmission is not done here (it needs the opaque result at screen positions): such
+// scenes blend at output.
+#define DRAW_UINTS_UNIT 13  // lighting.glsl's sheen table holds unit 11
+#include "common/mapping.glsl"
+#include "common/anisotropic_filter.glsl"
+#include "common/material.glsl"
+#include "common/lighting.glsl"
+#include "common/visibility_geometry.glsl"
+
+layout(binding = 6) uniform usampler2D u_layer_ids;  // the layer: draw + 1, triangle (W×H)
+uniform uint u_material;  // DrawRecord::material of the bound material
+uniform mat4 u_view_proj;
+uniform vec3 u_camera_pos;
+
+layout(location = 0) out vec4 o_color;
+
+// Texture-coordinate steps of one texel step along buffer x and y, per UV set.
+vec2 g_dx[2], g_dy[2];
+
+vec4 sample_slot(sampler2D tex, int slot, vec2 uv) {
+  mat2 m = mat2(u_uv_matrix[slot]);
+  int set = u_uv_set[slot] == 1 ? 1 : 0;
+  return texture_anisotropic(tex, uv, m * g_dx[set], m * g_dy[set]);
+}
+
+bool ours(uvec2 id) { return id.x != 0u && draw_material(id.x - 1u) == u_material; }
+
+void main() {
+  ivec2 texel = ivec2(gl_FragCoord.xy);
+  ivec2 pixel = source_pixel(texel);
+  // A software rasteriser shades 2×2 quads and may take a quad's texture level from any
+  // lane: a lane that is not this material's borrows a quad neighbour's triangle that is,
+  // so every lane computes sane values, and is discarded at the end. A quad with none
+  // of the material's texels leaves at once.
+  uvec2 id = texelFetch(u_layer_ids, pixel, 0).rg;
+  bool mine = ours(id);
+  for (int k = 1; k < 4 && !ours(id); ++k)
+    id = texelFetch(u_layer_ids, source_pixel(texel ^ ivec2(k & 1, k >> 1)), 0).rg;
+  if (!ours(id)) discard;
+
+  DrawRecord d = fetch_draw(id.x - 1u);
+  uvec3 tri = fetch_triangle(d, id.y);
+  Vertex v0 = fetch_vertex(tri.x), v1 = fetch_vertex(tri.y), v2 = fetch_vertex(tri.z);
+  mat4 to_clip = u_view_proj * d.model;
+  vec4 c0 = to_clip * vec4(v0.position, 1.0), c1 = to_clip * vec4(v1.position, 1.0), c2 = to_clip * vec4(v2.position, 1.0);
+  vec2 ndc = (vec2(pixel) + 0.5) / u_screen_size * 2.0 - 1.0;
+  Barycentrics b = barycentrics(c0, c1, c2, ndc);
+
+  vec2 ndc_per_pixel = 2.0 / u_screen_size;
+  mat2 uv0_per_pixel = mat2(mix3(b.dx, v0.uv, v1.uv, v2.uv) * ndc_per_pixel.x, mix3(b.dy, v0.uv, v1.uv, v2.uv) * ndc_per_pixel.y);
+  mat2 uv1_per_pixel = mat2(mix3(b.dx, v0.uv1, v1.uv1, v2.uv1) * ndc_per_pixel.x, mix3(b.dy, v0.uv1, v1.uv1, v2.uv1) * ndc_per_pixel.y);
+  mat2 filtered = filter_footprint(texel_footprint(texel));
+  mat2 g0 = uv0_per_pixel * filtered, g1 = uv1_per_pixel * filtered;
+  g_dx[0] = g0[0], g_dy[0] = g0[1], g_dx[1] = g1[0], g_dy[1] = g1[1];
+
+  mat3 normal_matrix = mat3(d.normal_matrix[0].xyz, d.normal_matrix[1].xyz, d.normal_matrix[2].xyz);
+  SurfacePoint s;
+  s.normal = normal_matrix * mix3(b.l, v0.normal, v1.normal, v2.normal);
+  vec4 t = mix3(b.l, v0.tangent, v1.tangent, v2.tangent);
+  s.tangent = vec4(mat3(d.model) * t.xyz, t.w);
+  s.uv0 = mix3(b.l, v0.uv, v1.uv, v2.uv);
+  s.uv1 = mix3(b.l, v0.uv1, v1.uv1, v2.uv1);
+  s.color = mix3(b.l, v0.color, v1.color, v2.color);
+  s.front_facing = front_facing(c0, c1, c2);
+  vec4 base = material_base(s);
+  GBufferTexel g = evaluate_material(s, base);
+  if (!mine) discard;
+  float alpha = clamp(base.a, 0.0, 1.0);  // blended: transmissive materials never come here
+  if (u_unlit) {
+    o_color = vec4(g.albedo.rgb, alpha);
+    return;
+  }
+  vec3 p = (d.model * vec4(mix3(b.l, v0.position, v1.position, v2.position), 1.0)).xyz;
+  o_color = vec4(lit_color(pixel, p, decode_normal(g.normal.rg), u_camera_pos, surface_of(g)), alpha);
+}
