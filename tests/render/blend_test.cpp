@@ -333,7 +333,7 @@ TEST(BlendAtSamples, AtSigmaOneItEqualsTheBlendPassAtOutputResolution) {
     const image::Image at_samples = comp.read_image();
     EXPECT_EQ(out->blend_layers, 0) << spec;
     EXPECT_GT(in->blend_layers, 0) << spec << ": the samples path composited no layer";
-    EXPECT_GT(image::psnr(at_output, at_samples), 40.0) << spec;
+    EXPECT_GT(image::psnr(at_output, at_samples), 40.0) << spec;  // measured 94.5 (quads), 53.8 dB (AlphaBlendModeTest)
   }
 }
 
