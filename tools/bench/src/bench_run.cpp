@@ -71,6 +71,7 @@ class Bench {
     for (int i = 0; i < a_.warmup + frames; ++i) {
       render::FrameParams p = f;
       p.pipeline = a_.pipeline;
+      p.blend_at = a_.blend_at;
       auto r = comp_.render(s, p);
       if (!r) return r.error();
       if (i >= a_.warmup) t.push_back(*r);
@@ -258,6 +259,7 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
                              {"gpu_ms", t.gpu_total}, {"cpu_ms", t.cpu},
                              {"passes_ms", {{"shadow", t.shadow}, {"gbuffer", t.gbuffer}, {"mapping", t.mapping},
                                             {"lighting", t.lighting}, {"inverse", t.inverse}, {"blend", t.blend}}},
+                             {"blend_samples", t.blend_samples}, {"blend_layers", t.blend_layers}, {"blend_dropped", t.blend_dropped},
                              {"psnr_db", bench::json_number(c.psnr_db)}, {"ssim", c.ssim}, {"fpsnr_db", bench::json_number(c.fpsnr_db)}};
       if (j) {
         item["jod_left"] = j->left, item["jod_right"] = j->right, item["jod"] = j->combined;
@@ -383,7 +385,8 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
   ::getrusage(RUSAGE_SELF, &ru);
   // What the charts' footer prints (tools/charts/run_settings.py): how each point was rendered and timed.
   nlohmann::json summary = {{"renderer", comp->renderer()}, {"size", {co.width, co.height}}, {"frames", a.frames},
-                            {"warmup", a.warmup}, {"pipeline", render::pipeline_name(a.pipeline)}, {"display", co.model.name},
+                            {"warmup", a.warmup}, {"pipeline", render::pipeline_name(a.pipeline)},
+                            {"blend_at", render::blend_at_name(a.blend_at)}, {"display", co.model.name},
                             {"fovea", {fovea->first, fovea->second}}, {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
   if (jod) summary["jod"] = jod_settings(*jod);
   // --shard given (1/1 too): a part for `bench merge`.

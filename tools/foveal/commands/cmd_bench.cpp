@@ -18,6 +18,7 @@ namespace {
 struct Args {
   bench::BenchOptions options;
   std::string pipeline = render::kDefaultPipelineName;  ///< parsed into options.pipeline
+  std::string blend_at = "output";                        ///< parsed into options.blend_at
 };
 
 // --gaze and the options only a gaze-driven run has (bench_gaze.hpp).
@@ -77,6 +78,11 @@ void add_bench(CLI::App& app, int& exit_code) {
   sub->add_option("--pipeline", a->pipeline, "gbuffer or visibility, for every frame including the full reference (docs/rmfr.md)")
       ->check(CLI::IsMember(render::pipeline_names()))
       ->capture_default_str();
+  sub->add_option("--blend-at", a->blend_at,
+                  "output or samples: where alphaMode BLEND surfaces are shaded in the foveated frames (the full reference: "
+                  "output); samples needs --pipeline visibility (docs/rmfr.md, \"Transparency at the kept samples\")")
+      ->check(CLI::IsMember(render::blend_at_names()))
+      ->capture_default_str();
   sub->add_option("--sigmas", o.sigmas, "Levels: FROM:TO:STEP or a comma list")->capture_default_str();
   sub->add_option("--fovea", o.fovea, "Fovea X,Y of both eyes in [0,1]")->capture_default_str();
   sub->add_option("--size", o.size, "Side-by-side output WxH")->capture_default_str();
@@ -134,6 +140,11 @@ void add_bench(CLI::App& app, int& exit_code) {
     }
     bench::BenchOptions run = a->options;
     run.pipeline = *pipeline;
+    run.blend_at = *render::parse_blend_at(a->blend_at);  // checked by IsMember
+    if (run.blend_at == render::BlendAt::samples && run.pipeline != render::Pipeline::visibility) {
+      exit_code = cli::report(bad_input("--blend-at samples needs --pipeline visibility (the G-buffer pipeline blends at output)"));
+      return;
+    }
     if (run.scenes.empty()) run.scenes = {default_scene()};
     run.gaze.size_given = size->count() > 0;
     exit_code = bench::run_bench(run, sweep_options(*sub));

@@ -163,6 +163,8 @@ int run(const Args& a) {
                                          : nlohmann::json{{"source", "file"}, {"count", scene->lights.size()}}},
       {"method", render::method_name(setup->frame.method)},
       {"pipeline", render::pipeline_name(setup->frame.pipeline)},
+      {"blend_at", render::blend_at_name(setup->frame.blend_at)},
+      {"blend", {{"samples", med.blend_samples}, {"layers", med.blend_layers}, {"dropped", med.blend_dropped}}},
       {"size", {comp->width(), comp->height()}},
       {"eyes", eyes},
       {"renderer", comp->renderer()},

@@ -29,6 +29,12 @@ void add_render_options(CLI::App& sub, RenderArgs& a) {
                  "accumulation\"); every frame rendered accumulates")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  sub.add_option("--blend-at", a.blend_at,
+                 "output or samples: where alphaMode BLEND surfaces are shaded: at output resolution after the inverse pass, "
+                 "or at the samples the method keeps, before it (visibility pipeline, foveated methods, no transmission; "
+                 "docs/rmfr.md, \"Transparency at the kept samples\")")
+      ->check(CLI::IsMember(render::blend_at_names()))
+      ->capture_default_str();
   sub.add_option("--sigma-d", a.sigma_d, "RMFR level of the dominant eye (>= 1)")->capture_default_str();
   sub.add_option("--sigma-nd", a.sigma_nd, "RMFR level of the other eye (>= sigma-d)")->capture_default_str();
   sub.add_option("--dominant", a.dominant, "Dominant eye")->check(CLI::IsMember({"left", "right"}))->capture_default_str();
@@ -124,6 +130,11 @@ Result<RenderSetup> resolve(const RenderArgs& a) {
   s.frame = render::efr_frame(*method, dominant, a.sigma_d, a.sigma_nd, a.fx, a.fy);
   s.frame.pipeline = *pipeline;
   s.frame.temporal = a.temporal == "on";
+  auto blend_at = render::parse_blend_at(a.blend_at);
+  if (!blend_at) return Error{blend_at.error().kind, "--blend-at: " + blend_at.error().message};
+  s.frame.blend_at = *blend_at;
+  if (*blend_at == render::BlendAt::samples && *pipeline != render::Pipeline::visibility)
+    return bad_input("--blend-at samples needs --pipeline visibility (the G-buffer pipeline blends at output)");
   for (auto& e : s.frame.eyes)
     e.kfr_alpha = a.kfr_alpha, e.layer_scale = a.layer_scale, e.inset_deg = a.inset_deg, e.inset_band_deg = a.inset_band_deg;
   s.auto_f = a.f == "auto";

@@ -20,6 +20,7 @@ struct RenderArgs {
   std::string method = "rmfr";
   std::string pipeline = render::kDefaultPipelineName;
   std::string temporal = "off";  ///< on: temporal accumulation (docs/rmfr.md)
+  std::string blend_at = "output";  ///< --blend-at: where blended surfaces are shaded (render::BlendAt)
   double sigma_d = 2.0, sigma_nd = 3.0;
   std::string dominant = "right";
   double fx = 0.3, fy = 0.3;

@@ -18,6 +18,7 @@ struct BenchOptions {
   std::vector<std::string> scenes;  ///< glTF files or pattern:NAME; the command puts the bundled Dungeon when none is given
   std::string methods = render::method_names_joined(",");
   render::Pipeline pipeline = render::Pipeline::visibility;  ///< the command parses --pipeline into it
+  render::BlendAt blend_at = render::BlendAt::output;  ///< --blend-at, every foveated frame (the full reference blends at output)
   std::string sigmas = "1.4:2.8:0.2";
   std::string fovea = "0.5,0.5";
   std::string size = "2880x1600";
