@@ -4,19 +4,33 @@
 // mapping's inverse), the layer's triangle there, rebuilds the surface as material.frag
 // does (texture reads filtered over the texel's footprint), evaluates the material and
 // lights it as blend.frag does, and leaves alpha to the fixed-function "over" blend.
+// As in the material pass, a classification first writes each texel's material as its
+// depth and each material's draw tests EQUAL before shading: a software rasteriser runs
+// a shader's every instruction for a block unless the block's mask is empty before it,
+// so a discard in the shader would have cost every material the whole layer.
+// CLASSIFY: that classification (as classify.frag, from the layer's ids).
 // Transmission is not done here (it needs the opaque result at screen positions): such
 // scenes blend at output.
 #define DRAW_UINTS_UNIT 13  // lighting.glsl's sheen table holds unit 11
 #include "common/mapping.glsl"
+#include "common/visibility_geometry.glsl"
+layout(binding = 6) uniform usampler2D u_layer_ids;  // the layer: draw + 1, triangle (W×H)
+
+#ifdef CLASSIFY
+void main() {
+  uvec2 id = texelFetch(u_layer_ids, source_pixel(ivec2(gl_FragCoord.xy)), 0).rg;
+  if (id.x == 0u) discard;
+  // Exact in float for up to 2^20 materials (kMaterialDepthScale in transparent_layers.cpp).
+  gl_FragDepth = float(draw_material(id.x - 1u) + 1u) / 1048576.0;
+}
+#else
 #include "common/anisotropic_filter.glsl"
 #include "common/material.glsl"
 #include "common/lighting.glsl"
-#include "common/visibility_geometry.glsl"
 
-layout(binding = 6) uniform usampler2D u_layer_ids;  // the layer: draw + 1, triangle (W×H)
-uniform uint u_material;  // DrawRecord::material of the bound material
 uniform mat4 u_view_proj;
 uniform vec3 u_camera_pos;
+layout(early_fragment_tests) in;  // the EQUAL test picks the material's texels before shading
 
 layout(location = 0) out vec4 o_color;
 
@@ -29,20 +43,15 @@ vec4 sample_slot(sampler2D tex, int slot, vec2 uv) {
   return texture_anisotropic(tex, uv, m * g_dx[set], m * g_dy[set]);
 }
 
-bool ours(uvec2 id) { return id.x != 0u && draw_material(id.x - 1u) == u_material; }
-
 void main() {
   ivec2 texel = ivec2(gl_FragCoord.xy);
   ivec2 pixel = source_pixel(texel);
   // A software rasteriser shades 2×2 quads and may take a quad's texture level from any
-  // lane: a lane that is not this material's borrows a quad neighbour's triangle that is,
-  // so every lane computes sane values, and is discarded at the end. A quad with none
-  // of the material's texels leaves at once.
+  // lane: a lane with nothing in the layer takes a neighbour's triangle (as material.frag).
   uvec2 id = texelFetch(u_layer_ids, pixel, 0).rg;
-  bool mine = ours(id);
-  for (int k = 1; k < 4 && !ours(id); ++k)
+  for (int k = 1; k < 4 && id.x == 0u; ++k)
     id = texelFetch(u_layer_ids, source_pixel(texel ^ ivec2(k & 1, k >> 1)), 0).rg;
-  if (!ours(id)) discard;
+  id = id.x == 0u ? uvec2(1u, 0u) : id;
 
   DrawRecord d = fetch_draw(id.x - 1u);
   uvec3 tri = fetch_triangle(d, id.y);
@@ -70,7 +79,6 @@ void main() {
   s.front_facing = front_facing(c0, c1, c2);
   vec4 base = material_base(s);
   GBufferTexel g = evaluate_material(s, base);
-  if (!mine) discard;
   float alpha = clamp(base.a, 0.0, 1.0);  // blended: transmissive materials never come here
   if (u_unlit) {
     o_color = vec4(g.albedo.rgb, alpha);
@@ -79,3 +87,4 @@ void main() {
   vec3 p = (d.model * vec4(mix3(b.l, v0.position, v1.position, v2.position), 1.0)).xyz;
   o_color = vec4(lit_color(pixel, p, decode_normal(g.normal.rg), u_camera_pos, surface_of(g)), alpha);
 }
+#endif

@@ -245,7 +245,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
     }
     m.timer.mark(Pass::lighting);
     if (blend_at_samples) {
-      auto layers = m.samples_blend(scene, view, plan, i, variant, regions, texture_size, rs.fbo.id(), times);
+      auto layers = m.samples_blend(scene, view, plan, i, variant, regions, texture_size, rs, times);
       if (!layers) return layers.error();
       times.blend_layers += *layers;
       m.timer.mark(Pass::blend);
@@ -291,6 +291,8 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
       glGetQueryObjectui64v(m.blend_counts[i].id(), GL_QUERY_RESULT, &n);
       times.blend_samples += static_cast<std::size_t>(n);
     }
+  if (m.transparent)
+    for (std::size_t i = 0; i < 2; ++i) times.blend_samples += m.transparent->take_shaded(i);
   if (GLenum err = glGetError(); err != GL_NO_ERROR) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "OpenGL error 0x%04x during the frame", static_cast<unsigned>(err));

@@ -92,11 +92,12 @@ struct Compositor::Impl {
   void copy_behind(GLuint color, glm::ivec2 origin);
   void blend_pass(const Scene& scene, const EyeView& v, GLuint fbo, GLuint color, glm::ivec2 origin, GLuint depth);
 
-  // Blended surfaces at the eye's kept samples, into its lit reduced buffer `fbo`
+  // Blended surfaces at the eye's kept samples, into its lit reduced buffer `target`
   // (BlendAt::samples; transparent_layers.cpp): the layers composited. And the count of
-  // the eye's composited blended fragments, begun (ended by the caller's glEndQuery).
+  // the eye's blend-pass fragments, begun (ended by the caller's glEndQuery).
   Result<int> samples_blend(const Scene& scene, const EyeView& view, const EyePlan& plan, std::size_t eye, std::size_t variant,
-                            const std::vector<glm::ivec4>& regions, glm::vec2 texture_size, GLuint fbo, PassTimes& times);
+                            const std::vector<glm::ivec4>& regions, glm::vec2 texture_size, const detail::ColorTarget& target,
+                            PassTimes& times);
   void begin_blend_count(std::size_t eye);
 
   // Temporal accumulation (temporal_accumulation.cpp): this frame's grid jitter on the

@@ -15,10 +15,20 @@
 
 namespace foveal::render::detail {
 
+namespace {
+
+// The depth a material's texels carry between classification and its draw (as
+// transparent_layer.frag's CLASSIFY writes it): exact in float for up to 2^20 materials.
+constexpr float kMaterialDepthScale = 1.0f / 1048576.0f;
+
+}  // namespace
+
 Status TransparentLayers::ensure_programs(const gl::ShaderLoader& shaders, std::size_t variant, const std::string& lit_defines) {
   if (lit_defines != lit_defines_ || composite_progs_.size() != mapping_variant_count()) {
     composite_progs_.clear();
     composite_progs_.resize(mapping_variant_count());
+    classify_progs_.clear();
+    classify_progs_.resize(mapping_variant_count());
     lit_defines_ = lit_defines;
   }
   if (!peel_prog_) {
@@ -32,6 +42,10 @@ Status TransparentLayers::ensure_programs(const gl::ShaderLoader& shaders, std::
                              mapping_files(variant));
     if (!p) return p.error();
     composite_progs_[variant] = std::move(*p);
+    auto q = shaders.program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "transparent_layer.frag"}}, "#define CLASSIFY 1\n",
+                             mapping_files(variant));
+    if (!q) return q.error();
+    classify_progs_[variant] = std::move(*q);
   }
   return {};
 }
@@ -106,7 +120,8 @@ int TransparentLayers::peel(const Scene& scene, const glm::mat4& view_proj, GLui
 }
 
 void TransparentLayers::composite(const Scene& scene, const EyeView& view, const EyePlan& plan, std::size_t variant,
-                                  const std::vector<glm::ivec4>& regions, glm::vec2 texture_size, glm::ivec4 light_grid, int layers) {
+                                  const std::vector<glm::ivec4>& regions, glm::vec2 texture_size, glm::ivec4 light_grid, int layers,
+                                  const ColorTarget& target, std::size_t eye) {
   // The forward materials the draws use, as DrawRecord::material numbers them (the default last).
   std::vector<std::size_t> materials;
   for (const DrawItem& d : scene.draws) {
@@ -115,8 +130,18 @@ void TransparentLayers::composite(const Scene& scene, const EyeView& view, const
     if (material_of(scene, m).forward() && std::find(materials.begin(), materials.end(), slot) == materials.end())
       materials.push_back(slot);
   }
-  const GLuint p = composite_progs_[variant].id();
-  glUseProgram(p);
+  if (!fbo_) fbo_ = gl::Framebuffer::create();
+  if (depth_w_ < target.width || depth_h_ < target.height) {
+    depth_w_ = std::max(depth_w_, target.width), depth_h_ = std::max(depth_h_, target.height);
+    depth_ = gl::make_texture_2d(GL_DEPTH_COMPONENT32F, depth_w_, depth_h_);
+    glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+  }
+  glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, target.texture.id(), 0);
+  glNamedFramebufferDrawBuffer(fbo_.id(), GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+
+  const GLuint c = classify_progs_[variant].id(), p = composite_progs_[variant].id();
+  set_mapping(c, plan, texture_size);
   set_mapping(p, plan, texture_size);
   set(p, "u_view_proj", view.view_proj);
   set(p, "u_camera_pos", view.position);
@@ -126,9 +151,38 @@ void TransparentLayers::composite(const Scene& scene, const EyeView& view, const
   glBindTextures(8, 3, geometry);
   glBindTextureUnit(13, geo.draw_uints.id());  // transparent_layer.frag's DRAW_UINTS_UNIT
   glBindVertexArray(empty_vao_.id());
+  glEnable(GL_DEPTH_TEST);
+  auto draw_regions = [&](GLuint prog) {
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+      glViewport(regions[r].x, regions[r].y, regions[r].z, regions[r].w);
+      set(prog, "u_layer", static_cast<int>(r));
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+  };
   for (int k = layers - 1; k >= 0; --k) {  // deepest first: "over" is back to front
     glBindTextureUnit(6, layers_[static_cast<std::size_t>(k)]->ids.id());
-    // A layer's texels of different materials are disjoint: their order does not matter.
+    // Classification: each texel's material in this layer into the depth (1: none).
+    const float far = 1.0f;
+    glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &far);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_ALWAYS);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glUseProgram(c);
+    gl::Query& q = shaded_[eye][static_cast<std::size_t>(k)];
+    if (!q) {
+      GLuint id = 0;
+      glCreateQueries(GL_SAMPLES_PASSED, 1, &id);
+      q = gl::Query(id);
+    }
+    glBeginQuery(GL_SAMPLES_PASSED, q.id());
+    draw_regions(c);
+    glEndQuery(GL_SAMPLES_PASSED);
+    // Each material at its depth, EQUAL: shaded on its own texels only. A layer's texels
+    // of different materials are disjoint: their order does not matter.
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_EQUAL);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glUseProgram(p);
     for (std::size_t m : materials) {
       const Material& mat = material_of(scene, m < scene.materials.size() ? static_cast<int>(m) : -1);
       set_material(p, scene, mat);
@@ -136,18 +190,31 @@ void TransparentLayers::composite(const Scene& scene, const EyeView& view, const
         const int t = mat.texture(static_cast<Material::Slot>(slot));
         glBindSampler(material_texture_unit(slot), t >= 0 ? scene.isotropic_samplers[static_cast<std::size_t>(t)].id() : 0);
       }
-      set(p, "u_material", static_cast<unsigned>(m));
-      for (std::size_t r = 0; r < regions.size(); ++r) {
-        glViewport(regions[r].x, regions[r].y, regions[r].z, regions[r].w);
-        set(p, "u_layer", static_cast<int>(r));
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-      }
+      const float z = static_cast<float>(m + 1) * kMaterialDepthScale;
+      glDepthRangef(z, z);
+      draw_regions(p);
     }
+    glDepthRangef(0.0f, 1.0f);
   }
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_DEPTH_TEST);
   for (int slot = 0; slot < Material::slot_count; ++slot) glBindSampler(material_texture_unit(slot), 0);
   glBindTextures(8, 3, nullptr);
   glBindTextureUnit(13, 0);
   glBindTextureUnit(6, 0);
+  shaded_layers_[eye] = layers;
+}
+
+std::size_t TransparentLayers::take_shaded(std::size_t eye) {
+  std::size_t n = 0;
+  for (int k = 0; k < shaded_layers_[eye]; ++k) {
+    GLuint64 r = 0;
+    glGetQueryObjectui64v(shaded_[eye][static_cast<std::size_t>(k)].id(), GL_QUERY_RESULT, &r);
+    n += static_cast<std::size_t>(r);
+  }
+  shaded_layers_[eye] = 0;
+  return n;
 }
 
 std::size_t TransparentLayers::bytes() const {
@@ -161,11 +228,11 @@ std::size_t TransparentLayers::bytes() const {
 
 namespace foveal::render {
 
-// One eye's blended surfaces at its kept samples, over its lit reduced buffer (bound as
-// the framebuffer), before its inverse pass. Returns the layers composited.
+// One eye's blended surfaces at its kept samples, over its lit reduced buffer `target`,
+// before its inverse pass. Returns the layers composited.
 Result<int> Compositor::Impl::samples_blend(const Scene& scene, const EyeView& view, const EyePlan& plan, std::size_t eye,
                                             std::size_t variant, const std::vector<glm::ivec4>& regions, glm::vec2 texture_size,
-                                            GLuint fbo, PassTimes& times) {
+                                            const detail::ColorTarget& target, PassTimes& times) {
   if (!transparent) transparent.emplace();
   if (Status s = transparent->ensure_programs(shaders, variant, lit_defines); !s) return s.error();
   // llvmpipe stamps a pass's end when its target's last tile is done: flush the lighting
@@ -173,17 +240,13 @@ Result<int> Compositor::Impl::samples_blend(const Scene& scene, const EyeView& v
   glFlush();
   const int layers = transparent->peel(scene, view.view_proj, visibility->depth_texture(), eye_w, eye_h, times.blend_dropped);
   if (layers == 0) return 0;
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-  glDisable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   glBindTextureUnit(5, shadow.texture.id());
   glBindTextureUnit(7, light_tiles_texture.id());
   glBindTextureUnit(11, sheen_albedo.id());
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, lights_ubo.id());
-  begin_blend_count(eye);
-  transparent->composite(scene, view, plan, variant, regions, texture_size, light_grid, layers);
-  glEndQuery(GL_SAMPLES_PASSED);
+  transparent->composite(scene, view, plan, variant, regions, texture_size, light_grid, layers, target, eye);
   glDisable(GL_BLEND);
   return layers;
 }
