@@ -7,9 +7,6 @@
 
 layout(binding = 5) uniform usampler2D u_ids;
 
-// Exact in float for up to 2^20 materials (kMaterialDepthScale in visibility_pipeline.cpp).
-float material_depth(uint material) { return float(material + 1u) / 1048576.0; }
-
 void main() {
   uvec2 id = texelFetch(u_ids, source_pixel(ivec2(gl_FragCoord.xy)), 0).rg;
   if (id.x == 0u) discard;

@@ -20,8 +20,7 @@ layout(binding = 6) uniform usampler2D u_layer_ids;  // the layer: draw + 1, tri
 void main() {
   uvec2 id = texelFetch(u_layer_ids, source_pixel(ivec2(gl_FragCoord.xy)), 0).rg;
   if (id.x == 0u) discard;
-  // Exact in float for up to 2^20 materials (kMaterialDepthScale in transparent_layers.cpp).
-  gl_FragDepth = float(draw_material(id.x - 1u) + 1u) / 1048576.0;
+  gl_FragDepth = material_depth(draw_material(id.x - 1u));
 }
 #else
 #include "common/anisotropic_filter.glsl"

@@ -95,3 +95,7 @@ bool front_facing(vec4 c0, vec4 c1, vec4 c2) {
 vec2 mix3(vec3 l, vec2 a, vec2 b, vec2 c) { return l.x * a + l.y * b + l.z * c; }
 vec3 mix3(vec3 l, vec3 a, vec3 b, vec3 c) { return l.x * a + l.y * b + l.z * c; }
 vec4 mix3(vec3 l, vec4 a, vec4 b, vec4 c) { return l.x * a + l.y * b + l.z * c; }
+
+// The depth a material's texels carry from a classification to its EQUAL-tested pass:
+// exact in float for up to 2^20 materials (detail::material_depth in C++).
+float material_depth(uint material) { return float(material + 1u) / 1048576.0; }

@@ -237,14 +237,7 @@ void Compositor::Impl::blend_pass(const Scene& scene, const EyeView& v, GLuint f
     detail::set_material(p, scene, mat);
     glBindTextureUnit(5, shadow.texture.id());
     glBindTextureUnit(6, depth);
-    // Single-sided: back faces culled, as glTF says; a mirroring transform flips the winding.
-    if (mat.double_sided) {
-      glDisable(GL_CULL_FACE);
-    } else {
-      glEnable(GL_CULL_FACE);
-      glCullFace(GL_BACK);
-      glFrontFace(glm::determinant(glm::mat3(d.world)) < 0.0f ? GL_CW : GL_CCW);
-    }
+    detail::set_culling(mat, d.world);
     glBindVertexArray(prim.vao.id());
     glDrawElements(GL_TRIANGLES, prim.index_count, GL_UNSIGNED_INT, nullptr);
   }

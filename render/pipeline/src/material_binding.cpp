@@ -2,6 +2,7 @@
 // (shaders/common/material.glsl), for the G-buffer, blend and visibility pipeline's passes.
 #include <array>
 
+#include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "foveal/render/scene.hpp"
@@ -20,6 +21,16 @@ bool has_forward_draws(const Scene& scene) {
   for (const DrawItem& d : scene.draws)
     if (material_of(scene, scene.primitives[static_cast<std::size_t>(d.primitive)].material).forward()) return true;
   return false;
+}
+
+void set_culling(const Material& m, const glm::mat4& world) {
+  if (m.double_sided) {
+    glDisable(GL_CULL_FACE);
+    return;
+  }
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(glm::determinant(glm::mat3(world)) < 0.0f ? GL_CW : GL_CCW);
 }
 
 void set_material(GLuint p, const Scene& scene, const Material& m) {

@@ -46,6 +46,15 @@ inline GLuint material_texture_unit(int slot) {
 /// The material of a primitive (the default one for -1).
 const Material& material_of(const Scene& scene, int material);
 
+/// The depth a material's texels carry from a classification to its EQUAL-tested pass
+/// (material_depth in shaders/common/visibility_geometry.glsl): exact in float for up to
+/// 2^20 materials.
+inline float material_depth(std::size_t material) { return static_cast<float>(material + 1) / 1048576.0f; }
+
+/// Face culling for a draw of material `m` with transform `world`, as glTF says: none
+/// when double-sided, else back faces, the winding flipped by a mirroring transform.
+void set_culling(const Material& m, const glm::mat4& world);
+
 /// Whether any draw's material is drawn forward (Material::forward: alphaMode BLEND or
 /// transmission), by the blend pass only.
 bool has_forward_draws(const Scene& scene);

@@ -15,14 +15,6 @@
 
 namespace foveal::render::detail {
 
-namespace {
-
-// The depth a material's texels carry between classification and its draw (as
-// transparent_layer.frag's CLASSIFY writes it): exact in float for up to 2^20 materials.
-constexpr float kMaterialDepthScale = 1.0f / 1048576.0f;
-
-}  // namespace
-
 Status TransparentLayers::ensure_programs(const gl::ShaderLoader& shaders, std::size_t variant, const std::string& lit_defines) {
   if (lit_defines != lit_defines_ || composite_progs_.size() != mapping_variant_count()) {
     composite_progs_.clear();
@@ -90,14 +82,7 @@ int TransparentLayers::peel(const Scene& scene, const glm::mat4& view_proj, GLui
     for (std::size_t i : draws) {
       const DrawItem& d = scene.draws[i];
       const Primitive& prim = scene.primitives[static_cast<std::size_t>(d.primitive)];
-      // Culled as the blend pass culls: single-sided back faces, the winding flipped by a mirroring transform.
-      if (material_of(scene, prim.material).double_sided) {
-        glDisable(GL_CULL_FACE);
-      } else {
-        glEnable(GL_CULL_FACE);
-        glCullFace(GL_BACK);
-        glFrontFace(glm::determinant(glm::mat3(d.world)) < 0.0f ? GL_CW : GL_CCW);
-      }
+      set_culling(material_of(scene, prim.material), d.world);  // as the blend pass culls
       set(p, "u_model", d.world);
       set(p, "u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(d.world))));
       set(p, "u_draw", static_cast<unsigned>(i));
@@ -190,7 +175,7 @@ void TransparentLayers::composite(const Scene& scene, const EyeView& view, const
         const int t = mat.texture(static_cast<Material::Slot>(slot));
         glBindSampler(material_texture_unit(slot), t >= 0 ? scene.isotropic_samplers[static_cast<std::size_t>(t)].id() : 0);
       }
-      const float z = static_cast<float>(m + 1) * kMaterialDepthScale;
+      const float z = material_depth(m);
       glDepthRangef(z, z);
       draw_regions(p);
     }

@@ -14,12 +14,6 @@ namespace foveal::render::detail {
 
 namespace {
 
-// The depth a material's texels carry between classification and its pass (as
-// shaders/classify.frag writes it): exact in float for up to 2^20 materials.
-constexpr float kMaterialDepthScale = 1.0f / 1048576.0f;
-
-float material_depth(std::size_t material) { return static_cast<float>(material + 1) * kMaterialDepthScale; }
-
 // The material passes' tiles (texels a side) and the material slots with a tile list of
 // their own; materials past the last slot share its list (shaders/common/material_tiles.glsl).
 constexpr int kMaterialTile = 32;
