@@ -62,8 +62,8 @@ TEST(BenchGaze, ALaggedFoveaScoresWorseThanAnExactOneAtTheTrueGaze) {
                       d.path("g.csv")).exit_code, 0);
   test::write_file(d.path("display.json"), kDisplay);
   // The G-buffer pipeline, which this test was written against: on this 14 px/deg checker
-  // the visibility pipeline's periphery is filtered to grey and its fovea shows one-pixel
-  // seams where the mapping's scale crosses one (docs/rmfr.md, "Pipelines"), so its patch
+  // the visibility pipeline's periphery is filtered to grey and its fovea blends every tile
+  // edge once more than full does (docs/results/pattern_seams.md), so its patch
   // PSNR is low both on time and late and does not tell the lag.
   const GazeRun exact = bench(d, "exact", "--latency-ms 0 --pipeline gbuffer");
   const GazeRun lagged = bench(d, "lagged", "--latency-ms 400 --pipeline gbuffer");
