@@ -19,9 +19,7 @@ class PassTimer {
   void begin_frame() { count_ = 0; }
   void mark(Pass finished) {
     if (count_ >= queries_.size()) {
-      GLuint id = 0;
-      glCreateQueries(GL_TIMESTAMP, 1, &id);
-      queries_.emplace_back(id);
+      queries_.push_back(gl::make_query(GL_TIMESTAMP));
       passes_.push_back(finished);
     }
     passes_[count_] = finished;

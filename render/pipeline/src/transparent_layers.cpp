@@ -49,11 +49,8 @@ int TransparentLayers::peel(const Scene& scene, const glm::mat4& view_proj, GLui
     if (material_of(scene, scene.primitives[static_cast<std::size_t>(scene.draws[i].primitive)].material).forward()) draws.push_back(i);
   if (draws.empty()) return 0;
   if (!any_) {
-    GLuint ids[2] = {0, 0};
-    glCreateQueries(GL_ANY_SAMPLES_PASSED, 1, &ids[0]);
-    glCreateQueries(GL_SAMPLES_PASSED, 1, &ids[1]);
-    any_ = gl::Query(ids[0]);
-    count_ = gl::Query(ids[1]);
+    any_ = gl::make_query(GL_ANY_SAMPLES_PASSED);
+    count_ = gl::make_query(GL_SAMPLES_PASSED);
   }
   const GLuint p = peel_prog_.id();
   glUseProgram(p);
@@ -154,11 +151,7 @@ void TransparentLayers::composite(const Scene& scene, const EyeView& view, const
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glUseProgram(c);
     gl::Query& q = shaded_[eye][static_cast<std::size_t>(k)];
-    if (!q) {
-      GLuint id = 0;
-      glCreateQueries(GL_SAMPLES_PASSED, 1, &id);
-      q = gl::Query(id);
-    }
+    if (!q) q = gl::make_query(GL_SAMPLES_PASSED);
     glBeginQuery(GL_SAMPLES_PASSED, q.id());
     draw_regions(c);
     glEndQuery(GL_SAMPLES_PASSED);
@@ -237,11 +230,7 @@ Result<int> Compositor::Impl::samples_blend(const Scene& scene, const EyeView& v
 }
 
 void Compositor::Impl::begin_blend_count(std::size_t eye) {
-  if (!blend_counts[eye]) {
-    GLuint id = 0;
-    glCreateQueries(GL_SAMPLES_PASSED, 1, &id);
-    blend_counts[eye] = gl::Query(id);
-  }
+  if (!blend_counts[eye]) blend_counts[eye] = gl::make_query(GL_SAMPLES_PASSED);
   blend_counted[eye] = true;
   glBeginQuery(GL_SAMPLES_PASSED, blend_counts[eye].id());
 }

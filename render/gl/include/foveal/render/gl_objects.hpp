@@ -77,13 +77,20 @@ using Sampler = Handle<detail::SamplerTraits>;
 using Program = Handle<detail::ProgramTraits>;
 using Shader = Handle<detail::ShaderTraits>;    ///< create with glCreateShader(type)
 using Texture = Handle<detail::TextureTraits>;  ///< create with glCreateTextures(target)
-using Query = Handle<detail::QueryTraits>;      ///< create with glCreateQueries(target)
+using Query = Handle<detail::QueryTraits>;      ///< create with make_query(target)
 
 /// A texture of `target` (DSA).
 inline Texture make_texture(GLenum target) {
   GLuint id = 0;
   glCreateTextures(target, 1, &id);
   return Texture(id);
+}
+
+/// A query object of `target` (DSA: it has its type before its first glBeginQuery).
+inline Query make_query(GLenum target) {
+  GLuint id = 0;
+  glCreateQueries(target, 1, &id);
+  return Query(id);
 }
 
 /// A sampler that filters with `filter` both ways, clamps to the edge and compares
