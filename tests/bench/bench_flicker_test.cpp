@@ -1,7 +1,7 @@
 // foveal bench --flicker from the command line (real EGL rendering): the gaze filter
 // lowers RMFR's flicker under gaze jitter; a moving camera changes the reference's frames
-// and both pipelines get their figures against it; temporal accumulation's rows; bad
-// input (docs/stability.md).
+// and both pipelines get their figures against it; temporal accumulation's rows; --blend-at;
+// bad input (docs/stability.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -145,6 +145,30 @@ TEST(BenchFlicker, TemporalOnAddsARowWhereAccumulationApplies) {
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["flicker"].size(), 5u);
   EXPECT_EQ(j["flicker"][4]["temporal"], "on");  // off first, whatever the order given
+}
+
+// --blend-at reaches the flicker bench's foveated frames: on Dungeon with the three panes of
+// tools/scenes/blend_panes.py, RMFR's frames through the visibility pipeline differ between
+// the panes shaded at output and at the kept samples, and full (the reference) does not.
+TEST(BenchFlicker, BlendAtChoosesWhereTheFoveatedFramesShadeTheirPanes) {
+  test::TempDir d;
+  ASSERT_EQ(test::run("/usr/bin/python3 " + test::source_path("tools/scenes/blend_panes.py") + " " +
+                      test::source_path("data/scenes/Dungeon/dungeon_simplified.gltf") + " " + d.path("panes")).exit_code, 0);
+  std::map<std::string, std::vector<Row>> rows;
+  for (const std::string at : {"output", "samples"}) {
+    auto r = test::run(test::bin("foveal") + " bench --scene " + d.path("panes/dungeon_simplified_panes.gltf") +
+                       " --methods rmfr --sigmas 3 --size 192x108 --frames 1 --warmup 0 --flicker --flicker-frames 2 --grid-sigma 3"
+                       " --flicker-gaze fixed --flicker-pipelines visibility --camera-path static --no-jod --no-png --blend-at " + at +
+                       " --out " + d.path(at));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    rows[at] = read_csv(test::read_file(d.path(at + "/flicker.csv")));
+  }
+  const Row& full_output = find(rows["output"], "visibility", "static", "full", "fixed");
+  const Row& full_samples = find(rows["samples"], "visibility", "static", "full", "fixed");
+  EXPECT_EQ(full_output.at("periphery_error"), full_samples.at("periphery_error"));
+  const double output = value(find(rows["output"], "visibility", "static", "rmfr", "fixed"), "periphery_error");
+  const double samples = value(find(rows["samples"], "visibility", "static", "rmfr", "fixed"), "periphery_error");
+  EXPECT_GT(std::abs(output - samples), 1e-3) << "output " << output << ", samples " << samples;
 }
 
 TEST(BenchFlicker, BadInputExitsTwoNamingTheOptionAndWritesNothing) {

@@ -271,6 +271,7 @@ Status run_flicker(const FlickerOptions& o, render::Compositor& comp, const std:
     f.pipeline = p;
     f.head = head;
     f.temporal = temporal;
+    f.blend_at = o.blend_at;
     return f;
   };
   auto render_image = [&](const render::FrameParams& f) -> Result<image::Image> {

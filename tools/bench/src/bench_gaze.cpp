@@ -153,6 +153,7 @@ class GazeBench {
     if (f.head.valid) p.head = f.head.relative;
     p.pipeline = s_.pipeline;
     p.temporal = temporal;
+    p.blend_at = s_.blend_at;
     return p;
   }
 

@@ -172,13 +172,13 @@ int run_bench(const BenchOptions& a, const std::string& sweep) {
       return fail(bad_input("--camera-pivot: expected a distance in metres > 0, got " + num(*a.camera_pivot)));
     fo = {.log = a.flicker_log, .frames = a.flicker_frames, .sigma = a.grid_sigma, .fx = a.fx, .fy = a.fy, .sigma_nd = a.flicker_sigma_nd.value_or(0),
           .fovea = *fovea, .cameras = *cameras, .pivot_m = a.camera_pivot.value_or(0), .fill = a.camera_fill, .gazes = *gazes, .pipelines = *pipelines,
-          .own_reference = a.flicker_reference == "own", .temporal = *temporal};
+          .own_reference = a.flicker_reference == "own", .temporal = *temporal, .blend_at = a.blend_at};
   }
   if (!a.gaze.logs.empty()) {
     if (a.f_grid || a.rotation || a.stability || a.flicker)
       return fail(bad_input("--gaze runs on its own: drop --f-grid, --rotation, --stability and --flicker"));
     return run_gaze_bench(a.gaze, {scenes, methods, *sigmas, *size, a.out, a.frames, a.warmup, a.fx, a.fy, a.no_png, a.json, a.shard, sweep,
-                                   !a.no_jod, a.light, a.pipeline, *temporal});
+                                   !a.no_jod, a.light, a.pipeline, *temporal, a.blend_at});
   }
 
   std::error_code ec;

@@ -40,6 +40,7 @@ struct FlickerOptions {
   /// Temporal accumulation off and/or on (FrameParams::temporal), in this order: a point
   /// where it applies (render::temporal_applies) runs once per value, any other once, off.
   std::vector<bool> temporal{false};
+  render::BlendAt blend_at = render::BlendAt::output;  ///< --blend-at, every foveated frame (FrameParams::blend_at)
 };
 
 /// The parsed form of the comma lists `--camera-path`, `--flicker-gaze` and

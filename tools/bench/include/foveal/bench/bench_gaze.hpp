@@ -44,6 +44,7 @@ struct GazeBenchSweep {
   perception::Photometry light;  ///< the panel's luminance for JOD (--peak, --black)
   render::Pipeline pipeline = render::Pipeline::visibility;  ///< every frame's, the references' too
   std::vector<bool> temporal{false};  ///< --gaze-video's accumulation off and/or on (bench_flicker.hpp's temporal_values)
+  render::BlendAt blend_at = render::BlendAt::output;  ///< --blend-at, every foveated frame (FrameParams::blend_at)
 };
 
 /// Runs the gaze-driven evaluation; returns the exit code.
