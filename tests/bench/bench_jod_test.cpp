@@ -430,6 +430,7 @@ TEST(BenchJod, GazeVideoWithTemporalAccumulationAtEqualSamplesAndAfterSaccades) 
   const auto j = nlohmann::json::parse(test::read_file(d.path("b/gaze.json")));
   EXPECT_EQ(j["temporal"], "off,on");
   EXPECT_EQ(j["pipeline"], "visibility");
+  EXPECT_EQ(j["blend_at"], "output");
   EXPECT_GT(j["temporal_history_mb"].get<double>(), 0);
 }
 

@@ -495,6 +495,7 @@ int run_gaze_bench(const GazeBenchOptions& g, const GazeBenchSweep& s) {
       {"patch_deg", g.patch_deg}, {"patch_margin_db", g.patch_margin_db}, {"filter", "FilterConfig defaults (foveald without a profile)"},
       {"timed_frames", s.timed_frames}, {"logs", log_info}, {"video_frames", g.video_frames},
       {"pipeline", render::pipeline_name(s.pipeline)}, {"temporal", s.temporal.back() ? s.temporal.front() ? "on" : "off,on" : "off"},
+      {"blend_at", render::blend_at_name(s.blend_at)},
       {"temporal_history_mb", static_cast<double>(comp->memory().temporal) / 1e6},
       {"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()},
       {"peak_rss_mb", static_cast<double>(ru.ru_maxrss) / 1024.0}};
