@@ -49,13 +49,15 @@ build_other_trees() {
 # priority: the tests, proven under two spin loops at normal priority (docs/testing.md),
 # lose little, and a cold run gains most of the build (docs/testing.md, "Step times").
 # setsid: the builder leads its own process group, so an early exit stops its compilers too.
+# Its own session is also its own autogroup, where nice alone weighs nothing against
+# ctest's group: the group's nice is set too (/proc/self/autogroup).
 builder=""
 builder_log=$(mktemp)
 ctest_log=$(mktemp)
 trap 'rm -f "$ctest_log" "$builder_log"; [[ -z "$builder" ]] || kill -- "-$builder" 2> /dev/null || true' EXIT
 step() { printf '\n== %s (%s)\n' "$*" "$(date -u +%H:%M:%S)"; }
 if [[ -z "${1:-}" ]]; then
-  setsid nice -n 19 bash -c "set -euo pipefail; $(declare -p jobs launcher fuzz_targets); $(declare -f build_other_trees)
+  setsid nice -n 19 bash -c "set -euo pipefail; echo 19 > /proc/self/autogroup 2> /dev/null || true; $(declare -p jobs launcher fuzz_targets); $(declare -f build_other_trees)
     build_other_trees" > "$builder_log" 2>&1 &
   builder=$!
   step "1: ctest -LE package (the sanitizer and fuzz trees build meanwhile, at nice 19)"
