@@ -24,48 +24,14 @@ case "${1:-}" in
   *) echo "scripts/test.sh: unknown argument '$1' (usage: scripts/test.sh [--quick | --package])" >&2; exit 2 ;;
 esac
 
-source scripts/compiler_cache.sh
-fuzz_targets=(fuzz_gaze_log fuzz_import fuzz_profile fuzz_control fuzz_hid fuzz_psvr2 fuzz_display fuzz_gltf fuzz_hmd fuzz_vive fuzz_shard)
-# The trees of steps 2-4: ASan + UBSan, TSan, libFuzzer.
-build_other_trees() {
-  # -O1 without debug info compiles about twice as fast; reports then name functions, not
-  # lines (rebuild with -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" to dig in).
-  local fast=(-DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O1 -DCMAKE_C_FLAGS_DEBUG=-O1 -DFOVEAL_BUILD_BENCHMARKS=OFF)
-  cmake -S . -B build-asan -G Ninja "${fast[@]}" "${launcher[@]}" -DFOVEAL_SANITIZE=address,undefined > /dev/null
-  ninja -C build-asan -j"$jobs" foveal_core_tests foveal_profile_tests foveal_control_tests foveal_exchange_tests \
-    foveal_daemon_tests foveal_calibration_tests foveal_filter_tests foveal_hid_tests foveal_usb_tests \
-    foveal_image_tests foveal_gltf_tests foveal_probe_tests foveal_quality_tests foveal_quality_cli_tests \
-    foveal_study_tests foveal_bench_sweep_tests foveal_fuzz_regressions foveal_client_tests foveal_rmfr_tests foveal foveald \
-    foveal_head_tests foveal_vive_tests foveal_frame_timing_tests foveal_perception_tests foveal_levels_tests \
-    foveal_bench_merge_input_tests foveal_camera_path_tests foveal_gaze_video_tests foveal_openxr_quad_tests
-  cmake -S . -B build-tsan -G Ninja "${fast[@]}" "${launcher[@]}" -DFOVEAL_SANITIZE=thread > /dev/null
-  ninja -C build-tsan -j"$jobs" foveal_exchange_tests foveal_daemon_tests foveal_control_tests foveal_client_tests \
-    foveal_head_tests
-  CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DFOVEAL_FUZZ=ON "${fast[@]}" "${launcher[@]}" > /dev/null
-  ninja -C build-fuzz -j"$jobs" "${fuzz_targets[@]}"
-}
-# Step 1's tests leave about a third of the two cores idle (they wait on QEMU guests,
-# sockets and their children), so in a whole run those trees build meanwhile at the lowest
-# priority: the tests, proven under two spin loops at normal priority (docs/testing.md),
-# lose little, and a cold run gains most of the build (docs/testing.md, "Step times").
-# setsid: the builder leads its own process group, so an early exit stops its compilers too.
-# Its own session is also its own autogroup, where nice alone weighs nothing against
-# ctest's group: the group's nice is set too (/proc/self/autogroup).
-builder=""
-builder_log=$(mktemp)
-ctest_log=$(mktemp)
-trap 'rm -f "$ctest_log" "$builder_log"; [[ -z "$builder" ]] || kill -- "-$builder" 2> /dev/null || true' EXIT
 step() { printf '\n== %s (%s)\n' "$*" "$(date -u +%H:%M:%S)"; }
-if [[ -z "${1:-}" ]]; then
-  setsid nice -n 19 bash -c "set -euo pipefail; echo 19 > /proc/self/autogroup 2> /dev/null || true; $(declare -p jobs launcher fuzz_targets); $(declare -f build_other_trees)
-    build_other_trees" > "$builder_log" 2>&1 &
-  builder=$!
-  step "1: ctest -LE package (the sanitizer and fuzz trees build meanwhile, at nice 19)"
-fi
+step "1: ctest ${ctest_only[*]}"
 
 # ctest's own summary lists skipped tests among many lines; one closing line names them and
 # why (the tests' GTEST_SKIP reasons, from ctest's log), so a plain clone without an OpenXR
 # runtime says which tests it did not run.
+ctest_log=$(mktemp)
+trap 'rm -f "$ctest_log"' EXIT
 set +e
 ctest --test-dir build --output-on-failure -j"$jobs" ${ctest_only[@]+"${ctest_only[@]}"} 2>&1 | tee "$ctest_log"
 ctest_rc=${PIPESTATUS[0]}
@@ -82,24 +48,34 @@ fi
 (( ctest_rc == 0 )) || exit "$ctest_rc"
 [[ "${1:-}" == "--quick" || "${1:-}" == "--package" ]] && exit 0
 
-step "waiting for the sanitizer and fuzz trees"
-if ! wait "$builder"; then
-  tail -60 "$builder_log"
-  echo "scripts/test.sh: building the sanitizer or fuzz trees failed (above)" >&2
-  exit 1
-fi
-builder=""
+source scripts/compiler_cache.sh
 
 step "ASan + UBSan: CPU unit tests"
+# -O1 without debug info compiles about twice as fast; reports then name functions, not
+# lines (rebuild with -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" to dig in).
+fast=(-DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O1 -DCMAKE_C_FLAGS_DEBUG=-O1 -DFOVEAL_BUILD_BENCHMARKS=OFF)
+cmake -S . -B build-asan -G Ninja "${fast[@]}" "${launcher[@]}" -DFOVEAL_SANITIZE=address,undefined > /dev/null
+ninja -C build-asan -j"$jobs" foveal_core_tests foveal_profile_tests foveal_control_tests foveal_exchange_tests \
+  foveal_daemon_tests foveal_calibration_tests foveal_filter_tests foveal_hid_tests foveal_usb_tests \
+  foveal_image_tests foveal_gltf_tests foveal_probe_tests foveal_quality_tests foveal_quality_cli_tests \
+  foveal_study_tests foveal_bench_sweep_tests foveal_fuzz_regressions foveal_client_tests foveal_rmfr_tests foveal foveald \
+  foveal_head_tests foveal_vive_tests foveal_frame_timing_tests foveal_perception_tests foveal_levels_tests \
+  foveal_bench_merge_input_tests foveal_camera_path_tests foveal_gaze_video_tests foveal_openxr_quad_tests
 # foveald's integration tests render through Mesa, whose allocations outlive the process
 # by design: they run in the normal build; every other CPU test runs with leak checks.
 ctest --test-dir build-asan -L cpu -E 'Foveald' --output-on-failure -j"$jobs"
 
 step "TSan: threaded runtime tests"
+cmake -S . -B build-tsan -G Ninja "${fast[@]}" "${launcher[@]}" -DFOVEAL_SANITIZE=thread > /dev/null
+ninja -C build-tsan -j"$jobs" foveal_exchange_tests foveal_daemon_tests foveal_control_tests foveal_client_tests \
+  foveal_head_tests
 ctest --test-dir build-tsan -R 'SeqLock|FoveaShm|PoseTrack|GazeLoop|LatencyHistogram|ControlSocket|FovealClient|HeadTracker' --output-on-failure -j"$jobs"
 
 step "libFuzzer: each target ${FOVEAL_FUZZ_SECONDS:-15} s"
-for t in "${fuzz_targets[@]}"; do
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DFOVEAL_FUZZ=ON "${fast[@]}" "${launcher[@]}" > /dev/null
+targets=(fuzz_gaze_log fuzz_import fuzz_profile fuzz_control fuzz_hid fuzz_psvr2 fuzz_display fuzz_gltf fuzz_hmd fuzz_vive fuzz_shard)
+ninja -C build-fuzz -j"$jobs" "${targets[@]}"
+for t in "${targets[@]}"; do
   corpus=$(mktemp -d)
   cp -r "tests/fuzz/corpus/${t#fuzz_}/." "$corpus/"
   if ! build-fuzz/bin/"$t" "$corpus" -max_total_time="${FOVEAL_FUZZ_SECONDS:-15}" -print_final_stats=1 \
