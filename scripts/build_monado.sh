@@ -70,7 +70,7 @@ rm -rf "$cache/$name".tmp.* # what killed builds left (we hold the lock)
 tmp=$(mktemp -d "$cache/$name.tmp.XXXXXX")
 chmod "$(umask -S)" "$tmp" # mktemp's 0700 would make the cache private
 trap 'rm -rf "$tmp"' EXIT
-echo "build_monado: building $name in $tmp (several minutes)" >&2
+echo "build_monado: building $name in $tmp (about a minute on 2 cores)" >&2
 mkdir "$tmp/src"
 # 9>&-: compilers orphaned by a kill must not keep holding the lock.
 tar -xJf "$tarball" -C "$tmp/src" --strip-components=1 9>&-
