@@ -21,28 +21,9 @@ uniform vec2 u_eye_size;      // the eye's W×H
 uniform mat4 u_inv_view_proj;
 uniform vec3 u_camera_pos;
 #ifdef FEATURE_TRANSMISSION
-// The eye's lit opaque result before this pass (W×H, mipmapped): what transmission shows.
-layout(binding = 12) uniform sampler2D u_behind;
 uniform mat4 u_view_proj;
 uniform vec3 u_model_scale;  // the draw's scale per axis: the volume's thickness into world units
-
-// KHR_materials_transmission (+ _volume): the opaque result behind the surface, seen
-// through it: along the refracted ray to the back of a volume of the given thickness
-// (straight through when thin-walled), blurred by the roughness as the ior spreads it,
-// attenuated by Beer-Lambert c^(d / attenuationDistance), tinted by the base colour and
-// weighted by the transmission and what Fresnel does not reflect (docs/scenes.md).
-vec3 transmitted(vec3 p, vec3 n, vec3 v, Surface s, Transmission t) {
-  vec3 ray = normalize(refract(-v, n, 1.0 / u_ior)) * t.thickness * u_model_scale;
-  vec4 clip = u_view_proj * vec4(p + ray, 1.0);
-  vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-  float lod = log2(float(textureSize(u_behind, 0).x)) * s.roughness * clamp(u_ior * 2.0 - 2.0, 0.0, 1.0);
-  vec3 behind = textureLod(u_behind, uv, lod).rgb;
-  vec3 attenuation = vec3(1.0);
-  if (u_transmission.z > 0.0) attenuation = pow(u_attenuation_color, vec3(length(ray) / u_transmission.z));
-  float n_dot_v = clamp(dot(n, v), 0.0, 1.0);
-  vec3 f = s.f0 + (s.f90 - s.f0) * pow(1.0 - n_dot_v, 5.0);
-  return t.factor * (1.0 - s.metallic) * (1.0 - f) * s.albedo * attenuation * behind;
-}
+#include "common/transmission.glsl"
 #endif
 
 layout(location = 0) out vec4 o_color;
@@ -69,9 +50,7 @@ void main() {
   Surface surface = surface_of(g);
 #ifdef FEATURE_TRANSMISSION
   if (u_transmission.x > 0.0) {
-    Transmission t = material_transmission(s);
-    surface.transmission = t.factor;
-    o_color = vec4(lit_color(pixel, p, n, u_camera_pos, surface) + transmitted(p, n, normalize(u_camera_pos - p), surface, t), alpha);
+    o_color = vec4(lit_transmissive(pixel, p, n, u_camera_pos, surface, s, u_model_scale), alpha);
     return;
   }
 #endif

@@ -9,8 +9,8 @@
 // a shader's every instruction for a block unless the block's mask is empty before it,
 // so a discard in the shader would have cost every material the whole layer.
 // CLASSIFY: that classification (as classify.frag, from the layer's ids).
-// Transmission is not done here (it needs the opaque result at screen positions): such
-// scenes blend at output.
+// Transmission reads the eye's opaque reduced buffer resolved to W×H before the layers
+// (common/transmission.glsl), as the blend pass reads its copy of the output.
 #define DRAW_UINTS_UNIT 13  // lighting.glsl's sheen table holds unit 11
 #include "common/mapping.glsl"
 #include "common/visibility_geometry.glsl"
@@ -29,6 +29,9 @@ void main() {
 
 uniform mat4 u_view_proj;
 uniform vec3 u_camera_pos;
+#ifdef FEATURE_TRANSMISSION
+#include "common/transmission.glsl"
+#endif
 layout(early_fragment_tests) in;  // the EQUAL test picks the material's texels before shading
 
 layout(location = 0) out vec4 o_color;
@@ -78,12 +81,20 @@ void main() {
   s.front_facing = front_facing(c0, c1, c2);
   vec4 base = material_base(s);
   GBufferTexel g = evaluate_material(s, base);
-  float alpha = clamp(base.a, 0.0, 1.0);  // blended: transmissive materials never come here
+  float alpha = u_blend ? clamp(base.a, 0.0, 1.0) : 1.0;  // an opaque transmissive surface replaces
   if (u_unlit) {
     o_color = vec4(g.albedo.rgb, alpha);
     return;
   }
   vec3 p = (d.model * vec4(mix3(b.l, v0.position, v1.position, v2.position), 1.0)).xyz;
-  o_color = vec4(lit_color(pixel, p, decode_normal(g.normal.rg), u_camera_pos, surface_of(g)), alpha);
+  vec3 n = decode_normal(g.normal.rg);
+#ifdef FEATURE_TRANSMISSION
+  if (u_transmission.x > 0.0) {
+    vec3 model_scale = vec3(length(d.model[0].xyz), length(d.model[1].xyz), length(d.model[2].xyz));
+    o_color = vec4(lit_transmissive(pixel, p, n, u_camera_pos, surface_of(g), s, model_scale), alpha);
+    return;
+  }
+#endif
+  o_color = vec4(lit_color(pixel, p, n, u_camera_pos, surface_of(g)), alpha);
 }
 #endif

@@ -31,14 +31,18 @@ struct Case {
   render::Pipeline pipeline;
   render::Method method;
   double sigma;
+  render::BlendAt blend_at = render::BlendAt::output;
 };
 const Case kCases[] = {{render::Pipeline::gbuffer, render::Method::full, 1.0},
                        {render::Pipeline::gbuffer, render::Method::rmfr, 1.6},
                        {render::Pipeline::visibility, render::Method::full, 1.0},
                        {render::Pipeline::visibility, render::Method::rmfr, 1.6}};
+// Transmissive surfaces shaded at RMFR's kept samples (docs/rmfr.md, "Transparency at the kept samples").
+const Case kAtSamples{render::Pipeline::visibility, render::Method::rmfr, 1.6, render::BlendAt::samples};
 
 std::string describe(const Case& c) {
-  return std::string(render::pipeline_name(c.pipeline)) + " " + render::method_name(c.method);
+  return std::string(render::pipeline_name(c.pipeline)) + " " + render::method_name(c.method) + " blend at " +
+         render::blend_at_name(c.blend_at);
 }
 
 struct Rendered {
@@ -65,6 +69,7 @@ Rendered render_case(const std::string& spec, const Case& c, const render::Scene
   render::fill_view(*s);
   render::FrameParams p = test::frame(c.method, c.sigma);
   p.pipeline = c.pipeline;
+  p.blend_at = c.blend_at;
   Rendered r{test::render_frame(comp, *s, p), comp.shading_variant(), comp.gbuffer_bytes_per_pixel()};
   return r;
 }
@@ -301,13 +306,13 @@ TEST(Materials, RenderJsonReportsTheVariantAndLayout) {
 
 // KHR_materials_transmission: a clear white pane (roughness 0, thin-walled) shows the
 // red background through it, (1 − F) of it at normal incidence; without the extension
-// the pane is an opaque white dielectric. Both pipelines, full and RMFR.
+// the pane is an opaque white dielectric. Both pipelines, full and RMFR, and at the kept samples.
 TEST(Materials, TransmissionShowsTheOpaqueResultBehind) {
   ASSERT_TRUE(test::gl_ready());
   test::TempDir dir;
   const std::string clear = write_pane(dir, "clear", pane_material(1.0f), {1, 0, 0});
   const std::string opaque = write_pane(dir, "opaque", pane_material(0.0f), {1, 0, 0});
-  for (const Case& c : kCases) {
+  for (const Case& c : {kCases[0], kCases[1], kCases[2], kCases[3], kAtSamples}) {
     const Rendered a = render_case(clear, c), b = render_case(opaque, c);
     EXPECT_EQ(a.variant, "metal-rough+transmission") << describe(c);
     const auto through = centre(a.image), solid = centre(b.image);
@@ -324,7 +329,7 @@ TEST(Materials, VolumeAttenuatesByThicknessOverDistance) {
   ASSERT_TRUE(test::gl_ready());
   test::TempDir dir;
   for (const auto& [distance, expected] : {std::pair{1.0f, 0.25}, std::pair{2.0f, 0.5}, std::pair{0.0f, 1.0}})
-    for (const Case& c : {kCases[0], kCases[3]}) {
+    for (const Case& c : {kCases[0], kCases[3], kAtSamples}) {
       const std::string pane = write_pane(dir, "vol" + std::to_string(static_cast<int>(distance)),
                                           pane_material(1.0f, 1.0f, distance, {0.25f, 1.0f, 1.0f}), {1, 1, 1});
       const auto px = centre(render_case(pane, c).image);

@@ -127,10 +127,9 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
   std::array<EyeFoveation, 2> eyes = params.eyes;
   const bool blended = detail::has_forward_draws(scene);
   // Blended surfaces at the kept samples (BlendAt::samples): foveated methods in the
-  // visibility pipeline; transmission needs the opaque result at screen positions, which
-  // only the output has, so such scenes blend there.
-  const bool blend_at_samples = blended && params.blend_at == BlendAt::samples && params.pipeline == Pipeline::visibility &&
-                                params.method != Method::full && (scene.features & feature_transmission) == 0;
+  // visibility pipeline.
+  const bool blend_at_samples =
+      blended && params.blend_at == BlendAt::samples && params.pipeline == Pipeline::visibility && params.method != Method::full;
   m.blend_counted = {false, false};
   bool accumulated = false;
   for (Eye e : kEyes) {
@@ -251,32 +250,13 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
       m.timer.mark(Pass::blend);
     }
 
-    // Resolve into this eye's half of the output. KFR's angle axis wraps around.
-    if (mapping_kernel(variant).rmfr_passes) {  // RMFR's kernel (rmfr, uniform, fixed): foveal-rmfr's resolve
-      const rmfr::Lens l = rmfr_lens(lens);
-      const rmfr::Lens* through = distort && !blend_under_lens ? &l : nullptr;
-      if (Status s = accumulate ? m.temporal_resolve(i, plan, rs, tg, scene, view, resolve_fbo, resolve_origin, through)
-                                : m.foveator->resolve(rmfr_plan(plan), rs.texture.id(), resolve_fbo, resolve_origin.x,
-                                                      resolve_origin.y, through);
-          !s)
-        return s.error();
-      m.timer.mark(Pass::inverse);
-      if (Status s = blend_eye(); !s) return s.error();
-      continue;
-    }
-    glBindFramebuffer(GL_FRAMEBUFFER, resolve_fbo);
-    glViewport(resolve_origin.x, resolve_origin.y, m.eye_w, m.eye_h);
-    glTextureParameteri(rs.texture.id(), GL_TEXTURE_WRAP_T, mapping_kernel(variant).repeats_v ? GL_REPEAT : GL_CLAMP_TO_EDGE);
-    const GLuint ip = m.resolve_progs[variant][distort && !blend_under_lens ? 1 : 0].id();
-    glUseProgram(ip);
-    set_mapping(ip, plan, texture_size);
-    set(ip, "u_origin", resolve_origin);
-    set(ip, "u_lens_center", glm::vec2(lens.center.x, 1.0f - lens.center.y));
-    set(ip, "u_lens_k", glm::vec3(lens.k1, lens.k2, lens.k3));
-    set(ip, "u_lens_scale", lens.channel_scale);
-    glBindTextureUnit(0, rs.texture.id());
-    glBindVertexArray(m.empty_vao.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    // Resolve into this eye's half of the output; accumulation is RMFR's kernel only.
+    const LensDistortion* through = distort && !blend_under_lens ? &lens : nullptr;
+    const rmfr::Lens l = rmfr_lens(lens);
+    if (Status s = accumulate ? m.temporal_resolve(i, plan, rs, tg, scene, view, resolve_fbo, resolve_origin, through ? &l : nullptr)
+                              : m.resolve_pass(plan, variant, rs, texture_size, resolve_fbo, resolve_origin, through);
+        !s)
+      return s.error();
     m.timer.mark(Pass::inverse);
     if (Status s = blend_eye(); !s) return s.error();
   }

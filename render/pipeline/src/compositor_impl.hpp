@@ -89,6 +89,8 @@ struct Compositor::Impl {
                                                    const std::vector<glm::ivec4>& regions);
   void run_latch(const FoveaLatch& latch, std::array<EyeFoveation, 2>& eyes, PassTimes& times);
   void lighting_pass(GLuint p, const detail::SurfaceTargets& src, glm::ivec2 origin, const EyeView& v);
+  Status resolve_pass(const EyePlan& plan, std::size_t variant, const detail::ColorTarget& lit, glm::vec2 texture_size, GLuint fbo,
+                      glm::ivec2 origin, const LensDistortion* lens);
   void copy_behind(GLuint color, glm::ivec2 origin);
   void blend_pass(const Scene& scene, const EyeView& v, GLuint fbo, GLuint color, glm::ivec2 origin, GLuint depth);
 
@@ -118,6 +120,7 @@ struct Compositor::Impl {
   // The render targets, made or grown on first use (compositor_targets.cpp).
   void ensure_transformed(std::size_t eye, int w, int h, bool grow_only);
   void ensure_undistorted();
+  void ensure_behind();
   void ensure_reduced(std::size_t eye, int w, int h, bool grow_only);
   Result<const detail::SurfaceTargets*> gbuffer_targets();
 };

@@ -172,6 +172,33 @@ void Compositor::Impl::lighting_pass(GLuint p, const detail::SurfaceTargets& src
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+// The eye's lit reduced buffer `lit` taken to W×H by the plan's kernel (mapping variant
+// `variant`, which sees `texture_size` texels) into the viewport at `origin` of `fbo`,
+// through `lens` when given. KFR's angle axis wraps around.
+Status Compositor::Impl::resolve_pass(const EyePlan& plan, std::size_t variant, const detail::ColorTarget& lit, glm::vec2 texture_size,
+                                      GLuint fbo, glm::ivec2 origin, const LensDistortion* lens) {
+  if (mapping_kernel(variant).rmfr_passes) {  // RMFR's kernel (rmfr, uniform, fixed): foveal-rmfr's resolve
+    const rmfr::Lens l = lens ? rmfr_lens(*lens) : rmfr::Lens{};
+    return foveator->resolve(rmfr_plan(plan), lit.texture.id(), fbo, origin.x, origin.y, lens ? &l : nullptr);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glViewport(origin.x, origin.y, eye_w, eye_h);
+  glTextureParameteri(lit.texture.id(), GL_TEXTURE_WRAP_T, mapping_kernel(variant).repeats_v ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+  const GLuint p = resolve_progs[variant][lens ? 1 : 0].id();
+  glUseProgram(p);
+  set_mapping(p, plan, texture_size);
+  set(p, "u_origin", origin);
+  if (lens) {
+    set(p, "u_lens_center", glm::vec2(lens->center.x, 1.0f - lens->center.y));
+    set(p, "u_lens_k", glm::vec3(lens->k1, lens->k2, lens->k3));
+    set(p, "u_lens_scale", lens->channel_scale);
+  }
+  glBindTextureUnit(0, lit.texture.id());
+  glBindVertexArray(empty_vao.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  return {};
+}
+
 // alphaMode BLEND, after the eye's lit opaque result is complete in the output: each
 // blended draw shaded forward at output resolution, back to front by the distance of
 // its bounds' centre from the eye, composited "over" it (straight alpha), tested
@@ -180,18 +207,7 @@ void Compositor::Impl::lighting_pass(GLuint p, const detail::SurfaceTargets& src
 // Transmission shows the opaque result behind: a mipmapped copy of the eye's region of
 // `color` at `origin` (the roughness blurs by level).
 void Compositor::Impl::copy_behind(GLuint color, glm::ivec2 origin) {
-  if (!behind) {
-    const int levels = 1 + static_cast<int>(std::floor(std::log2(static_cast<double>(std::max(eye_w, eye_h)))));
-    detail::ColorTarget t;
-    t.width = eye_w, t.height = eye_h;
-    t.bytes_per_pixel = opt.float_output ? 16 : 4;
-    t.texture = gl::make_texture_2d(reduced_format(), eye_w, eye_h, levels);
-    glTextureParameteri(t.texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(t.texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(t.texture.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(t.texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    behind = std::move(t);
-  }
+  ensure_behind();
   glCopyImageSubData(color, GL_TEXTURE_2D, 0, origin.x, origin.y, 0, behind->texture.id(), GL_TEXTURE_2D, 0, 0, 0, 0, eye_w, eye_h, 1);
   glGenerateTextureMipmap(behind->texture.id());
 }

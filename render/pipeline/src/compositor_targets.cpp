@@ -1,5 +1,7 @@
 // The compositor's render targets: made or grown when a frame needs them, and the
 // bytes they hold (Compositor::memory).
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 #include "compositor_impl.hpp"
@@ -16,6 +18,25 @@ void Compositor::Impl::ensure_transformed(std::size_t eye, int w, int h, bool gr
 
 void Compositor::Impl::ensure_undistorted() {
   if (!undistorted) undistorted = detail::ColorTarget::create(eye_w, eye_h, reduced_format(), true);
+}
+
+// What transmission reads (W×H with its mips): a copy of the output (copy_behind) or,
+// at the kept samples, the eye's opaque reduced buffer resolved into it (behind_from_samples).
+void Compositor::Impl::ensure_behind() {
+  if (behind) return;
+  const int levels = 1 + static_cast<int>(std::floor(std::log2(static_cast<double>(std::max(eye_w, eye_h)))));
+  detail::ColorTarget t;
+  t.width = eye_w, t.height = eye_h;
+  t.bytes_per_pixel = opt.float_output ? 16 : 4;
+  t.texture = gl::make_texture_2d(reduced_format(), eye_w, eye_h, levels);
+  glTextureParameteri(t.texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(t.texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(t.texture.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(t.texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  t.fbo = gl::Framebuffer::create();
+  glNamedFramebufferTexture(t.fbo.id(), GL_COLOR_ATTACHMENT0, t.texture.id(), 0);
+  glNamedFramebufferDrawBuffer(t.fbo.id(), GL_COLOR_ATTACHMENT0);
+  behind = std::move(t);
 }
 
 void Compositor::Impl::ensure_reduced(std::size_t eye, int w, int h, bool grow_only) {

@@ -218,6 +218,15 @@ Result<int> Compositor::Impl::samples_blend(const Scene& scene, const EyeView& v
   glFlush();
   const int layers = transparent->peel(scene, view.view_proj, visibility->depth_texture(), eye_w, eye_h, times.blend_dropped);
   if (layers == 0) return 0;
+  // What transmission sees: the eye's opaque samples resolved to W×H, as the output path
+  // copies its output (under accumulation, this frame's jittered grid without the history).
+  const bool transmission = (layout.features & feature_transmission) != 0;
+  if (transmission) {
+    ensure_behind();
+    if (Status s = resolve_pass(plan, variant, target, texture_size, behind->fbo.id(), glm::ivec2(0), nullptr); !s) return s.error();
+    glGenerateTextureMipmap(behind->texture.id());
+  }
+  glBindTextureUnit(12, transmission ? behind->texture.id() : 0);
   glEnable(GL_BLEND);
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   glBindTextureUnit(5, shadow.texture.id());
@@ -226,6 +235,7 @@ Result<int> Compositor::Impl::samples_blend(const Scene& scene, const EyeView& v
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, lights_ubo.id());
   transparent->composite(scene, view, plan, variant, regions, texture_size, light_grid, layers, target, eye);
   glDisable(GL_BLEND);
+  glBindTextureUnit(12, 0);
   return layers;
 }
 

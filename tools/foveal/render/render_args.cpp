@@ -31,7 +31,7 @@ void add_render_options(CLI::App& sub, RenderArgs& a) {
       ->capture_default_str();
   sub.add_option("--blend-at", a.blend_at,
                  "output or samples: where alphaMode BLEND surfaces are shaded: at output resolution after the inverse pass, "
-                 "or at the samples the method keeps, before it (visibility pipeline, foveated methods, no transmission; "
+                 "or at the samples the method keeps, before it (visibility pipeline, foveated methods; "
                  "docs/rmfr.md, \"Transparency at the kept samples\")")
       ->check(CLI::IsMember(render::blend_at_names()))
       ->capture_default_str();
