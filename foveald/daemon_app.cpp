@@ -199,6 +199,7 @@ Status DaemonApp::setup_renderer() {
   ro.method = o_.method;
   ro.pipeline = o_.pipeline;
   if (!o_.temporal.empty()) ro.temporal = o_.temporal == "on";
+  ro.blend_at = o_.blend_at;
   ro.save_every = o_.save_every;
   ro.output.title = "foveald";
   ro.output.monitor = o_.monitor;

@@ -41,6 +41,11 @@ Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions
   auto pipeline = render::parse_pipeline(o.pipeline);
   if (!pipeline) return Error{pipeline.error().kind, "--pipeline: " + pipeline.error().message};
   r->pipeline_ = *pipeline;
+  auto blend_at = render::parse_blend_at(o.blend_at);
+  if (!blend_at) return Error{blend_at.error().kind, "--blend-at: " + blend_at.error().message};
+  if (*blend_at == render::BlendAt::samples && r->pipeline_ != render::Pipeline::visibility)
+    return bad_input("--blend-at samples needs --pipeline visibility (the G-buffer pipeline blends at output)");
+  r->blend_at_ = *blend_at;
   auto output = render::open_output(o.output);
   if (!output) return output.error();
   r->output_ = std::move(*output);
@@ -90,6 +95,7 @@ Status FrameRenderer::render(const std::function<FoveaFrame()>& latest, const Re
   p.pipeline = pipeline_;
   p.ipd_mm = s.ipd_mm;
   p.temporal = o_.temporal.value_or(s.temporal);
+  p.blend_at = blend_at_;
   if (head.valid) p.head = head.relative;
   // What the frame shows: the newest fovea, predicted to when the frame is shown.
   const auto shown_fovea = [&](const FoveaFrame& f) {
@@ -166,7 +172,10 @@ Status FrameRenderer::render(const std::function<FoveaFrame()>& latest, const Re
     if (generation_changed) ++snap_.settings_changes;
     if (auto_f_generation_) snap_.auto_f = {auto_fx_, auto_fy_};
     snap_.output = std::move(output);
-    snap_.targets_mb = static_cast<double>(comp_->memory().total()) / (1024.0 * 1024.0);
+    const render::TargetMemory memory = comp_->memory();
+    snap_.targets_mb = static_cast<double>(memory.total()) / (1024.0 * 1024.0);
+    snap_.temporal_mb = static_cast<double>(memory.temporal) / (1024.0 * 1024.0);
+    snap_.blend_layers = t->blend_layers;
     snap_.latency = latency_.json(output_->shown_clock());
     snap_.pacing = pacer_->json();
   }
@@ -290,6 +299,8 @@ nlohmann::json FrameRenderer::stats_json() const {
           {"scene", scene_name_},
           {"method", render::method_name(method_)},
           {"pipeline", render::pipeline_name(pipeline_)},
+          {"temporal", snap_.last_params.temporal ? "on" : "off"},
+          {"blend_at", render::blend_at_name(blend_at_)},
           {"size", size_},
           {"renderer", renderer_name_},
           {"output", snap_.output},
@@ -302,6 +313,8 @@ nlohmann::json FrameRenderer::stats_json() const {
                                 {"lighting", med.lighting}, {"inverse", med.inverse}, {"blend", med.blend},
                                 {"gpu_total", med.gpu_total}, {"cpu_frame", med.cpu}}},
           {"targets_mb", snap_.targets_mb},
+          {"temporal_history_mb", snap_.temporal_mb},
+          {"blend_layers_last_frame", snap_.blend_layers},
           {"latch", o_.late_latch ? "late" : "early"},
           {"prediction", o_.prediction.enabled ? "on" : "off"},
           {"gaze_to_photon", snap_.latency},

@@ -32,6 +32,7 @@ struct RenderOptions {
   std::string method = "rmfr";
   std::string pipeline = render::kDefaultPipelineName;  ///< gbuffer or visibility (docs/rmfr.md)
   std::optional<bool> temporal;   ///< temporal accumulation (--temporal); unset: the profile's
+  std::string blend_at = "output";  ///< output or samples (--blend-at; samples needs the visibility pipeline)
   int width = 0, height = 0;      ///< 0: the display model's side-by-side size
   int save_every = 0;             ///< also save every Nth frame (0: first and last only)
   render::OutputOptions output;   ///< headless, window or direct mode
@@ -115,7 +116,8 @@ class FrameRenderer {
     std::uint64_t settings_changes = 0;
     std::optional<std::pair<double, double>> auto_f;
     nlohmann::json output;
-    double targets_mb = 0;
+    double targets_mb = 0, temporal_mb = 0;  ///< all render targets; temporal accumulation's histories
+    int blend_layers = 0;                     ///< the last frame's, composited at the kept samples
     std::vector<std::string> saved;
     nlohmann::json latency, pacing;
   };
@@ -130,6 +132,7 @@ class FrameRenderer {
   std::optional<render::Compositor> comp_;
   render::Method method_ = render::Method::rmfr;
   render::Pipeline pipeline_ = render::Pipeline::gbuffer;
+  render::BlendAt blend_at_ = render::BlendAt::output;
   std::mutex csv_mutex_;  ///< frames.csv: written by render(), committed by finish() or abandon()
   std::optional<AtomicFile> csv_;
   bool csv_closed_ = false;

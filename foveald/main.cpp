@@ -71,6 +71,11 @@ void define_options(CLI::App& app, foveal::daemon::Options& o, Flags& f) {
                  "on or off: foveated temporal accumulation, RMFR in the visibility pipeline (docs/rmfr.md, \"Temporal "
                  "accumulation\"; default: the profile's temporal key, off)")
       ->check(CLI::IsMember({"on", "off"}));
+  app.add_option("--blend-at", o.blend_at,
+                 "output or samples: where alphaMode BLEND and transmissive surfaces are shaded: at output resolution after the "
+                 "inverse pass, or at the samples the method keeps, before it (visibility pipeline; docs/rmfr.md, \"Transparency "
+                 "at the kept samples\")")
+      ->check(CLI::IsMember(foveal::render::blend_at_names()))->capture_default_str();
   app.add_option("--method", o.method, "One of " + foveal::render::method_names_joined(", "))
       ->check(CLI::IsMember(foveal::render::method_names()))->capture_default_str();
   app.add_option("--pacing", o.pacing, "When frames start: jit (just in time before each refresh) or asap (default: jit on a display, asap headless; docs/latency.md)")

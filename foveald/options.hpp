@@ -32,6 +32,7 @@ struct Options {
   std::string method = "rmfr";
   std::string pipeline = render::kDefaultPipelineName;  ///< gbuffer or visibility
   std::string temporal;       ///< on or off: temporal accumulation; empty: the profile's (off by default)
+  std::string blend_at = "output";  ///< output or samples: where blended surfaces are shaded (render::BlendAt)
   std::string pacing;         ///< asap or jit; empty: jit on a display, asap headless
   std::string latch = "late"; ///< late or early (docs/latency.md)
   std::string predict = "on"; ///< on or off: the fovea predicted to display time
