@@ -21,7 +21,7 @@ void Compositor::Impl::ensure_undistorted() {
 }
 
 // What transmission reads (W×H with its mips): a copy of the output (copy_behind) or,
-// at the kept samples, the eye's opaque reduced buffer resolved into it (behind_from_samples).
+// at the kept samples, the eye's opaque reduced buffer resolved into it (samples_blend).
 void Compositor::Impl::ensure_behind() {
   if (behind) return;
   const int levels = 1 + static_cast<int>(std::floor(std::log2(static_cast<double>(std::max(eye_w, eye_h)))));
