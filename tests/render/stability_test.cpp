@@ -91,7 +91,8 @@ TEST_P(Stability, EveryMethodAndFoveaOnAScene) {
 // Surfaces drawn after the inverse pass: alphaMode BLEND (AlphaBlendModeTest) and
 // KHR_materials_transmission (TransmissionTest, which also reads the mipmapped copy of
 // the opaque result), through the same foveae, every method, the extreme levels and
-// NaN/Inf/off-viewport fovea input.
+// NaN/Inf/off-viewport fovea input; in the visibility pipeline also shaded at the kept
+// samples (--blend-at samples: the peel, the composite and the resolve transmission reads).
 TEST_P(Stability, EveryMethodAndFoveaOnBlendedAndTransmissiveSurfaces) {
   ASSERT_TRUE(test::gl_ready());
   const int w = 97, h = 61;
@@ -99,13 +100,19 @@ TEST_P(Stability, EveryMethodAndFoveaOnBlendedAndTransmissiveSurfaces) {
   const double inf = INFINITY;
   std::vector<std::pair<double, double>> inputs = foveae(w, h);
   for (auto xy : std::vector<std::pair<double, double>>{{NAN, 0.5}, {inf, -inf}, {-3, 0.5}}) inputs.push_back(xy);
+  std::vector<render::BlendAt> where = {render::BlendAt::output};
+  if (g_pipeline == render::Pipeline::visibility) where.push_back(render::BlendAt::samples);
   for (const char* model : {"AlphaBlendModeTest", "TransmissionTest"}) {
     render::Scene s = test::scene(test::khronos(model));
     for (Method m : render::all_methods())
       for (double sigma : {1.0, 8.0})  // the extremes (the scene test above has 2.6)
         for (auto [x, y] : inputs)
-          EXPECT_EQ(bad_values(c, s, params(m, sigma, 0.3, 0.3, x, y)), 0u)
-              << model << " " << render::method_name(m) << " sigma " << sigma << " fovea " << x << "," << y;
+          for (render::BlendAt at : where) {
+            render::FrameParams p = params(m, sigma, 0.3, 0.3, x, y);
+            p.blend_at = at;
+            EXPECT_EQ(bad_values(c, s, p), 0u) << model << " " << render::method_name(m) << " sigma " << sigma << " fovea " << x
+                                               << "," << y << " blend at " << render::blend_at_name(at);
+          }
   }
 }
 
