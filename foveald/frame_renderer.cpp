@@ -43,8 +43,7 @@ Result<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const RenderOptions
   r->pipeline_ = *pipeline;
   auto blend_at = render::parse_blend_at(o.blend_at);
   if (!blend_at) return Error{blend_at.error().kind, "--blend-at: " + blend_at.error().message};
-  if (*blend_at == render::BlendAt::samples && r->pipeline_ != render::Pipeline::visibility)
-    return bad_input("--blend-at samples needs --pipeline visibility (the G-buffer pipeline blends at output)");
+  if (Status s = render::check_blend_at(*blend_at, r->pipeline_); !s) return s.error();
   r->blend_at_ = *blend_at;
   auto output = render::open_output(o.output);
   if (!output) return output.error();

@@ -57,4 +57,10 @@ Result<BlendAt> parse_blend_at(const std::string& s) {
   return bad_input("unknown blend place '" + s + "' (output, samples)");
 }
 
+Status check_blend_at(BlendAt at, Pipeline pipeline) {
+  if (at == BlendAt::samples && pipeline != Pipeline::visibility)
+    return bad_input("--blend-at samples needs --pipeline visibility (the G-buffer pipeline blends at output)");
+  return {};
+}
+
 }  // namespace foveal::render

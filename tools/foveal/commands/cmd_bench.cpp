@@ -141,8 +141,8 @@ void add_bench(CLI::App& app, int& exit_code) {
     bench::BenchOptions run = a->options;
     run.pipeline = *pipeline;
     run.blend_at = *render::parse_blend_at(a->blend_at);  // checked by IsMember
-    if (run.blend_at == render::BlendAt::samples && run.pipeline != render::Pipeline::visibility) {
-      exit_code = cli::report(bad_input("--blend-at samples needs --pipeline visibility (the G-buffer pipeline blends at output)"));
+    if (Status s = render::check_blend_at(run.blend_at, run.pipeline); !s) {
+      exit_code = cli::report(s.error());
       return;
     }
     if (run.scenes.empty()) run.scenes = {default_scene()};

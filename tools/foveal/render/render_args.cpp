@@ -133,8 +133,7 @@ Result<RenderSetup> resolve(const RenderArgs& a) {
   auto blend_at = render::parse_blend_at(a.blend_at);
   if (!blend_at) return Error{blend_at.error().kind, "--blend-at: " + blend_at.error().message};
   s.frame.blend_at = *blend_at;
-  if (*blend_at == render::BlendAt::samples && *pipeline != render::Pipeline::visibility)
-    return bad_input("--blend-at samples needs --pipeline visibility (the G-buffer pipeline blends at output)");
+  if (Status c = render::check_blend_at(*blend_at, *pipeline); !c) return c.error();
   for (auto& e : s.frame.eyes)
     e.kfr_alpha = a.kfr_alpha, e.layer_scale = a.layer_scale, e.inset_deg = a.inset_deg, e.inset_band_deg = a.inset_band_deg;
   s.auto_f = a.f == "auto";

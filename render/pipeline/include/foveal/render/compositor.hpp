@@ -51,12 +51,16 @@ inline constexpr const char* kDefaultPipelineName = "visibility";
 ///   pass, docs/scenes.md "Transparency").
 /// - samples: in the visibility pipeline with a foveation method, depth-peeled at W×H
 ///   (ids and depth only) and shaded and composited in the eye's reduced buffer before
-///   its inverse pass, so only the samples the method keeps are shaded. The full method,
-///   the G-buffer pipeline and scenes with KHR_materials_transmission blend at output.
+///   its inverse pass, so only the samples the method keeps are shaded (transmissive
+///   surfaces too, reading the eye's opaque samples resolved to W×H). The full method
+///   and the G-buffer pipeline blend at output.
 enum class BlendAt { output, samples };
 const char* blend_at_name(BlendAt b);
 /// "output" or "samples"; bad_input otherwise.
 Result<BlendAt> parse_blend_at(const std::string& s);
+/// bad_input naming the options where `at` is samples and `pipeline` is not visibility
+/// (the compositor would blend at output): for commands that refuse rather than fall back.
+Status check_blend_at(BlendAt at, Pipeline pipeline);
 /// Both names, output first.
 const std::vector<std::string>& blend_at_names();
 
