@@ -16,7 +16,6 @@
 #include "foveal/render/scene.hpp"
 #include "foveal/render/stereo_camera.hpp"
 #include "foveal/rmfr.hpp"
-#include "foveal/rmfr_mapping.hpp"
 
 namespace foveal::render {
 
@@ -202,17 +201,8 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
       m.blend_pass(scene, view, resolve_fbo, blend_under_lens ? m.undistorted->texture.id() : m.output.texture.id(), resolve_origin,
                    m.opaque_depth(params.pipeline));
       glEndQuery(GL_SAMPLES_PASSED);
-      if (blend_under_lens) {
-        rmfr::Plan identity = rmfr_plan(plan);
-        identity.buffer_w = identity.screen_w, identity.buffer_h = identity.screen_h;
-        identity.sigma = 1.0;
-        identity.fx = identity.fy = rmfr::kRmfrIdentityF;
-        const rmfr::Lens l = rmfr_lens(lens);
-        if (Status s = m.foveator->resolve(identity, m.undistorted->texture.id(), m.output.fbo.id(), eye_origin.x,
-                                           eye_origin.y, &l);
-            !s)
-          return s;
-      }
+      if (blend_under_lens)
+        if (Status s = m.resolve_full(plan, m.undistorted->texture.id(), m.output.fbo.id(), eye_origin, &lens); !s) return s;
       m.timer.mark(Pass::blend);
       return {};
     };
@@ -252,8 +242,7 @@ Result<PassTimes> Compositor::render(const Scene& scene, const FrameParams& para
 
     // Resolve into this eye's half of the output; accumulation is RMFR's kernel only.
     const LensDistortion* through = distort && !blend_under_lens ? &lens : nullptr;
-    const rmfr::Lens l = rmfr_lens(lens);
-    if (Status s = accumulate ? m.temporal_resolve(i, plan, rs, tg, scene, view, resolve_fbo, resolve_origin, through ? &l : nullptr)
+    if (Status s = accumulate ? m.temporal_resolve(i, plan, rs, tg, scene, view, resolve_fbo, resolve_origin, through)
                               : m.resolve_pass(plan, variant, rs, texture_size, resolve_fbo, resolve_origin, through);
         !s)
       return s.error();

@@ -91,6 +91,7 @@ struct Compositor::Impl {
   void lighting_pass(GLuint p, const detail::SurfaceTargets& src, glm::ivec2 origin, const EyeView& v);
   Status resolve_pass(const EyePlan& plan, std::size_t variant, const detail::ColorTarget& lit, glm::vec2 texture_size, GLuint fbo,
                       glm::ivec2 origin, const LensDistortion* lens);
+  Status resolve_full(const EyePlan& plan, GLuint texture, GLuint fbo, glm::ivec2 origin, const LensDistortion* lens);
   void copy_behind(GLuint color, glm::ivec2 origin);
   void blend_pass(const Scene& scene, const EyeView& v, GLuint fbo, GLuint color, glm::ivec2 origin, GLuint depth);
 
@@ -108,7 +109,7 @@ struct Compositor::Impl {
   Status use_jitter(std::size_t eye, std::size_t variant, bool on);
   Status temporal_resolve(std::size_t eye, const EyePlan& plan, const detail::ColorTarget& lit,
                           const detail::SurfaceTargets& surface, const Scene& scene, const EyeView& view, GLuint fbo,
-                          glm::ivec2 origin, const rmfr::Lens* lens);
+                          glm::ivec2 origin, const LensDistortion* lens);
 
   // The programs: shader variants for the scene's features and lights, the described
   // methods' on first use (compositor_programs.cpp).

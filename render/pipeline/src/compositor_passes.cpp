@@ -12,6 +12,7 @@
 #include "compositor_impl.hpp"
 #include "foveal/render/light_rig.hpp"
 #include "foveal/render/scene.hpp"
+#include "foveal/rmfr_mapping.hpp"
 
 namespace foveal::render {
 
@@ -197,6 +198,18 @@ Status Compositor::Impl::resolve_pass(const EyePlan& plan, std::size_t variant, 
   glBindVertexArray(empty_vao.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   return {};
+}
+
+// A full-resolution (W×H) image of the eye, `texture`, into the viewport at `origin` of
+// `fbo`: foveal-rmfr's resolve at σ = 1 copies it (pixel centres, exact) and takes it
+// through `lens` when given.
+Status Compositor::Impl::resolve_full(const EyePlan& plan, GLuint texture, GLuint fbo, glm::ivec2 origin, const LensDistortion* lens) {
+  rmfr::Plan identity = rmfr_plan(plan);
+  identity.buffer_w = identity.screen_w, identity.buffer_h = identity.screen_h;
+  identity.sigma = 1.0;
+  identity.fx = identity.fy = rmfr::kRmfrIdentityF;
+  const rmfr::Lens l = lens ? rmfr_lens(*lens) : rmfr::Lens{};
+  return foveator->resolve(identity, texture, fbo, origin.x, origin.y, lens ? &l : nullptr);
 }
 
 // alphaMode BLEND, after the eye's lit opaque result is complete in the output: each

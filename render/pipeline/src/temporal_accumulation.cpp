@@ -8,7 +8,6 @@
 #include "compositor_impl.hpp"
 #include "foveal/render/scene.hpp"
 #include "foveal/render/stereo_camera.hpp"
-#include "foveal/rmfr_mapping.hpp"
 #include "pass_uniforms.hpp"
 
 namespace foveal::render::detail {
@@ -144,17 +143,10 @@ Status Compositor::Impl::use_jitter(std::size_t eye, std::size_t variant, bool o
 
 Status Compositor::Impl::temporal_resolve(std::size_t eye, const EyePlan& plan, const detail::ColorTarget& lit,
                                           const detail::SurfaceTargets& surface, const Scene& scene, const EyeView& view,
-                                          GLuint fbo, glm::ivec2 origin, const rmfr::Lens* lens) {
-  const rmfr::Plan p = rmfr_plan(plan);
-  const GLuint frame = temporal->accumulate(eye, p, lit.texture.id(),
+                                          GLuint fbo, glm::ivec2 origin, const LensDistortion* lens) {
+  const GLuint frame = temporal->accumulate(eye, rmfr_plan(plan), lit.texture.id(),
                                             scene.is_pattern() ? 0 : visibility->depth_texture(), surface.depth.id(), view);
-  // The accumulated frame is full resolution: foveal-rmfr's resolve at σ = 1 copies it
-  // (pixel centres, exact) and takes it through the lens when there is one.
-  rmfr::Plan identity = p;
-  identity.buffer_w = identity.screen_w, identity.buffer_h = identity.screen_h;
-  identity.sigma = 1.0;
-  identity.fx = identity.fy = rmfr::kRmfrIdentityF;
-  return foveator->resolve(identity, frame, fbo, origin.x, origin.y, lens);
+  return resolve_full(plan, frame, fbo, origin, lens);  // the accumulated frame is full resolution
 }
 
 }  // namespace foveal::render
